@@ -1,0 +1,12 @@
+# Turns every gl/shaders/NAME.glsl into `const char pelt__shader_NAME[]`.
+file(GLOB files ${SRC_DIR}/*.glsl)
+list(SORT files)
+set(out "/* Generated from gl/shaders/*.glsl by cmake/embed_shaders.cmake. */\n")
+foreach(f ${files})
+  get_filename_component(name ${f} NAME_WE)
+  file(READ ${f} text HEX)
+  string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${text}")
+  string(APPEND out "const char pelt__shader_${name}[] = {${bytes}0x00};\n")
+endforeach()
+file(WRITE ${OUT}.tmp "${out}")
+file(RENAME ${OUT}.tmp ${OUT})

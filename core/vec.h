@@ -1,0 +1,40 @@
+/* Small inline vector and matrix math shared by core/ and gl/. */
+#ifndef PELT_VEC_H
+#define PELT_VEC_H
+
+#include <math.h>
+
+typedef struct pelt_vec3 { float x, y, z; } pelt_vec3;
+
+static inline pelt_vec3 v3(float x, float y, float z) { pelt_vec3 r = {x, y, z}; return r; }
+static inline pelt_vec3 v3_load(const float *p) { return v3(p[0], p[1], p[2]); }
+static inline void v3_store(float *p, pelt_vec3 a) { p[0] = a.x; p[1] = a.y; p[2] = a.z; }
+static inline pelt_vec3 v3_add(pelt_vec3 a, pelt_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline pelt_vec3 v3_sub(pelt_vec3 a, pelt_vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline pelt_vec3 v3_scale(pelt_vec3 a, float s) { return v3(a.x * s, a.y * s, a.z * s); }
+static inline pelt_vec3 v3_mad(pelt_vec3 a, pelt_vec3 b, float s) { return v3(a.x + b.x * s, a.y + b.y * s, a.z + b.z * s); }
+static inline float v3_dot(pelt_vec3 a, pelt_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline pelt_vec3 v3_cross(pelt_vec3 a, pelt_vec3 b)
+{
+    return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static inline float v3_len(pelt_vec3 a) { return sqrtf(v3_dot(a, a)); }
+/* Unit vector along a, or `fallback` when a is (near) zero. */
+static inline pelt_vec3 v3_norm_or(pelt_vec3 a, pelt_vec3 fallback)
+{
+    float l = v3_len(a);
+    return l > 1e-20f ? v3_scale(a, 1.0f / l) : fallback;
+}
+static inline float clampf(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
+
+/* Column-major 4x4 matrices, as OpenGL takes them. */
+void pelt__mat4_perspective(float m[16], float fov_y_rad, float aspect, float znear, float zfar);
+void pelt__mat4_look_at(float m[16], pelt_vec3 eye, pelt_vec3 target, pelt_vec3 up);
+void pelt__mat4_mul(float out[16], const float a[16], const float b[16]);
+void pelt__mat4_identity(float m[16]);
+/* Rotation by `angle` radians about a unit axis. */
+void pelt__mat4_rotate(float m[16], pelt_vec3 axis, float angle);
+/* Transforms a point (w = 1) or a direction (w = 0). */
+pelt_vec3 pelt__mat4_apply(const float m[16], pelt_vec3 p, float w);
+
+#endif

@@ -1,0 +1,54 @@
+/* pelt — fur over a mesh: parameters, texture synthesis, per-frame state. */
+#ifndef PELT_FUR_H
+#define PELT_FUR_H
+
+#include "pelt/base.h"
+#include "pelt/mesh.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pelt_fur pelt_fur;
+
+/* Fur parameters. A zero field means its documented default; the defaults
+ * are the paper's Table 1 set-up (16 layers, 256x256 fur texture). */
+typedef struct pelt_fur_desc {
+    unsigned layers;         /* shells N, default 16, at most 256 */
+    float length;            /* fur length L0 in world units, default 6% of
+                                the mesh's bounding-box diagonal */
+    unsigned texture_size;   /* fur texture width = height, default 256 */
+    uint32_t seed;           /* texture and dynamics seed, default 1 */
+    float density;           /* strands per texture tile, default 3000 */
+    float strand_radius;     /* strand radius at the root in texels, default 1.6 */
+    float taper;             /* 0 = cylinder, 1 = tip ends in a point, default 0.8 */
+    float tiling;            /* fur-texture tiles per uv unit, default 6 */
+    float color[3];          /* base hair colour (linear RGB), default warm brown */
+    float tip_color[3];      /* colour at the tips, default lighter brown */
+    float specular[3];       /* Kajiya-Kay K_s, default 0.35 grey */
+    float shininess;         /* Kajiya-Kay exponent p, default 40 */
+    float shadow;            /* K_shadow >= 1 of Silva Eq. 6, default 2 */
+    float curl_frequency;    /* omega of Silva Eq. 4 (radians over the length), default 0 */
+    float curl_radius;       /* K_alpha of Silva Eq. 4 in world units, default 0 */
+} pelt_fur_desc;
+
+/* Synthesizes the fur texture (Lengyel et al. 2001 §2.2) and the strand
+ * state for `mesh`. The mesh must outlive the fur. Free with
+ * pelt_fur_destroy. */
+pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc,
+                            pelt_fur **out, pelt_error *err);
+void pelt_fur_destroy(pelt_fur *fur);
+
+/* The desc with every default filled in. */
+pelt_fur_desc pelt_fur_get_desc(const pelt_fur *fur);
+
+/* A colour texture that modulates the hair colour (uv space of the mesh).
+ * RGBA8, width * height * 4 bytes, copied. */
+pelt_status pelt_fur_set_color_texture(pelt_fur *fur, const uint8_t *rgba,
+                                       unsigned width, unsigned height,
+                                       pelt_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

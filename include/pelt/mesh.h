@@ -1,0 +1,64 @@
+/* pelt — triangle meshes: import, validation, procedural shapes. */
+#ifndef PELT_MESH_H
+#define PELT_MESH_H
+
+#include "pelt/base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct pelt_mesh pelt_mesh;
+
+/* Caller-owned arrays describing an indexed triangle mesh. normals and uvs
+ * may be NULL (normals are then computed; uvs get a fallback mapping). */
+typedef struct pelt_mesh_data {
+    const float *positions; /* 3 * vertex_count */
+    const float *normals;   /* 3 * vertex_count, or NULL */
+    const float *uvs;       /* 2 * vertex_count, or NULL */
+    size_t vertex_count;
+    const uint32_t *indices; /* 3 * triangle_count */
+    size_t triangle_count;
+} pelt_mesh_data;
+
+/* What validation did to the input. */
+typedef struct pelt_mesh_stats {
+    size_t vertex_count;       /* after validation */
+    size_t triangle_count;     /* after validation */
+    size_t dropped_degenerate; /* repeated index or zero area */
+    bool computed_normals;     /* input had none (or unusable ones) */
+    bool fallback_uvs;         /* input had no uvs: spherical fallback map */
+} pelt_mesh_stats;
+
+/* Validates and copies `data` into a new mesh: indices in range and finite
+ * coordinates (else PELT_ERR_FORMAT), degenerate and zero-area triangles
+ * dropped and counted, normals computed when absent, tangent frames from
+ * uvs. The caller frees *out with pelt_mesh_destroy. */
+pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out,
+                             pelt_error *err);
+
+/* Imports a mesh file through assimp (OBJ, PLY, OFF, STL, glTF/GLB, FBX...)
+ * and validates it as pelt_mesh_create does. All meshes in the file are
+ * merged. Errors name the file. Free with pelt_mesh_destroy. */
+pelt_status pelt_mesh_load(const char *path, pelt_mesh **out, pelt_error *err);
+
+/* Procedural shapes with uvs in [0,1]^2. */
+pelt_status pelt_mesh_torus(float major_radius, float minor_radius,
+                            unsigned major_segments, unsigned minor_segments,
+                            pelt_mesh **out, pelt_error *err);
+pelt_status pelt_mesh_sphere(float radius, unsigned slices, unsigned stacks,
+                             pelt_mesh **out, pelt_error *err);
+/* A square of side `size` in the XZ plane, normal +Y, centred on the origin. */
+pelt_status pelt_mesh_square(float size, unsigned subdivisions,
+                             pelt_mesh **out, pelt_error *err);
+
+void pelt_mesh_destroy(pelt_mesh *mesh);
+
+pelt_mesh_stats pelt_mesh_get_stats(const pelt_mesh *mesh);
+/* Axis-aligned bounds of the positions. */
+void pelt_mesh_bounds(const pelt_mesh *mesh, float min[3], float max[3]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

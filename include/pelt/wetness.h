@@ -1,0 +1,32 @@
+/* pelt — wetness: droplets blended into the wetness mask (Silva et al.
+ * §3.1, Alg. 1), rain and drying. */
+#ifndef PELT_WETNESS_H
+#define PELT_WETNESS_H
+
+#include "pelt/base.h"
+#include "pelt/fur.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* One droplet in mask (atlas) coordinates: centre in [0,1]^2, radius in
+ * the same units, wetness in [-1, 1] (negative dries, a hair dryer). */
+typedef struct pelt_droplet {
+    float center[2];
+    float radius;
+    float wetness;
+} pelt_droplet;
+
+/* Random rain: droplets per second at seeded random places. */
+typedef struct pelt_rain {
+    float rate;             /* droplets per second, 0 = no rain */
+    float radius_min, radius_max;   /* in mask uv units */
+    float wetness_min, wetness_max;
+    uint32_t seed;
+} pelt_rain;
+
+#ifdef __cplusplus
+}
+#endif
+#endif
