@@ -1,7 +1,7 @@
 # Turns every gl/shaders/NAME.glsl into `const char pelt__shader_NAME[]`.
 file(GLOB files ${SRC_DIR}/*.glsl)
 list(SORT files)
-set(out "/* Generated from gl/shaders/*.glsl by cmake/embed_shaders.cmake. */\n")
+set(out "/* Generated from the gl/shaders .glsl files by cmake/embed_shaders.cmake. */\n")
 foreach(f ${files})
   get_filename_component(name ${f} NAME_WE)
   file(READ ${f} text HEX)

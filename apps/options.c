@@ -1,0 +1,273 @@
+/* Flags shared by `pelt render` and `pelt bench`: each names a scene key
+ * (set through pelt_scene_set, so flags and scene files validate alike). */
+#include "apps/cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+void cli_error(const char *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "pelt %s: ", cmd);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+typedef enum flag_kind {
+    FLAG_KEY,     /* value goes to a scene key as is */
+    FLAG_VEC3,    /* "X,Y,Z" goes to a scene key as [X,Y,Z] */
+    FLAG_SIZE,    /* "WxH" */
+    FLAG_MESH,    /* torus | sphere | square | FILE */
+    FLAG_SET,     /* key=value */
+    FLAG_OUTPUT,  /* -o */
+    FLAG_MASK_OUT,
+    FLAG_WARMUP,
+    FLAG_QUIET
+} flag_kind;
+
+typedef struct flag {
+    const char *name, *alias, *metavar;
+    flag_kind kind;
+    const char *key;
+    const char *help;
+} flag;
+
+static const flag flags[] = {
+    {"--output", "-o", "FILE", FLAG_OUTPUT, NULL,
+     "PNG to write; with --frames > 1 a pattern like out_%04d.png (default pelt.png)"},
+    {"--mesh", NULL, "FILE|torus|sphere|square", FLAG_MESH, NULL, "mesh file (OBJ, PLY, OFF, STL, glTF...) or a procedural shape"},
+    {"--layers", NULL, "N", FLAG_KEY, "fur.layers", "shell layers (default 16)"},
+    {"--length", NULL, "L", FLAG_KEY, "fur.length", "fur length in world units (default 3% of the mesh diagonal)"},
+    {"--density", NULL, "D", FLAG_KEY, "fur.density", "strands per fur-texture tile (default 3000)"},
+    {"--texture-size", NULL, "N", FLAG_KEY, "fur.texture_size", "fur texture size (default 256)"},
+    {"--seed", NULL, "S", FLAG_KEY, "fur.seed", "seed of the fur texture and dynamics (default 1)"},
+    {"--size", NULL, "WxH", FLAG_SIZE, NULL, "image size in pixels (default 800x600)"},
+    {"--msaa", NULL, "N", FLAG_KEY, "output.msaa", "multisample anti-aliasing samples (default 0)"},
+    {"--texture", NULL, "FILE", FLAG_KEY, "texture.image", "colour texture image (PNG, JPEG...)"},
+    {"--pattern", NULL, "NAME", FLAG_KEY, "texture.pattern", "procedural colour: none, spots, stripes, noise"},
+    {"--yaw", NULL, "DEG", FLAG_KEY, "camera.yaw", "orbit camera yaw"},
+    {"--pitch", NULL, "DEG", FLAG_KEY, "camera.pitch", "orbit camera pitch"},
+    {"--distance", NULL, "D", FLAG_KEY, "camera.distance", "orbit camera distance"},
+    {"--fov", NULL, "DEG", FLAG_KEY, "camera.fov_y", "vertical field of view"},
+    {"--light", NULL, "X,Y,Z", FLAG_VEC3, "light.direction", "direction towards the light"},
+    {"--frames", NULL, "N", FLAG_KEY, "animation.frames", "frames to render (bench: frames to time)"},
+    {"--fps", NULL, "F", FLAG_KEY, "animation.fps", "frames per second of the animation (default 30)"},
+    {"--turntable", NULL, "DEG/S", FLAG_KEY, "animation.turntable", "spin the mesh about +Y"},
+    {"--wind", NULL, "X,Y,Z", FLAG_VEC3, "forces.wind", "wind (acceleration, world units/s^2)"},
+    {"--gravity", NULL, "X,Y,Z", FLAG_VEC3, "forces.gravity", "gravity (default 0,-9.81,0)"},
+    {"--curl-frequency", NULL, "W", FLAG_KEY, "fur.curl_frequency", "curl frequency omega (Silva Eq. 4)"},
+    {"--curl-radius", NULL, "K", FLAG_KEY, "fur.curl_radius", "curl radius K_alpha in world units (Silva Eq. 4)"},
+    {"--preset", NULL, "NAME", FLAG_KEY, "fur_preset", "straight, wavy, few-large-curls, many-small-curls"},
+    {"--drops", NULL, "N", FLAG_KEY, "wetness.drops", "N random droplets at the start"},
+    {"--rain", NULL, "RATE", FLAG_KEY, "wetness.rain.rate", "droplets per second"},
+    {"--dry-rate", NULL, "R", FLAG_KEY, "wetness.dry_rate", "wetness lost per second"},
+    {"--mask-image", NULL, "FILE", FLAG_KEY, "wetness.mask_image", "greyscale image painted as water"},
+    {"--mask-out", NULL, "FILE", FLAG_MASK_OUT, NULL, "write the wetness mask as a PNG"},
+    {"--set", NULL, "KEY=VALUE", FLAG_SET, NULL, "set any scene key (see docs/scene-format.md)"},
+    {"--warmup", NULL, "N", FLAG_WARMUP, NULL, "bench: untimed frames first (default 5)"},
+    {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
+};
+
+static void print_help(const char *cmd)
+{
+    printf("usage: pelt %s [SCENE.json] [flags]\n\n", cmd);
+    if (!strcmp(cmd, "render"))
+        printf("Renders the scene (default: the paper's Table 1 torus, 16 layers, 800x600)\n"
+               "headless to PNG. Flags override keys of the scene file.\n\n");
+    else
+        printf("Renders frames after a warm-up, glFinish after each, and prints the median,\n"
+               "minimum and maximum milliseconds per frame for each part of the frame.\n\n");
+    for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++) {
+        char left[64];
+        snprintf(left, sizeof left, "%s%s%s %s", flags[i].alias ? flags[i].alias : "",
+                 flags[i].alias ? ", " : "", flags[i].name, flags[i].metavar ? flags[i].metavar : "");
+        printf("  %-36s %s\n", left, flags[i].help);
+    }
+    printf("  %-36s %s\n", "-h, --help", "this help");
+}
+
+static const flag *find_flag(const char *arg)
+{
+    for (size_t i = 0; i < sizeof flags / sizeof flags[0]; i++)
+        if (!strcmp(arg, flags[i].name) || (flags[i].alias && !strcmp(arg, flags[i].alias)))
+            return &flags[i];
+    return NULL;
+}
+
+static bool parse_uint(const char *s, unsigned long max, unsigned *out)
+{
+    char *end;
+    errno = 0;
+    if (!*s || *s == '-' || *s == '+') return false;
+    unsigned long v = strtoul(s, &end, 10);
+    if (errno || *end || v > max) return false;
+    *out = (unsigned)v;
+    return true;
+}
+
+static bool set_key(const char *cmd, const char *flag_name, pelt_scene *s, const char *key,
+                    const char *value)
+{
+    pelt_error err = {0};
+    if (pelt_scene_set(s, key, value, &err) != PELT_OK) {
+        cli_error(cmd, "%s '%s': %s", flag_name, value, err.message);
+        return false;
+    }
+    return true;
+}
+
+static bool apply(const char *cmd, const flag *f, const char *value, cli_options *o)
+{
+    char buf[2048];
+    switch (f->kind) {
+    case FLAG_KEY:
+        return set_key(cmd, f->name, &o->scene, f->key, value);
+    case FLAG_VEC3: {
+        /* Exactly three comma-separated numbers. */
+        char *end;
+        const char *p = value;
+        float v[3];
+        for (int i = 0; i < 3; i++) {
+            errno = 0;
+            v[i] = strtof(p, &end);
+            if (end == p || errno || !isfinite(v[i]) || (i < 2 && *end != ',') || (i == 2 && *end)) {
+                cli_error(cmd, "%s '%s': expected three numbers X,Y,Z", f->name, value);
+                return false;
+            }
+            p = end + 1;
+        }
+        snprintf(buf, sizeof buf, "[%.9g,%.9g,%.9g]", (double)v[0], (double)v[1], (double)v[2]);
+        return set_key(cmd, f->name, &o->scene, f->key, buf);
+    }
+    case FLAG_SIZE: {
+        unsigned w, h;
+        const char *x = strchr(value, 'x');
+        if (!x || (size_t)(x - value) >= 16) {
+            cli_error(cmd, "--size '%s': expected WIDTHxHEIGHT, like 800x600", value);
+            return false;
+        }
+        char wbuf[16];
+        memcpy(wbuf, value, (size_t)(x - value));
+        wbuf[x - value] = '\0';
+        if (!parse_uint(wbuf, 16384, &w) || !parse_uint(x + 1, 16384, &h) || w == 0 || h == 0) {
+            cli_error(cmd, "--size '%s': width and height must be 1..16384", value);
+            return false;
+        }
+        o->scene.output.width = w;
+        o->scene.output.height = h;
+        return true;
+    }
+    case FLAG_MESH:
+        if (!strcmp(value, "torus") || !strcmp(value, "sphere") || !strcmp(value, "square"))
+            return set_key(cmd, f->name, &o->scene, "mesh.shape", value);
+        if (strlen(value) >= PELT_SCENE_PATH_MAX) {
+            cli_error(cmd, "--mesh: path too long");
+            return false;
+        }
+        return set_key(cmd, f->name, &o->scene, "mesh.shape", "file") &&
+               set_key(cmd, f->name, &o->scene, "mesh.file", value);
+    case FLAG_SET: {
+        const char *eq = strchr(value, '=');
+        if (!eq || eq == value || (size_t)(eq - value) >= 256) {
+            cli_error(cmd, "--set '%s': expected KEY=VALUE, like fur.layers=32", value);
+            return false;
+        }
+        char key[256];
+        memcpy(key, value, (size_t)(eq - value));
+        key[eq - value] = '\0';
+        return set_key(cmd, f->name, &o->scene, key, eq + 1);
+    }
+    case FLAG_OUTPUT:
+        o->output = value;
+        return true;
+    case FLAG_MASK_OUT:
+        o->mask_out = value;
+        return true;
+    case FLAG_WARMUP:
+        if (!parse_uint(value, 100000, &o->warmup)) {
+            cli_error(cmd, "--warmup '%s': expected a whole number 0..100000", value);
+            return false;
+        }
+        return true;
+    case FLAG_QUIET:
+        o->quiet = true;
+        return true;
+    }
+    return false;
+}
+
+int cli_parse(const char *cmd, int argc, char **argv, cli_options *o)
+{
+    memset(o, 0, sizeof *o);
+    pelt_scene_defaults(&o->scene);
+    o->output = "pelt.png";
+    o->warmup = 5;
+    int i = 0;
+    for (int k = 0; k < argc; k++)
+        if (!strcmp(argv[k], "-h") || !strcmp(argv[k], "--help")) {
+            print_help(cmd);
+            return 1;
+        }
+    /* An optional scene file comes first. */
+    if (argc > 0 && argv[0][0] != '-') {
+        pelt_error err = {0};
+        if (pelt_scene_load(argv[0], &o->scene, &err) != PELT_OK) {
+            cli_error(cmd, "%s", err.message);
+            return 2;
+        }
+        i = 1;
+    }
+    for (; i < argc; i++) {
+        const flag *f = find_flag(argv[i]);
+        if (!f) {
+            if (argv[i][0] != '-')
+                cli_error(cmd, "unexpected argument '%s' (the scene file must come first)", argv[i]);
+            else
+                cli_error(cmd, "unknown flag '%s' (see pelt %s --help)", argv[i], cmd);
+            return 2;
+        }
+        const char *value = NULL;
+        if (f->metavar) {
+            if (i + 1 >= argc) {
+                cli_error(cmd, "%s needs a value (%s)", f->name, f->metavar);
+                return 2;
+            }
+            value = argv[++i];
+        }
+        if (!apply(cmd, f, value, o)) return 2;
+    }
+    return 0;
+}
+
+void cli_options_free(cli_options *o) { pelt_scene_free(&o->scene); }
+
+bool cli_frame_pattern_ok(const char *pattern)
+{
+    char tmp[8];
+    return cli_frame_path(pattern, 0, tmp, sizeof tmp) || strlen(pattern) >= sizeof tmp;
+}
+
+bool cli_frame_path(const char *pattern, unsigned frame, char *out, size_t out_size)
+{
+    const char *pc = strchr(pattern, '%');
+    if (!pc) {
+        int n = snprintf(out, out_size, "%s", pattern);
+        return n >= 0 && (size_t)n < out_size;
+    }
+    /* One conversion: %d or %0Nd with N <= 9; nothing else may use '%'. */
+    const char *q = pc + 1;
+    int width = 0;
+    if (*q == '0') {
+        q++;
+        if (*q < '1' || *q > '9') return false;
+        width = *q++ - '0';
+    }
+    if (*q != 'd' || strchr(q + 1, '%')) return false;
+    int n = snprintf(out, out_size, "%.*s%0*u%s", (int)(pc - pattern), pattern, width, frame, q + 1);
+    return n >= 0 && (size_t)n < out_size;
+}

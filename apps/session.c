@@ -1,0 +1,107 @@
+/* Loading a scene into a headless context and drawing its frames. */
+#include "apps/cli.h"
+
+#include <epoxy/gl.h>
+#include <errno.h>
+#include <stb_image_write.h>
+#include <stdlib.h>
+#include <string.h>
+
+static pelt_status load_mesh(const pelt_scene *sc, pelt_mesh **mesh, pelt_error *err)
+{
+    const pelt_scene_mesh *m = &sc->mesh;
+    switch (m->shape) {
+    case PELT_SHAPE_TORUS:
+        return pelt_mesh_torus(m->major_radius, m->minor_radius, m->major_segments,
+                               m->minor_segments, mesh, err);
+    case PELT_SHAPE_SPHERE:
+        return pelt_mesh_sphere(m->radius, m->slices, m->stacks, mesh, err);
+    case PELT_SHAPE_SQUARE:
+        return pelt_mesh_square(m->size, m->subdivisions, mesh, err);
+    case PELT_SHAPE_FILE:
+        return pelt_mesh_load(m->file, mesh, err);
+    }
+    return PELT_ERR_INVALID_ARGUMENT;
+}
+
+bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
+{
+    memset(s, 0, sizeof *s);
+    pelt_error err = {0};
+    if (load_mesh(sc, &s->mesh, &err) != PELT_OK) {
+        cli_error(cmd, "%s", err.message);
+        return false;
+    }
+    pelt_mesh_stats ms = pelt_mesh_get_stats(s->mesh);
+    if (ms.dropped_degenerate)
+        fprintf(stderr, "pelt %s: warning: %zu degenerate triangle(s) dropped\n", cmd,
+                ms.dropped_degenerate);
+    if (ms.fallback_uvs)
+        fprintf(stderr, "pelt %s: warning: the mesh has no uvs; using a spherical fallback "
+                        "mapping (expect stretched fur near the poles)\n", cmd);
+
+    if (pelt_fur_create(s->mesh, &sc->fur, &s->fur, &err) != PELT_OK) {
+        cli_error(cmd, "%s", err.message);
+        cli_session_close(s);
+        return false;
+    }
+    pelt_headless_desc hd = {sc->output.width, sc->output.height, sc->output.msaa, false};
+    if (pelt_headless_create(&hd, &s->gl, &err) != PELT_OK ||
+        pelt_renderer_create(s->mesh, s->fur, NULL, &s->renderer, &err) != PELT_OK) {
+        cli_error(cmd, "%s", err.message);
+        cli_session_close(s);
+        return false;
+    }
+    s->pixels = malloc((size_t)sc->output.width * sc->output.height * 4);
+    if (!s->pixels) {
+        cli_error(cmd, "out of memory for a %ux%u image", sc->output.width, sc->output.height);
+        cli_session_close(s);
+        return false;
+    }
+    /* Aim the camera at the middle of the mesh. */
+    float lo[3], hi[3];
+    pelt_mesh_bounds(s->mesh, lo, hi);
+    pelt_camera cam = sc->camera;
+    float aspect = (float)sc->output.width / (float)sc->output.height;
+    pelt_camera_to_view(&cam, aspect, &s->view);
+    s->view.light = sc->light;
+    s->view.width = sc->output.width;
+    s->view.height = sc->output.height;
+    return true;
+}
+
+void cli_session_close(cli_session *s)
+{
+    pelt_renderer_destroy(s->renderer);
+    pelt_headless_destroy(s->gl);
+    pelt_fur_destroy(s->fur);
+    pelt_mesh_destroy(s->mesh);
+    free(s->pixels);
+    memset(s, 0, sizeof *s);
+}
+
+void cli_session_draw(cli_session *s, const pelt_scene *sc, float t)
+{
+    pelt_scene_model_at(sc, t, s->view.model);
+    pelt_headless_bind(s->gl);
+    const float *bg = sc->output.background;
+    glClearColor(bg[0], bg[1], bg[2], bg[3]);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    pelt_renderer_draw(s->renderer, &s->view);
+}
+
+bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h)
+{
+    FILE *f = fopen(path, "wb");
+    if (!f) {
+        cli_error(cmd, "cannot write '%s': %s", path, strerror(errno));
+        return false;
+    }
+    fclose(f);
+    if (!stbi_write_png(path, (int)w, (int)h, 4, rgba, (int)w * 4)) {
+        cli_error(cmd, "cannot write PNG '%s'", path);
+        remove(path);
+        return false;
+    }
+    return true;
+}

@@ -1,0 +1,167 @@
+/* pelt_fur: parameters, synthesized fur texture and per-vertex fur state. */
+#include "core/fur_internal.h"
+
+#include "core/error.h"
+#include "core/furtex.h"
+#include "core/mesh_internal.h"
+#include "core/vec.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static float bbox_diagonal(const pelt_mesh *m)
+{
+    return v3_len(v3_sub(v3_load(m->bounds_max), v3_load(m->bounds_min)));
+}
+
+void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
+{
+    float diag = mesh ? bbox_diagonal(mesh) : 1.0f;
+    if (!(diag > 0.0f)) diag = 1.0f;
+    if (d->layers == 0) d->layers = 16;
+    if (d->length == 0.0f) d->length = 0.03f * diag;
+    if (d->texture_size == 0) d->texture_size = 256;
+    if (d->seed == 0) d->seed = 1;
+    if (d->density == 0.0f) d->density = 3000.0f;
+    if (d->strand_radius == 0.0f) d->strand_radius = 1.6f;
+    if (d->taper == 0.0f) d->taper = 0.8f;
+    /* Tiles per world unit: five fur tiles across the bounding diagonal. */
+    if (d->tiling == 0.0f) d->tiling = 5.0f / diag;
+    if (d->color[0] == 0.0f && d->color[1] == 0.0f && d->color[2] == 0.0f) {
+        d->color[0] = 0.42f; d->color[1] = 0.26f; d->color[2] = 0.14f;
+    }
+    if (d->tip_color[0] == 0.0f && d->tip_color[1] == 0.0f && d->tip_color[2] == 0.0f) {
+        d->tip_color[0] = 0.85f; d->tip_color[1] = 0.68f; d->tip_color[2] = 0.46f;
+    }
+    if (d->specular[0] == 0.0f && d->specular[1] == 0.0f && d->specular[2] == 0.0f)
+        d->specular[0] = d->specular[1] = d->specular[2] = 0.35f;
+    if (d->shininess == 0.0f) d->shininess = 40.0f;
+    if (d->shadow == 0.0f) d->shadow = 2.0f;
+}
+
+static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
+{
+    if (d->layers < 1 || d->layers > 256)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur layers must be 1..256, got %u", d->layers);
+    if (d->texture_size < 8 || d->texture_size > 4096)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur texture size must be 8..4096, got %u",
+                          d->texture_size);
+    const float positive[] = {d->length, d->density, d->strand_radius, d->tiling, d->shininess};
+    const char *names[] = {"length", "density", "strand radius", "tiling", "shininess"};
+    for (size_t i = 0; i < sizeof positive / sizeof positive[0]; i++)
+        if (!(positive[i] > 0.0f) || !isfinite(positive[i]))
+            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur %s must be a positive number, got %g",
+                              names[i], (double)positive[i]);
+    if (d->density > 1e6f)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur density %g is too high (max 1e6)", (double)d->density);
+    if (d->strand_radius > 64.0f)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur strand radius %g texels is too large (max 64)",
+                          (double)d->strand_radius);
+    if (!(d->taper >= 0.0f && d->taper <= 1.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur taper must be in [0, 1], got %g", (double)d->taper);
+    if (!(d->shadow >= 1.0f) || !isfinite(d->shadow))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur shadow K must be >= 1, got %g", (double)d->shadow);
+    if (!isfinite(d->curl_frequency) || !isfinite(d->curl_radius) || d->curl_radius < 0.0f)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
+    return PELT_OK;
+}
+
+/* Fur-texture coordinates in tiles. With an atlas the mesh carries patch
+ * coordinates already; otherwise the mesh uvs are scaled by the mean
+ * world length of one uv unit along u and along v, so hairs come out round
+ * whatever the uv map's aspect (the torus's uv square is 2.5x longer
+ * around the hole than around the tube). */
+static void compute_fur_uvs(const pelt_mesh *m, float tiling, float *out)
+{
+    if (m->fur_uvs) {
+        memcpy(out, m->fur_uvs, m->vertex_count * 2 * sizeof(float));
+        return;
+    }
+    double su = 0.0, sv = 0.0, wsum = 0.0;
+    for (size_t t = 0; t < m->triangle_count; t++) {
+        const uint32_t *ix = m->indices + 3 * t;
+        pelt_vec3 p0 = v3_load(m->positions + 3 * ix[0]);
+        pelt_vec3 e1 = v3_sub(v3_load(m->positions + 3 * ix[1]), p0);
+        pelt_vec3 e2 = v3_sub(v3_load(m->positions + 3 * ix[2]), p0);
+        const float *a = m->uvs + 2 * ix[0], *b = m->uvs + 2 * ix[1], *c = m->uvs + 2 * ix[2];
+        float du1 = b[0] - a[0], dv1 = b[1] - a[1], du2 = c[0] - a[0], dv2 = c[1] - a[1];
+        float det = du1 * dv2 - du2 * dv1;
+        float area = v3_len(v3_cross(e1, e2));
+        if (fabsf(det) < 1e-12f || area <= 0.0f) continue;
+        /* Columns of the Jacobian dP/du and dP/dv. */
+        pelt_vec3 dpu = v3_scale(v3_sub(v3_scale(e1, dv2), v3_scale(e2, dv1)), 1.0f / det);
+        pelt_vec3 dpv = v3_scale(v3_sub(v3_scale(e2, du1), v3_scale(e1, du2)), 1.0f / det);
+        su += area * v3_len(dpu);
+        sv += area * v3_len(dpv);
+        wsum += area;
+    }
+    float scale_u = wsum > 0.0 ? (float)(su / wsum) : 1.0f;
+    float scale_v = wsum > 0.0 ? (float)(sv / wsum) : 1.0f;
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        out[2 * i + 0] = m->uvs[2 * i + 0] * scale_u * tiling;
+        out[2 * i + 1] = m->uvs[2 * i + 1] * scale_v * tiling;
+    }
+}
+
+pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pelt_fur **out,
+                            pelt_error *err)
+{
+    if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_create: out is NULL");
+    *out = NULL;
+    if (!mesh) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_create: mesh is NULL");
+    pelt_fur_desc d = desc ? *desc : (pelt_fur_desc){0};
+    pelt__fur_desc_defaults(&d, mesh);
+    pelt_status st = check_desc(&d, err);
+    if (st != PELT_OK) return st;
+
+    pelt_fur *f = calloc(1, sizeof *f);
+    if (!f) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
+    f->desc = d;
+    f->mesh = mesh;
+    f->texture_slices = d.layers + 1;
+    pelt__furtex_desc td = {d.texture_size, d.layers, d.seed, d.density, d.strand_radius, d.taper};
+    size_t bytes = pelt__furtex_bytes(&td);
+    f->texture = bytes ? malloc(bytes) : NULL;
+    f->fur_uvs = pelt__calloc(mesh->vertex_count, 2 * sizeof(float));
+    f->tips = pelt__calloc(mesh->vertex_count, 3 * sizeof(float));
+    if (!f->texture || !f->fur_uvs || !f->tips) {
+        pelt_fur_destroy(f);
+        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
+    }
+    pelt__furtex_generate(&td, f->texture);
+    compute_fur_uvs(mesh, d.tiling, f->fur_uvs);
+    /* At rest every tip stands at L0 along the normal. */
+    for (size_t i = 0; i < mesh->vertex_count; i++)
+        v3_store(f->tips + 3 * i, v3_scale(v3_load(mesh->normals + 3 * i), d.length));
+    f->tips_version = 1;
+    *out = f;
+    return PELT_OK;
+}
+
+void pelt_fur_destroy(pelt_fur *f)
+{
+    if (!f) return;
+    free(f->texture);
+    free(f->fur_uvs);
+    free(f->tips);
+    free(f->color_texture);
+    free(f);
+}
+
+pelt_fur_desc pelt_fur_get_desc(const pelt_fur *f) { return f->desc; }
+
+pelt_status pelt_fur_set_color_texture(pelt_fur *f, const uint8_t *rgba, unsigned w, unsigned h,
+                                       pelt_error *err)
+{
+    if (!rgba || w == 0 || h == 0 || w > 16384 || h > 16384)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour texture must be 1..16384 texels a side");
+    uint8_t *copy = pelt__calloc((size_t)w * h, 4);
+    if (!copy) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a %ux%u colour texture", w, h);
+    memcpy(copy, rgba, (size_t)w * h * 4);
+    free(f->color_texture);
+    f->color_texture = copy;
+    f->color_width = w;
+    f->color_height = h;
+    f->color_version++;
+    return PELT_OK;
+}

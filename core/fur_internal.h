@@ -1,0 +1,23 @@
+/* Private layout of pelt_fur, shared by core/ and gl/ (not installed). */
+#ifndef PELT_FUR_INTERNAL_H
+#define PELT_FUR_INTERNAL_H
+
+#include "pelt/fur.h"
+
+struct pelt_fur {
+    pelt_fur_desc desc;      /* every default filled in */
+    const pelt_mesh *mesh;
+    uint8_t *texture;        /* fur volume, see core/furtex.h */
+    unsigned texture_slices; /* layers + 1 */
+    float *fur_uvs;          /* 2 per vertex: fur-texture coordinates in tiles */
+    float *tips;             /* 3 per vertex: tip offset p - p_root, mesh-local */
+    uint8_t *color_texture;  /* RGBA8 or NULL */
+    unsigned color_width, color_height;
+    unsigned color_version;  /* bumped when the colour texture changes */
+    unsigned tips_version;   /* bumped when tips change */
+};
+
+/* Fills the zero fields of `d` with defaults for `mesh`. */
+void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh);
+
+#endif

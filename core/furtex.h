@@ -1,0 +1,28 @@
+/* Fur texture synthesis (Lengyel et al. 2001 §2.2): hair strands simulated
+ * in a tileable box and sampled into one RGBA slice per shell layer. */
+#ifndef PELT_FURTEX_H
+#define PELT_FURTEX_H
+
+#include "pelt/base.h"
+
+typedef struct pelt__furtex_desc {
+    unsigned size;        /* slice width = height in texels */
+    unsigned layers;      /* shell layers N; the volume has N + 1 slices */
+    uint32_t seed;
+    float density;        /* strands per tile */
+    float strand_radius;  /* texels at the root */
+    float taper;          /* 0..1: radius at the tip = (1 - taper) * root radius */
+} pelt__furtex_desc;
+
+/* Number of bytes of the volume: size * size * (layers + 1) * 4, or 0 when
+ * that overflows. */
+size_t pelt__furtex_bytes(const pelt__furtex_desc *d);
+
+/* Fills `rgba` (pelt__furtex_bytes(d) bytes) with the volume. Slice 0 is
+ * the skin, fully opaque; slice n + 1 holds the hair at the height of
+ * shell n, h = (1 + n) / N. Channels: R = strand shade (0..1), G = height
+ * along the strand relative to its length, B = 255, A = coverage. The
+ * volume tiles in both texture axes. Deterministic for a seed. */
+void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba);
+
+#endif

@@ -1,0 +1,286 @@
+/* The fur renderer (Lengyel et al. 2001 §2.3, Silva et al. §4): an opaque
+ * skin pass with depth write, then every shell in one instanced draw,
+ * blended inner to outer, depth tested without depth write. */
+#include "pelt/render.h"
+
+#include "core/error.h"
+#include "core/fur_internal.h"
+#include "core/mesh_internal.h"
+#include "core/vec.h"
+#include "gl/shader.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+enum { UNIT_FUR = 0, UNIT_COLOR = 1, UNIT_MASK = 2 };
+
+/* Uniform locations of one program (-1 where a program lacks one). */
+typedef struct uniforms {
+    GLint model, view_proj, layers, length, curl_frequency, curl_radius;
+    GLint color, tip_color, specular, shininess, shadow, eye;
+    GLint light_dir, light_color, ambient;
+    GLint fur, color_tex, mask;
+} uniforms;
+
+struct pelt_renderer {
+    const pelt_mesh *mesh;
+    pelt_fur *fur;
+    pelt_renderer_desc desc;
+    GLuint vao, vbo_static, vbo_tips, ebo;
+    GLuint skin_program, shell_program;
+    uniforms skin_u, shell_u;
+    GLuint fur_texture, color_texture, mask_texture;
+    GLsizei index_count;
+    unsigned tips_version, color_version;
+    unsigned shell_draw_calls;
+};
+
+static void find_uniforms(GLuint p, uniforms *u)
+{
+#define LOC(field, name) u->field = glGetUniformLocation(p, name)
+    LOC(model, "u_model"); LOC(view_proj, "u_view_proj"); LOC(layers, "u_layers");
+    LOC(length, "u_length"); LOC(curl_frequency, "u_curl_frequency");
+    LOC(curl_radius, "u_curl_radius"); LOC(color, "u_color"); LOC(tip_color, "u_tip_color");
+    LOC(specular, "u_specular"); LOC(shininess, "u_shininess"); LOC(shadow, "u_shadow");
+    LOC(eye, "u_eye"); LOC(light_dir, "u_light_dir"); LOC(light_color, "u_light_color");
+    LOC(ambient, "u_ambient"); LOC(fur, "u_fur"); LOC(color_tex, "u_color_tex");
+    LOC(mask, "u_mask");
+#undef LOC
+    glUseProgram(p);
+    glUniform1i(u->fur, UNIT_FUR);
+    glUniform1i(u->color_tex, UNIT_COLOR);
+    glUniform1i(u->mask, UNIT_MASK);
+}
+
+/* Interleaved static vertex data: position, normal, uv, fur uv, tangent. */
+enum { STATIC_FLOATS = 3 + 3 + 2 + 2 + 4 };
+
+static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
+{
+    const pelt_mesh *m = r->mesh;
+    float *data = pelt__calloc(m->vertex_count, STATIC_FLOATS * sizeof(float));
+    if (!data) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex data");
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        float *v = data + i * STATIC_FLOATS;
+        memcpy(v + 0, m->positions + 3 * i, 3 * sizeof(float));
+        memcpy(v + 3, m->normals + 3 * i, 3 * sizeof(float));
+        memcpy(v + 6, m->uvs + 2 * i, 2 * sizeof(float));
+        memcpy(v + 8, r->fur->fur_uvs + 2 * i, 2 * sizeof(float));
+        memcpy(v + 10, m->tangents + 4 * i, 4 * sizeof(float));
+    }
+    glGenVertexArrays(1, &r->vao);
+    glBindVertexArray(r->vao);
+    glGenBuffers(1, &r->vbo_static);
+    glBindBuffer(GL_ARRAY_BUFFER, r->vbo_static);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m->vertex_count * STATIC_FLOATS * sizeof(float)),
+                 data, GL_STATIC_DRAW);
+    free(data);
+    const GLsizei stride = STATIC_FLOATS * sizeof(float);
+    const int sizes[] = {3, 3, 2, 2, 4};
+    size_t offset = 0;
+    for (GLuint a = 0; a < 5; a++) {
+        glEnableVertexAttribArray(a);
+        glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, (const void *)offset);
+        offset += (size_t)sizes[a] * sizeof(float);
+    }
+    /* Strand tips change every frame: their own buffer, updated in place. */
+    glGenBuffers(1, &r->vbo_tips);
+    glBindBuffer(GL_ARRAY_BUFFER, r->vbo_tips);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m->vertex_count * 3 * sizeof(float)),
+                 r->fur->tips, GL_DYNAMIC_DRAW);
+    glEnableVertexAttribArray(5);
+    glVertexAttribPointer(5, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
+    r->tips_version = r->fur->tips_version;
+
+    glGenBuffers(1, &r->ebo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ebo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m->triangle_count * 3 * sizeof(uint32_t)),
+                 m->indices, GL_STATIC_DRAW);
+    r->index_count = (GLsizei)(m->triangle_count * 3);
+    glBindVertexArray(0);
+    return PELT_OK;
+}
+
+static void upload_textures(pelt_renderer *r)
+{
+    const pelt_fur *f = r->fur;
+    GLsizei s = (GLsizei)f->desc.texture_size;
+    glGenTextures(1, &r->fur_texture);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, r->fur_texture);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, (GLsizei)f->texture_slices, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, f->texture);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+
+    static const uint8_t white[4] = {255, 255, 255, 255};
+    glGenTextures(1, &r->color_texture);
+    glBindTexture(GL_TEXTURE_2D, r->color_texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    r->color_version = (unsigned)-1;
+
+    /* Dry wetness mask until the wetness module owns one. */
+    static const float dry[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    glGenTextures(1, &r->mask_texture);
+    glBindTexture(GL_TEXTURE_2D, r->mask_texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 1, 1, 0, GL_RGBA, GL_FLOAT, dry);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+}
+
+pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
+                                 const pelt_renderer_desc *desc, pelt_renderer **out,
+                                 pelt_error *err)
+{
+    if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_renderer_create: out is NULL");
+    *out = NULL;
+    if (!mesh || !fur || fur->mesh != mesh)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "pelt_renderer_create: needs a mesh and a fur made for that mesh");
+    if (mesh->triangle_count * 3 > 0x7fffffff)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "mesh too large for one draw call");
+    pelt_renderer *r = calloc(1, sizeof *r);
+    if (!r) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
+    r->mesh = mesh;
+    r->fur = fur;
+    if (desc) r->desc = *desc;
+
+    const char *skin_vs[] = {pelt__shader_skin_vs, NULL};
+    const char *skin_fs[] = {pelt__shader_shading, pelt__shader_skin_fs, NULL};
+    const char *shell_vs[] = {pelt__shader_fur_shape, pelt__shader_shell_vs, NULL};
+    const char *shell_fs[] = {pelt__shader_shading, pelt__shader_shell_fs, NULL};
+    pelt_status st = pelt__program_build("skin", skin_vs, skin_fs, &r->skin_program, err);
+    if (st == PELT_OK)
+        st = pelt__program_build("shell", shell_vs, shell_fs, &r->shell_program, err);
+    if (st == PELT_OK) st = upload_geometry(r, err);
+    if (st != PELT_OK) {
+        pelt_renderer_destroy(r);
+        return st;
+    }
+    find_uniforms(r->skin_program, &r->skin_u);
+    find_uniforms(r->shell_program, &r->shell_u);
+    upload_textures(r);
+    glUseProgram(0);
+    *out = r;
+    return PELT_OK;
+}
+
+void pelt_renderer_destroy(pelt_renderer *r)
+{
+    if (!r) return;
+    GLuint buffers[3] = {r->vbo_static, r->vbo_tips, r->ebo};
+    GLuint textures[3] = {r->fur_texture, r->color_texture, r->mask_texture};
+    glDeleteBuffers(3, buffers);
+    glDeleteTextures(3, textures);
+    if (r->vao) glDeleteVertexArrays(1, &r->vao);
+    if (r->skin_program) glDeleteProgram(r->skin_program);
+    if (r->shell_program) glDeleteProgram(r->shell_program);
+    free(r);
+}
+
+/* Brings GPU copies up to date with what changed in the fur since the last
+ * frame: only the tip buffer in place, and the colour texture when set. */
+static void sync(pelt_renderer *r)
+{
+    pelt_fur *f = r->fur;
+    if (r->tips_version != f->tips_version) {
+        glBindBuffer(GL_ARRAY_BUFFER, r->vbo_tips);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(r->mesh->vertex_count * 3 * sizeof(float)),
+                        f->tips);
+        r->tips_version = f->tips_version;
+    }
+    if (r->color_version != f->color_version && f->color_texture) {
+        glBindTexture(GL_TEXTURE_2D, r->color_texture);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)f->color_width, (GLsizei)f->color_height,
+                     0, GL_RGBA, GL_UNSIGNED_BYTE, f->color_texture);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glGenerateMipmap(GL_TEXTURE_2D);
+        r->color_version = f->color_version;
+    }
+}
+
+static void set_common(const pelt_renderer *r, const uniforms *u, const pelt_view *v,
+                       const float view_proj[16])
+{
+    const pelt_fur_desc *d = &r->fur->desc;
+    glUniformMatrix4fv(u->model, 1, GL_FALSE, v->model);
+    glUniformMatrix4fv(u->view_proj, 1, GL_FALSE, view_proj);
+    glUniform1f(u->layers, (float)d->layers);
+    glUniform1f(u->length, d->length);
+    glUniform1f(u->curl_frequency, d->curl_frequency);
+    glUniform1f(u->curl_radius, d->curl_radius);
+    glUniform3fv(u->color, 1, d->color);
+    glUniform3fv(u->tip_color, 1, d->tip_color);
+    glUniform3fv(u->specular, 1, d->specular);
+    glUniform1f(u->shininess, d->shininess);
+    glUniform1f(u->shadow, d->shadow);
+    glUniform3fv(u->eye, 1, v->eye);
+    glUniform3fv(u->light_dir, 1, v->light.direction);
+    glUniform3fv(u->light_color, 1, v->light.color);
+    glUniform1f(u->ambient, v->light.ambient);
+}
+
+void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)
+{
+    float view_proj[16];
+    pelt__mat4_mul(view_proj, v->proj, v->view);
+    sync(r);
+
+    glBindVertexArray(r->vao);
+    glActiveTexture(GL_TEXTURE0 + UNIT_FUR);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, r->fur_texture);
+    glActiveTexture(GL_TEXTURE0 + UNIT_COLOR);
+    glBindTexture(GL_TEXTURE_2D, r->color_texture);
+    glActiveTexture(GL_TEXTURE0 + UNIT_MASK);
+    glBindTexture(GL_TEXTURE_2D, r->mask_texture);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDisable(GL_CULL_FACE);
+
+    if (!r->desc.no_skin) {
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+        glUseProgram(r->skin_program);
+        set_common(r, &r->skin_u, v, view_proj);
+        glDrawElements(GL_TRIANGLES, r->index_count, GL_UNSIGNED_INT, NULL);
+    }
+    r->shell_draw_calls = 0;
+    if (!r->desc.no_shells) {
+        glDepthMask(GL_FALSE);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        glUseProgram(r->shell_program);
+        set_common(r, &r->shell_u, v, view_proj);
+        /* Instances are drawn in order, so layers blend inner to outer. */
+        glDrawElementsInstanced(GL_TRIANGLES, r->index_count, GL_UNSIGNED_INT, NULL,
+                                (GLsizei)r->fur->desc.layers);
+        r->shell_draw_calls++;
+        glDepthMask(GL_TRUE);
+        glDisable(GL_BLEND);
+    }
+    glUseProgram(0);
+    glBindVertexArray(0);
+}
+
+unsigned pelt_renderer_shell_draw_calls(const pelt_renderer *r) { return r->shell_draw_calls; }
+
+void pelt_camera_to_view(const pelt_camera *c, float aspect, pelt_view *v)
+{
+    const float deg = 3.14159265358979f / 180.0f;
+    float yaw = c->yaw * deg, pitch = c->pitch * deg;
+    pelt_vec3 target = v3_load(c->target);
+    pelt_vec3 dir = v3(cosf(pitch) * sinf(yaw), sinf(pitch), cosf(pitch) * cosf(yaw));
+    pelt_vec3 eye = v3_mad(target, dir, c->distance);
+    pelt__mat4_look_at(v->view, eye, target, v3(0.0f, 1.0f, 0.0f));
+    float znear = c->distance * 0.02f, zfar = c->distance * 10.0f;
+    pelt__mat4_perspective(v->proj, c->fov_y * deg, aspect, znear, zfar);
+    v3_store(v->eye, eye);
+    pelt__mat4_identity(v->model);
+}

@@ -1,0 +1,44 @@
+// Clump displacement: Silva et al. Eq. 5 and Alg. 2 as DESIGN.md reads them.
+// The C reference is core/clump.c; keep the two in step. No #version line:
+// the renderer concatenates this into the shell fragment shader. Valid as
+// GLSL 3.30 core and GLSL ES 3.00 (needs a float precision in scope on ES).
+
+const int CLUMP_KEEP = 0;      // dry texel: draw at p, undisplaced
+const int CLUMP_DISPLACED = 1; // draw the hair rooted at q (d = q - p)
+const int CLUMP_DISCARD = 2;   // another clump's texel, or q is dry
+const float CLUMP_MAX_PULL = 0.95;
+
+// Eq. 5 profile at h = (1+n)/N: (1-w) h' + w (1 + ln h / ln N) with
+// h' = (h - 1/N) / (1 - 1/N), clamped: 0 at the first layer, 1 at the tip.
+float clump_profile(float h, float w, float N)
+{
+    if (!(N > 1.0)) return 1.0;
+    if (!(h > 0.0)) return 0.0;
+    float first = 1.0 / N;
+    float lin = (h - first) / (1.0 - first);
+    float lg = 1.0 + log(h) / log(N);
+    return clamp((1.0 - w) * lin + w * lg, 0.0, 1.0);
+}
+
+// The texel GL's NEAREST + CLAMP_TO_EDGE picks: clamp(floor(uv*size), 0, size-1),
+// clamped as a float so no out-of-range float reaches the int conversion.
+vec4 clump_texel(sampler2D mask, vec2 uv)
+{
+    vec2 size = vec2(textureSize(mask, 0));
+    vec2 i = clamp(floor(uv * size), vec2(0.0), size - 1.0);
+    return texelFetch(mask, ivec2(i), 0);
+}
+
+// Alg. 2 with the inverse mapping q = c + (p - c) / (1 - min(s rho f(h), 0.95)).
+int clump_lookup(sampler2D mask, vec2 p, float h, float w, float N, float s, out vec2 q)
+{
+    q = p;
+    vec4 t = clump_texel(mask, p);
+    if (!(t.a > 0.0)) return CLUMP_KEEP;
+    vec2 o = p - t.xy;
+    if (length(o) > t.z) return CLUMP_DISCARD;
+    float pull = clamp(s * t.a * clump_profile(h, w, N), 0.0, CLUMP_MAX_PULL);
+    q = t.xy + o * (1.0 / (1.0 - pull));
+    if (!(clump_texel(mask, q).a > 0.0)) return CLUMP_DISCARD;
+    return CLUMP_DISPLACED;
+}

@@ -1,0 +1,31 @@
+// Fur shape of Silva et al. §3.2 (Eq. 1 and 4), the same formulas and
+// argument order as the C references in core/fur_shape.c. No #version: the
+// renderer concatenates this into the vertex shader (GLSL 3.30 core and
+// GLSL ES 3.00). h in [0, 1] is the normalised height, h = (1 + n) / N.
+
+// beta(h), Silva Eq. 1: quadratic Bezier from the root through n * L0 / 2 to
+// the strand tip offset; at rest (tip = L0 n) it is h * L0 * n.
+vec3 fur_bend(vec3 n, float L0, vec3 tip, float h)
+{
+    return n * (2.0 * h * (1.0 - h) * (0.5 * L0)) + tip * (h * h);
+}
+
+// phi(h), Silva Eq. 4: (1 - rho) K h (cos(omega h) u + sin(omega h) v).
+vec3 fur_curl(vec3 u, vec3 v, float omega, float K, float rho, float h)
+{
+    float alpha = (1.0 - rho) * K * h;
+    return u * (alpha * cos(omega * h)) + v * (alpha * sin(omega * h));
+}
+
+// Unit d/dh (beta + phi): the shading tangent of the displaced strand
+// (Silva Fig. 6); n where the derivative vanishes.
+vec3 fur_tangent(vec3 n, float L0, vec3 tip, vec3 u, vec3 v, float omega, float K, float rho, float h)
+{
+    vec3 db = n * ((1.0 - 2.0 * h) * L0) + tip * (2.0 * h);
+    float k = (1.0 - rho) * K;
+    float c = cos(omega * h);
+    float s = sin(omega * h);
+    vec3 d = db + u * (k * (c - omega * h * s)) + v * (k * (s + omega * h * c));
+    float len2 = dot(d, d);
+    return len2 > 1e-30 ? d * inversesqrt(len2) : n;
+}

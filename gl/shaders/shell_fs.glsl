@@ -1,0 +1,41 @@
+// Shell fragments: fur texture slice of this layer, Kajiya-Kay shading
+// (Silva et al. Eq. 6) with the displaced strand tangent, alpha discard.
+in vec2 v_uv;
+in vec2 v_fur_uv;
+in vec3 v_world;
+in vec3 v_tangent;
+in vec3 v_normal;
+in float v_h;
+flat in float v_layer;
+
+uniform highp sampler2DArray u_fur;
+uniform sampler2D u_color_tex;
+uniform vec3 u_color;
+uniform vec3 u_tip_color;
+uniform vec3 u_specular;
+uniform float u_shininess;
+uniform float u_shadow;
+uniform vec3 u_eye;
+uniform vec3 u_light_dir;
+uniform vec3 u_light_color;
+uniform float u_ambient;
+
+out vec4 o_color;
+
+void main()
+{
+    vec4 hair = texture(u_fur, vec3(v_fur_uv, v_layer + 1.0));
+    if (hair.a < 0.05) discard;
+    vec3 T = normalize(v_tangent);
+    vec3 L = normalize(u_light_dir);
+    vec3 E = normalize(v_world - u_eye);
+    vec2 kk = kajiya_kay(T, L, E, u_shininess);
+    vec3 base = mix(u_color, u_tip_color, hair.g) * texture(u_color_tex, v_uv).rgb * hair.r;
+    // Hair on the side of the body facing away from the light is in the
+    // body's shadow: Kajiya-Kay alone would light it as brightly.
+    float facing = clamp(dot(normalize(v_normal), L) * 0.8 + 0.35, 0.0, 1.0);
+    float gamma = shadow_factor(u_shadow, v_h);
+    vec3 lit = base * (u_ambient + kk.x * facing * u_light_color)
+             + u_specular * kk.y * facing * u_light_color;
+    o_color = vec4(gamma * lit, hair.a);
+}

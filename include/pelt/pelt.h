@@ -1,0 +1,16 @@
+/* pelt — real-time dynamic shell fur. The umbrella header. */
+#ifndef PELT_H
+#define PELT_H
+
+#include "pelt/base.h"
+#include "pelt/dynamics.h"
+#include "pelt/fur.h"
+#include "pelt/headless.h"
+#include "pelt/mesh.h"
+#include "pelt/render.h"
+#include "pelt/scene.h"
+#include "pelt/wetness.h"
+
+#define PELT_VERSION_STRING "0.1.0"
+
+#endif
