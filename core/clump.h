@@ -1,0 +1,44 @@
+/* Clump displacement reference (Silva et al. Eq. 5 and Alg. 2 as DESIGN.md
+ * reads them). gl/shaders/clump.glsl is the same maths in GLSL; keep them
+ * in step. No GL here. */
+#ifndef PELT_CORE_CLUMP_H
+#define PELT_CORE_CLUMP_H
+
+#include <stddef.h>
+
+/* Outcome of Alg. 2 for one fragment; the values match the GLSL constants
+ * CLUMP_KEEP, CLUMP_DISPLACED, CLUMP_DISCARD. */
+typedef enum pelt__clump_result {
+    PELT__CLUMP_KEEP = 0,      /* dry texel: draw at p, undisplaced */
+    PELT__CLUMP_DISPLACED = 1, /* draw the hair rooted at q (d = q - p) */
+    PELT__CLUMP_DISCARD = 2    /* another clump's texel, or q is dry */
+} pelt__clump_result;
+
+/* s * rho * f is clamped to [0, this] so the inverse mapping stays finite. */
+#define PELT__CLUMP_MAX_PULL 0.95f
+
+/* Eq. 5 profile at normalised height h = (1+n)/N:
+ *   f = (1-w) h' + w (1 + ln h / ln N),  h' = (h - 1/N) / (1 - 1/N),
+ * clamped to [0,1]: 0 at the first layer and 1 at the tip for any w in
+ * [0,1]; N <= 1 gives 1. */
+float pelt__clump_profile(float h, float w, float n_layers);
+
+/* Texel of a width x height RGBA32F mask (4 floats per texel, row 0 at
+ * v = 0) that GL's NEAREST filter with CLAMP_TO_EDGE picks at uv:
+ * index = clamp(floor(uv * size), 0, size - 1). */
+const float *pelt__clump_texel(const float *mask, unsigned width,
+                               unsigned height, const float uv[2]);
+
+/* Alg. 2 with the inverse mapping: the fragment at mask point p with texel
+ * (c, r, rho) at layer height h samples the root
+ *   q = c + (p - c) / (1 - min(s rho f(h), 0.95)).
+ * Dry texel -> KEEP (q = p); |p - c| > r -> DISCARD; the texel at q dry ->
+ * DISCARD; else DISPLACED. q is always written (p when KEEP). The caller
+ * adds d = q - p to the colour uv and d * fur_tiling to the fur uv, and
+ * discards where the fur texture holds no hair. */
+pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
+                                      unsigned height, const float p[2],
+                                      float h, float w, float n_layers,
+                                      float s, float q[2]);
+
+#endif
