@@ -1,0 +1,218 @@
+/* pelt — scene files: everything one render needs (mesh, fur, textures,
+ * camera, light, output, forces, animation, wetness, atlas), read from JSON
+ * and overridable one key at a time from the command line.
+ *
+ * The format, key by key, is in docs/scene-format.md. Every key has the
+ * same name in JSON as the field path here: the JSON key "fur.layers"
+ * (that is, {"fur": {"layers": 32}}) is scene.fur.layers. */
+#ifndef PELT_SCENE_H
+#define PELT_SCENE_H
+
+#include "pelt/base.h"
+#include "pelt/dynamics.h"
+#include "pelt/fur.h"
+#include "pelt/render.h"
+#include "pelt/wetness.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define PELT_SCENE_PATH_MAX 1024u     /* bytes of a stored path, with the NUL */
+#define PELT_SCENE_NAME_MAX 32u       /* bytes of a stored preset name */
+#define PELT_SCENE_FILE_MAX (16u << 20) /* scene files above 16 MiB are refused */
+#define PELT_SCENE_MAX_DROPLETS 1000000u
+#define PELT_SCENE_MAX_WIND_KEYS 65536u
+
+/* Where the mesh comes from. 0 is the default (the Table 1 torus). */
+typedef enum pelt_scene_shape {
+    PELT_SHAPE_TORUS = 0, /* pelt_mesh_torus */
+    PELT_SHAPE_SPHERE,    /* pelt_mesh_sphere */
+    PELT_SHAPE_SQUARE,    /* pelt_mesh_square */
+    PELT_SHAPE_FILE       /* pelt_mesh_load(mesh.file) */
+} pelt_scene_shape;
+
+/* Procedural colour patterns; NONE means the plain fur colours. */
+typedef enum pelt_scene_pattern {
+    PELT_PATTERN_NONE = 0,
+    PELT_PATTERN_SPOTS,
+    PELT_PATTERN_STRIPES,
+    PELT_PATTERN_NOISE
+} pelt_scene_pattern;
+
+/* How the surface gets its atlas (issue 5). */
+typedef enum pelt_atlas_mode {
+    PELT_ATLAS_AUTO = 0,  /* the mesh's uvs when they are a valid atlas, else patches */
+    PELT_ATLAS_MESH_UVS,  /* always the mesh's own uvs */
+    PELT_ATLAS_PATCHES    /* always grow patches */
+} pelt_atlas_mode;
+
+typedef struct pelt_scene_mesh {
+    pelt_scene_shape shape;         /* default TORUS */
+    char file[PELT_SCENE_PATH_MAX]; /* shape FILE: path, resolved against the
+                                       scene file's directory; "" otherwise */
+    /* torus: defaults 1.0, 0.4, 78, 60 -> 9,360 triangles (Silva Table 1) */
+    float major_radius, minor_radius;
+    unsigned major_segments, minor_segments;
+    /* sphere: defaults radius 1.0, 64 slices, 32 stacks */
+    float radius;
+    unsigned slices, stacks;
+    /* square in the XZ plane, normal +Y (Silva Fig. 4b): defaults side 2.0,
+       16 subdivisions per side */
+    float size;
+    unsigned subdivisions;
+    /* placement: rotation in degrees about X, then Y, then Z; uniform scale
+       (default 1). Applied before the animation (pelt_scene_model_at). */
+    float rotation[3];
+    float scale;
+} pelt_scene_mesh;
+
+typedef struct pelt_scene_texture {
+    /* Colour texture: an image file (resolved against the scene's directory)
+       OR a procedural pattern, never both; "" and NONE mean no texture. */
+    char image[PELT_SCENE_PATH_MAX];
+    pelt_scene_pattern pattern;     /* default NONE */
+    float scale;                    /* repeats per uv unit, default 1 */
+} pelt_scene_texture;
+
+typedef struct pelt_scene_output {
+    unsigned width, height; /* pixels, default 800 x 600 (Table 1), 1..16384 */
+    unsigned msaa;          /* samples, 0 = off (default), at most 16 */
+    float background[4];    /* linear RGBA, default (0.10, 0.11, 0.13, 1) */
+} pelt_scene_output;
+
+/* Strand parameters (Silva §3.2.1); 0 means the dynamics module's default. */
+typedef struct pelt_scene_dynamics {
+    float spring_k; /* spring constant, 1/s^2 per unit mass */
+    float mass;     /* mass of the strand tip */
+    float damping;  /* velocity damping, 1/s */
+} pelt_scene_dynamics;
+
+/* Wind at a time; keyframes are linearly interpolated. */
+typedef struct pelt_wind_key {
+    float time;    /* seconds, >= 0, strictly increasing along the list */
+    float wind[3]; /* same meaning as pelt_forces.wind */
+} pelt_wind_key;
+
+typedef struct pelt_scene_animation {
+    unsigned frames;        /* images to write, default 1 (a still) */
+    float fps;              /* frames per second, default 30; frame i is at
+                               time i / fps, the duration is frames / fps */
+    float turntable;        /* degrees per second about +Y, default 0 */
+    float shake_amplitude;  /* world units along X, default 0 */
+    float shake_frequency;  /* Hz, default 2 */
+    float bounce_height;    /* world units along +Y, default 0 */
+    float bounce_frequency; /* bounces per second, default 1 */
+    /* Wind keyframes, or NULL/0: then forces.wind holds at all times.
+       Owned by the scene; pelt_scene_free frees it. */
+    pelt_wind_key *wind_keys;
+    size_t wind_key_count;
+} pelt_scene_animation;
+
+typedef struct pelt_scene_wetness {
+    unsigned mask_size;     /* wetness mask width = height, default 256 */
+    /* Droplets placed at time 0, in mask uv units (pelt_droplet). Owned by
+       the scene; pelt_scene_free frees it. */
+    pelt_droplet *droplets;
+    size_t droplet_count;
+    /* Random droplets at time 0, seeded; radius and wetness drawn
+       uniformly from the ranges (defaults radius 0.02..0.06,
+       wetness 0.6..1.0, seed 1, count 0). */
+    unsigned drops;
+    uint32_t drops_seed;
+    float drops_radius[2];
+    float drops_wetness[2];
+    pelt_rain rain;         /* default rate 0, same ranges as drops, seed 1 */
+    float rain_start;       /* seconds when the rain begins, default 0 */
+    float rain_stop;        /* seconds when it ends, 0 = never (default) */
+    float dry_rate;         /* wetness lost per second, default 0 */
+    float clump_blend;      /* w of Silva Eq. 5 (profile blend), default 0.5 */
+    float clump_tightness;  /* s of DESIGN.md's Eq. 5 reading, default 0.9 */
+    float darken;           /* brightness lost by fully wet fur, default 0.35 */
+    /* Greyscale image painted as water (Silva Fig. 12c): a texel's wetness
+       is its grey level times mask_image_wetness (default 1). "" = none. */
+    char mask_image[PELT_SCENE_PATH_MAX];
+    float mask_image_wetness;
+} pelt_scene_wetness;
+
+typedef struct pelt_scene_atlas {
+    pelt_atlas_mode mode;  /* default AUTO */
+    float texel_density;   /* fur-texture tiles per world unit, 0 = the atlas
+                              builder's default (default 0) */
+    float direction[3];    /* global hair direction, projected on each tangent
+                              plane; default (0, -1, 0): combed downwards */
+} pelt_scene_atlas;
+
+/* A whole scene. Plain data: copy it freely, but the two arrays
+ * (wetness.droplets, animation.wind_keys) are owned by exactly one copy,
+ * which pelt_scene_free releases. */
+typedef struct pelt_scene {
+    pelt_scene_mesh mesh;
+    /* fur.layers defaults to 16 and fur.texture_size to 256 (Table 1); the
+       other fields stay 0 = pelt_fur_create's own defaults. */
+    pelt_fur_desc fur;
+    /* One of the curl looks of Silva Fig. 7: "straight", "wavy",
+       "few-large-curls", "many-small-curls", or "" (none, default). The
+       renderer takes omega and K_alpha from pelt__curl_preset(); an explicit
+       non-zero fur.curl_frequency / fur.curl_radius wins over the preset. */
+    char fur_preset[PELT_SCENE_NAME_MAX];
+    pelt_scene_texture texture;
+    pelt_camera camera;    /* default yaw 30, pitch 25, distance 4.2, fov_y 40, target 0 */
+    pelt_light light;      /* default direction (0.5, 1, 0.8), colour 1, ambient 0.25 */
+    pelt_scene_output output;
+    pelt_forces forces;    /* default pelt_forces_default() */
+    pelt_scene_dynamics dynamics;
+    pelt_scene_animation animation;
+    pelt_scene_wetness wetness;
+    pelt_scene_atlas atlas;
+} pelt_scene;
+
+/* Fills *s with the defaults (the paper's Table 1 set-up: torus 78 x 60,
+ * 16 layers, 800 x 600, fur texture and mask 256). Does not free: *s may be
+ * uninitialised. */
+void pelt_scene_defaults(pelt_scene *s);
+
+/* Reads a scene file: starts from the defaults and overlays every key the
+ * file holds. Relative mesh, texture and mask image paths resolve against
+ * the file's directory. *s is overwritten without being freed (call
+ * pelt_scene_free first if it owns arrays). On success the caller frees *s
+ * with pelt_scene_free; on failure *s holds the defaults and owns nothing.
+ * Errors: PELT_ERR_IO (missing, unreadable, larger than
+ * PELT_SCENE_FILE_MAX), PELT_ERR_FORMAT (empty, JSON syntax with its line,
+ * unknown key, duplicate key, wrong type, value out of range); the message
+ * names the file and the key. */
+pelt_status pelt_scene_load(const char *path, pelt_scene *s, pelt_error *err);
+
+/* As pelt_scene_load, from NUL-terminated JSON text. name_for_errors (may be
+ * NULL: "scene") starts every message, and relative paths resolve against
+ * its directory when it contains a '/'. */
+pelt_status pelt_scene_parse(const char *json_text, const char *name_for_errors,
+                             pelt_scene *s, pelt_error *err);
+
+/* Sets one key from a string, for command-line overrides such as
+ * --set fur.layers=32. `value` is read as JSON when it parses as JSON
+ * (32, [1,0,0], {"radius":0.1}, "torus") and as a bare string otherwise
+ * (torus, meshes/bunny.off). The same validation and messages as a file,
+ * starting with "--set". A whole group may be set (key "camera" with an
+ * object). Relative paths stay relative to the working directory. On
+ * failure *s is unchanged. */
+pelt_status pelt_scene_set(pelt_scene *s, const char *key_path, const char *value,
+                           pelt_error *err);
+
+/* Frees the arrays *s owns and sets them to NULL/0. NULL is allowed. */
+void pelt_scene_free(pelt_scene *s);
+
+/* Wind at time t in seconds: forces.wind when there are no keyframes, else
+ * the keyframes linearly interpolated, held constant before the first and
+ * after the last. No allocation. */
+void pelt_scene_wind_at(const pelt_scene *s, float t, float out[3]);
+
+/* The mesh's model matrix at time t (column-major, as pelt_view.model):
+ * translate(shake, bounce) * rotateY(turntable * t) * rotation * scale, with
+ * shake x = A sin(2 pi f t) and bounce y = H |sin(pi f t)|. No allocation. */
+void pelt_scene_model_at(const pelt_scene *s, float t, float model[16]);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
