@@ -3,6 +3,7 @@
 #include "pelt/scene.h"
 
 #include "core/error.h"
+#include "core/fur_shape.h"
 #include "core/vec.h"
 
 #include <cjson/cJSON.h>
@@ -64,12 +65,7 @@ void pelt_scene_defaults(pelt_scene *s)
     s->output.background[2] = 0.13f;
     s->output.background[3] = 1.0f;
 
-    /* The numbers of pelt_forces_default(), written here so that scenes do
-       not depend on the dynamics module being linked. */
-    s->forces.gravity[1] = -9.81f;
-    s->forces.gust_strength = 0.5f;
-    s->forces.gust_scale = 0.5f;
-    s->forces.gust_frequency = 1.5f;
+    s->forces = pelt_forces_default();
 
     s->animation.frames = 1;
     s->animation.fps = 30.0f;
@@ -117,7 +113,7 @@ typedef enum kind {
     K_RANGE,    /* [min, max] into two floats at off and off2, min <= max */
     K_PATH,     /* string into char[PELT_SCENE_PATH_MAX], resolved */
     K_ENUM,     /* one of names[], stored as its index in an int */
-    K_NAME,     /* one of names[] or "", stored as the string */
+    K_PRESET,   /* a curl preset name or "", stored as the string */
     K_DROPLETS, /* array of droplet objects: pointer at off, count at off2 */
     K_WINDKEYS  /* array of wind keyframes: pointer at off, count at off2 */
 } kind;
@@ -136,15 +132,19 @@ typedef struct key_def {
     double lo, hi;
     unsigned flags;
     unsigned count;           /* K_VEC */
-    const char *const *names; /* K_ENUM, K_NAME; NULL-terminated */
+    const char *const *names; /* K_ENUM; NULL-terminated */
 } key_def;
 
 static const char *const shape_names[] = {"torus", "sphere", "square", "file", NULL};
 static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
 static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
-/* The curl looks of Silva Fig. 7; the table of values is pelt__curl_preset. */
+/* The curl looks of Silva Fig. 7; the table of values is pelt__curl_preset.
+ * The scene format names them as the issue does; the preset table spells two
+ * of them differently, so both spellings are accepted (same index). */
 static const char *const preset_names[] = {"straight", "wavy", "few-large-curls",
                                            "many-small-curls", NULL};
+static const char *const preset_aliases[] = {"straight", "wavy", "large_curls",
+                                             "small_curls", NULL};
 
 #define BIG 1e30
 #define OFF(field) offsetof(pelt_scene, field)
@@ -171,7 +171,7 @@ static const key_def scene_keys[] = {
     VEC("mesh.rotation", mesh.rotation, 3, -BIG, BIG, 0),
     FLT("mesh.scale", mesh.scale, 0, BIG, F_LO_OPEN),
 
-    {"fur.preset", K_NAME, OFF(fur_preset), 0, 0, 0, 0, 0, preset_names},
+    {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, preset_names},
     UINT_("fur.layers", fur.layers, 1, 256, 0),
     FLT("fur.length", fur.length, 0, BIG, 0),
     UINT_("fur.texture_size", fur.texture_size, 1, 16384, 0),
@@ -496,10 +496,29 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
         if ((st = name_in(c, key, v, d->names, false, &index)) == PELT_OK)
             memcpy(field, &index, sizeof index);
         break;
-    case K_NAME:
-        if ((st = name_in(c, key, v, d->names, true, &index)) == PELT_OK)
-            snprintf((char *)field, PELT_SCENE_NAME_MAX, "%s", index < 0 ? "" : d->names[index]);
+    case K_PRESET: {
+        int alias;
+        ctx quiet = *c;
+        quiet.err = NULL;
+        if (name_in(&quiet, key, v, preset_aliases, false, &alias) == PELT_OK) index = alias;
+        else if ((st = name_in(c, key, v, preset_names, true, &index)) != PELT_OK) break;
+        if (index < 0) {
+            ((char *)field)[0] = '\0';
+            break;
+        }
+        /* Store the spelling the preset table knows, so the renderer can
+           hand fur_preset straight to pelt__curl_preset. */
+        float omega, radius;
+        const char *stored = NULL;
+        if (pelt__curl_preset(preset_names[index], &omega, &radius)) stored = preset_names[index];
+        else if (pelt__curl_preset(preset_aliases[index], &omega, &radius))
+            stored = preset_aliases[index];
+        if (!stored)
+            return pelt__fail(c->err, PELT_ERR_FORMAT, "%s: %s: \"%s\" is missing from the "
+                              "curl preset table", c->name, key, preset_names[index]);
+        snprintf((char *)field, PELT_SCENE_NAME_MAX, "%s", stored);
         break;
+    }
     case K_DROPLETS: {
         static const char *const required[] = {"center", "radius", NULL};
         const pelt_droplet init = {{0, 0}, 0, 1.0f};

@@ -4,6 +4,7 @@
 #include "pelt/scene.h"
 
 #include "check.h"
+#include "core/fur_shape.h"
 
 #include <dirent.h>
 #include <math.h>
@@ -111,7 +112,7 @@ static void full_scene_sets_every_field(void)
     CHECK_NEAR(s.mesh.rotation[2], -30, 0);
     CHECK_NEAR(s.mesh.scale, 2.5, 0);
 
-    CHECK(strcmp(s.fur_preset, "many-small-curls") == 0);
+    CHECK(strcmp(s.fur_preset, "many-small-curls") == 0 || strcmp(s.fur_preset, "small_curls") == 0);
     CHECK(s.fur.layers == 32);
     CHECK_NEAR(s.fur.length, 0.05, 1e-7);
     CHECK(s.fur.texture_size == 128);
@@ -448,6 +449,8 @@ static void set_overrides_and_validates(void)
 
     CHECK(pelt_scene_set(&s, "fur.preset", "wavy", &err) == PELT_OK);
     CHECK(strcmp(s.fur_preset, "wavy") == 0);
+    CHECK(pelt_scene_set(&s, "fur.preset", "curly", &err) == PELT_ERR_FORMAT);
+    CHECK(strcmp(s.fur_preset, "wavy") == 0);
     CHECK(pelt_scene_set(&s, "fur.preset", "", &err) == PELT_OK);
     CHECK(s.fur_preset[0] == '\0');
 
@@ -645,23 +648,49 @@ static void shipped_scenes_all_parse(void)
     CHECK(count >= 8);
 }
 
-static void shipped_presets_name_the_four_fig7_looks(void)
+static void shipped_presets_give_four_different_fig7_looks(void)
 {
-    static const char *const files[4][2] = {
-        {"curl-straight.json", "straight"},
-        {"curl-wavy.json", "wavy"},
-        {"curl-few-large.json", "few-large-curls"},
-        {"curl-many-small.json", "many-small-curls"},
-    };
+    static const char *const files[4] = {"curl-straight.json", "curl-wavy.json",
+                                         "curl-few-large.json", "curl-many-small.json"};
+    float omega[4] = {0}, radius[4] = {0};
     for (int i = 0; i < 4; i++) {
         char path[1024];
-        snprintf(path, sizeof path, "%s%s", SHIPPED, files[i][0]);
+        snprintf(path, sizeof path, "%s%s", SHIPPED, files[i]);
         pelt_scene s;
         pelt_error err = {0};
         CHECK(pelt_scene_load(path, &s, &err) == PELT_OK);
-        CHECK(strcmp(s.fur_preset, files[i][1]) == 0);
+        /* the stored name is one the preset table knows */
+        CHECK(pelt__curl_preset(s.fur_preset, &omega[i], &radius[i]));
         pelt_scene_free(&s);
     }
+    for (int i = 0; i < 4; i++)
+        for (int j = i + 1; j < 4; j++)
+            CHECK(omega[i] != omega[j] || radius[i] != radius[j]);
+    /* straight has no curl; the "many small" curls turn faster than the few large */
+    CHECK(radius[0] == 0 || omega[0] == 0);
+    CHECK(omega[3] > omega[2]);
+}
+
+static void preset_accepts_both_spellings(void)
+{
+    static const char *const names[] = {"straight", "wavy", "few-large-curls",
+                                        "many-small-curls", "large_curls", "small_curls"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        pelt_scene s;
+        pelt_error err = {0};
+        pelt_scene_defaults(&s);
+        CHECK(pelt_scene_set(&s, "fur.preset", names[i], &err) == PELT_OK);
+        float omega, radius;
+        CHECK(pelt__curl_preset(s.fur_preset, &omega, &radius));
+    }
+}
+
+static void forces_default_matches_dynamics_module(void)
+{
+    pelt_scene s;
+    pelt_scene_defaults(&s);
+    pelt_forces f = pelt_forces_default();
+    CHECK(memcmp(&s.forces, &f, sizeof f) == 0);
 }
 
 int main(void)
@@ -683,6 +712,8 @@ int main(void)
     RUN(model_at_shake_and_bounce);
     RUN(model_at_applies_mesh_rotation_and_scale);
     RUN(shipped_scenes_all_parse);
-    RUN(shipped_presets_name_the_four_fig7_looks);
+    RUN(shipped_presets_give_four_different_fig7_looks);
+    RUN(preset_accepts_both_spellings);
+    RUN(forces_default_matches_dynamics_module);
     return check_summary();
 }
