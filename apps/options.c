@@ -169,8 +169,8 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
             cli_error(cmd, "--mesh: path too long");
             return false;
         }
-        return set_key(cmd, f->name, &o->scene, "mesh.shape", "file") &&
-               set_key(cmd, f->name, &o->scene, "mesh.file", value);
+        return set_key(cmd, f->name, &o->scene, "mesh.file", value) &&
+               set_key(cmd, f->name, &o->scene, "mesh.shape", "file");
     case FLAG_SET: {
         const char *eq = strchr(value, '=');
         if (!eq || eq == value || (size_t)(eq - value) >= 256) {

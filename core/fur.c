@@ -28,14 +28,14 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     /* Tiles per world unit: five fur tiles across the bounding diagonal. */
     if (d->tiling == 0.0f) d->tiling = 5.0f / diag;
     if (d->color[0] == 0.0f && d->color[1] == 0.0f && d->color[2] == 0.0f) {
-        d->color[0] = 0.42f; d->color[1] = 0.26f; d->color[2] = 0.14f;
+        d->color[0] = 0.55f; d->color[1] = 0.34f; d->color[2] = 0.18f;
     }
     if (d->tip_color[0] == 0.0f && d->tip_color[1] == 0.0f && d->tip_color[2] == 0.0f) {
-        d->tip_color[0] = 0.85f; d->tip_color[1] = 0.68f; d->tip_color[2] = 0.46f;
+        d->tip_color[0] = 1.0f; d->tip_color[1] = 0.82f; d->tip_color[2] = 0.58f;
     }
     if (d->specular[0] == 0.0f && d->specular[1] == 0.0f && d->specular[2] == 0.0f)
-        d->specular[0] = d->specular[1] = d->specular[2] = 0.35f;
-    if (d->shininess == 0.0f) d->shininess = 40.0f;
+        d->specular[0] = d->specular[1] = d->specular[2] = 0.5f;
+    if (d->shininess == 0.0f) d->shininess = 16.0f;
     if (d->shadow == 0.0f) d->shadow = 2.0f;
 }
 

@@ -255,7 +255,8 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)
     if (!r->desc.no_shells) {
         glDepthMask(GL_FALSE);
         glEnable(GL_BLEND);
-        glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        /* Alpha accumulates as coverage, so an opaque background stays opaque. */
+        glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         glUseProgram(r->shell_program);
         set_common(r, &r->shell_u, v, view_proj);
         /* Instances are drawn in order, so layers blend inner to outer. */

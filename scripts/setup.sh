@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian packages pelt needs, only those that are missing.
+#   scripts/setup.sh          build and render
+#   scripts/setup.sh --tests  also the test data (Debian's libcgal-demo meshes)
+set -euo pipefail
+
+packages=(build-essential cmake pkg-config
+          libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
+          libglfw3-dev libassimp-dev libstb-dev libcjson-dev)
+if [ "${1:-}" = "--tests" ]; then
+  packages+=(libcgal-demo)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "setup: installing ${missing[*]}" >&2
+sudo=""
+if [ "$(id -u)" != 0 ]; then sudo="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$sudo apt-get update -qq
+$sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Bad input to the pelt command: every case must print a message that names
+# the file or flag at fault and exit non-zero, never crash (sanitizers
+# abort with their own exit codes and reports, which this catches too).
+set -u
+pelt=$1 data=$2 out=$3
+fails=0 passes=0
+
+# expect_fail NAME NEEDLE CMD...: non-zero exit, not a signal/sanitizer
+# (exit < 128 and no sanitizer report), stderr contains NEEDLE.
+expect_fail() {
+  local name=$1 needle=$2; shift 2
+  local err rc
+  err=$("$@" 2>&1 >/dev/null); rc=$?
+  if [ $rc -eq 0 ]; then
+    echo "FAIL $name: exit 0"; fails=$((fails+1)); return
+  fi
+  if [ $rc -ge 128 ] || grep -q "Sanitizer\|runtime error" <<<"$err"; then
+    echo "FAIL $name: crashed (exit $rc): $err"; fails=$((fails+1)); return
+  fi
+  if ! grep -qF -- "$needle" <<<"$err"; then
+    echo "FAIL $name: message does not name '$needle': $err"; fails=$((fails+1)); return
+  fi
+  echo "ok   $name: $(head -n1 <<<"$err")"; passes=$((passes+1))
+}
+
+expect_ok() {
+  local name=$1; shift
+  local err rc
+  err=$("$@" 2>&1 >/dev/null); rc=$?
+  if [ $rc -ne 0 ]; then echo "FAIL $name: exit $rc: $err"; fails=$((fails+1)); return; fi
+  echo "ok   $name"; passes=$((passes+1))
+}
+
+r="$pelt render --size 64x48 -q -o $out/cli_out.png"
+expect_fail missing_mesh "no_such_mesh.obj" $r --mesh "$out/no_such_mesh.obj"
+for f in "$data"/meshes/bad_*; do
+  expect_fail "mesh_$(basename "$f")" "$(basename "$f")" $r --mesh "$f"
+done
+expect_fail missing_scene "nope.json" $r "$out/nope.json" 
+for f in "$data"/scenes/bad_*.json "$data"/scenes/empty.json "$data"/scenes/nul_byte.json; do
+  [ -e "$f" ] || continue
+  expect_fail "scene_$(basename "$f")" "$(basename "$f")" $pelt render "$f" --size 64x48 -q -o "$out/cli_out.png"
+done
+printf '{"fur": {"layers": 16,}' > "$out/truncated.json"
+expect_fail scene_json_syntax "truncated.json" $pelt render "$out/truncated.json" -q -o "$out/cli_out.png"
+printf '{"fur": {"lenght": 0.1}}' > "$out/typo.json"
+expect_fail scene_unknown_key "fur.lenght" $pelt render "$out/typo.json" -q -o "$out/cli_out.png"
+printf '{"fur": {"layers": "many"}}' > "$out/type.json"
+expect_fail scene_wrong_type "fur.layers" $pelt render "$out/type.json" -q -o "$out/cli_out.png"
+
+expect_fail layers_zero "--layers" $r --layers 0
+expect_fail layers_word "--layers" $r --layers many
+expect_fail layers_negative "--layers" $r --layers -3
+expect_fail size_bad "--size" $r --size 800
+expect_fail size_zero "--size" $r --size 0x600
+expect_fail size_huge "--size" $r --size 99999x10
+expect_fail seed_word "--seed" $r --seed abc
+expect_fail wind_two "--wind" $r --wind 1,2
+expect_fail wind_nan "--wind" $r --wind 1,nan,2
+expect_fail unknown_flag "--bogus" $r --bogus
+expect_fail missing_value "--layers" $pelt render --layers
+expect_fail bad_pattern "-o" $pelt render --size 64x48 -q -o "$out/x_%s.png"
+expect_fail unwritable_output "cli_no_dir" $pelt render --size 64x48 -q -o "$out/cli_no_dir/x.png"
+expect_fail unknown_command "frobnicate" $pelt frobnicate
+expect_fail info_missing "nothing.off" $pelt info "$out/nothing.off"
+
+expect_ok help_main $pelt --help
+for c in render bench info; do expect_ok "help_$c" $pelt $c --help; done
+expect_ok good_obj $r --mesh "$data/meshes/square_uv.obj"
+expect_ok good_off $r --mesh "$data/meshes/tetra.off"
+expect_ok good_ply $r --mesh "$data/meshes/tetra.ply"
+expect_ok good_stl $r --mesh "$data/meshes/two_facets.stl"
+
+echo "$passes passed, $fails failed"
+[ $fails -eq 0 ]

@@ -1,0 +1,130 @@
+/* Shader parity: each GLSL formula evaluated into an RGBA32F target over a
+ * grid of inputs, against its C reference in core/. Inputs are a function
+ * of the pixel, computed the same way on both sides. */
+#include "gl_test.h"
+
+#include "core/fur_shape.h"
+#include "core/shading.h"
+
+enum { W = 64, H = 48 };
+
+static pelt_headless *gl;
+static float out[W * H * 4];
+
+/* Shared input generator: cell (x, y) -> a few values in known ranges. */
+static const char inputs_glsl[] =
+    "vec3 unit_dir(float a, float b) {\n"
+    "  return vec3(cos(a) * sin(b), cos(b), sin(a) * sin(b));\n"
+    "}\n"
+    "void cell_inputs(vec2 c, out vec3 n, out vec3 t, out vec3 tip, out float h, out float s) {\n"
+    "  n = unit_dir(c.x * 0.37, 0.2 + c.y * 0.05);\n"
+    "  t = normalize(cross(n, vec3(0.3, 0.1, 0.95)));\n"
+    "  tip = 0.8 * unit_dir(c.x * 0.11 + 1.0, 0.1 + c.y * 0.03);\n"
+    "  h = fract(c.x * 0.131 + c.y * 0.071);\n"
+    "  s = fract(c.x * 0.017 + c.y * 0.093);\n"
+    "}\n";
+
+static pelt_vec3 unit_dir(float a, float b)
+{
+    return v3(cosf(a) * sinf(b), cosf(b), sinf(a) * sinf(b));
+}
+
+static void cell_inputs(float cx, float cy, pelt_vec3 *n, pelt_vec3 *t, pelt_vec3 *tip, float *h,
+                        float *s)
+{
+    *n = unit_dir(cx * 0.37f, 0.2f + cy * 0.05f);
+    *t = v3_norm_or(v3_cross(*n, v3(0.3f, 0.1f, 0.95f)), v3(1, 0, 0));
+    *tip = v3_scale(unit_dir(cx * 0.11f + 1.0f, 0.1f + cy * 0.03f), 0.8f);
+    float hx = cx * 0.131f + cy * 0.071f, sx = cx * 0.017f + cy * 0.093f;
+    *h = hx - floorf(hx);
+    *s = sx - floorf(sx);
+}
+
+static const char kajiya_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, t, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
+    "  vec3 E = normalize(tip - 0.5 * n);\n"
+    "  vec2 kk = kajiya_kay(t, n, E, 4.0 + 60.0 * s);\n"
+    "  o = vec4(kk, shadow_factor(1.0 + 3.0 * s, h), 0.0);\n"
+    "}\n";
+
+static void kajiya_kay_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_shading, inputs_glsl, kajiya_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, t, tip;
+            float h, s, diff, spec;
+            cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
+            pelt_vec3 e = v3_norm_or(v3_sub(tip, v3_scale(n, 0.5f)), v3(0, 0, 1));
+            pelt__kajiya_kay(t, n, e, 4.0f + 60.0f * s, &diff, &spec);
+            const float *g = out + 4 * (y * W + x);
+            double err = fmax(fabs(g[0] - diff), fmax(fabs(g[1] - spec),
+                              fabs(g[2] - pelt__shadow_factor(1.0f + 3.0f * s, h))));
+            if (err > worst) worst = err;
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-4);
+}
+
+/* u_which comes in as a #define placed before this text. */
+static const char shape_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, u, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, u, tip, h, s);\n"
+    "  vec3 v = cross(n, u);\n"
+    "  float L0 = 0.8, omega = 30.0 * s, K = 0.1 + 0.2 * s, rho = fract(s * 7.0);\n"
+    "  vec3 r = u_which == 0 ? fur_bend(n, L0, tip, h)\n"
+    "         : u_which == 1 ? fur_curl(u, v, omega, K, rho, h)\n"
+    "         : fur_tangent(n, L0, tip, u, v, omega, K, rho, h);\n"
+    "  o = vec4(r, 0.0);\n"
+    "}\n";
+
+/* beta(h), phi(h) and T(h) of Silva Eq. 1 and 4 in the vertex shader. */
+static void fur_shape_glsl_matches_c(void)
+{
+    const char *which_names[] = {"fur_bend", "fur_curl", "fur_tangent"};
+    for (int which = 0; which < 3; which++) {
+        char define[64];
+        snprintf(define, sizeof define, "#define u_which %d\n", which);
+        const char *fs[] = {pelt__shader_fur_shape, inputs_glsl, define, shape_main, NULL};
+        CHECK(gl_test_eval(gl, fs, W, H, out));
+        double worst = 0.0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                pelt_vec3 n, u, tip;
+                float h, s;
+                cell_inputs((float)x, (float)y, &n, &u, &tip, &h, &s);
+                pelt_vec3 v = v3_cross(n, u);
+                float L0 = 0.8f, omega = 30.0f * s, K = 0.1f + 0.2f * s;
+                float rho = s * 7.0f - floorf(s * 7.0f);
+                pelt_vec3 r = which == 0   ? pelt__fur_bend(n, L0, tip, h)
+                              : which == 1 ? pelt__fur_curl(u, v, omega, K, rho, h)
+                                           : pelt__fur_tangent(n, L0, tip, u, v, omega, K, rho, h);
+                const float *g = out + 4 * (y * W + x);
+                double err = fmax(fabs(g[0] - r.x), fmax(fabs(g[1] - r.y), fabs(g[2] - r.z)));
+                if (err > worst) worst = err;
+            }
+        printf("  %s: worst |GLSL - C| = %.3g\n", which_names[which], worst);
+        CHECK(worst < 2e-4);
+    }
+}
+
+int main(void)
+{
+    pelt_error err = {0};
+    pelt_headless_desc hd = {W, H, 0, true};
+    if (pelt_headless_create(&hd, &gl, &err) != PELT_OK) {
+        fprintf(stderr, "no OpenGL: %s\n", err.message);
+        return 1;
+    }
+    RUN(kajiya_kay_glsl_matches_c);
+    RUN(fur_shape_glsl_matches_c);
+    pelt_headless_destroy(gl);
+    return check_summary();
+}
