@@ -1,0 +1,118 @@
+/* Loads every mesh of Debian's libcgal-demo data archive (real OFF, PLY
+ * and STL files: elephant, bunny, lion...). A file may be refused, but only
+ * with a clean PELT_ERR_FORMAT whose message names it; OFF files with
+ * triangle-only faces must keep every face (kept + dropped = declared). */
+#define _POSIX_C_SOURCE 200809L /* popen-free: opendir, stat */
+#include "check.h"
+
+#include "core/mesh_internal.h"
+
+#include <dirent.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#define CGAL_ARCHIVE "/usr/share/doc/libcgal-dev/data.tar.gz"
+#define CORPUS_DIR PELT_TEST_OUT "/cgal_corpus"
+
+static int has_suffix(const char *s, const char *suffix)
+{
+    size_t a = strlen(s), b = strlen(suffix);
+    return a >= b && strcmp(s + a - b, suffix) == 0;
+}
+
+/* Faces of an OFF file whose faces are all triangles, or -1 when it has
+ * polygons (assimp's ear clipping may drop slivers of those) or cannot be
+ * read this simply. Read with fscanf, independent of the loader under test. */
+static long long off_declared_triangles(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    char word[64];
+    long long nv, nf, ne, total = 0;
+    int ok = fscanf(f, "%63s", word) == 1 && strcmp(word, "OFF") == 0 &&
+             fscanf(f, "%lld %lld %lld", &nv, &nf, &ne) == 3;
+    for (long long v = 0; ok && v < nv; v++) {
+        double x, y, z;
+        ok = fscanf(f, "%lf %lf %lf", &x, &y, &z) == 3;
+        int c;
+        while (ok && (c = fgetc(f)) != '\n' && c != EOF) {} /* extra per-vertex values */
+    }
+    for (long long t = 0; ok && t < nf; t++) {
+        long long n;
+        ok = fscanf(f, "%lld", &n) == 1 && n == 3;
+        total++;
+        int c;
+        while (ok && (c = fgetc(f)) != '\n' && c != EOF) {}
+    }
+    fclose(f);
+    return ok ? total : -1;
+}
+
+static void cgal_meshes_load_or_fail_cleanly(void)
+{
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "mkdir -p '%s' && tar -xzf '%s' -C '%s' data/meshes", CORPUS_DIR,
+             CGAL_ARCHIVE, CORPUS_DIR);
+    CHECK(system(cmd) == 0);
+    DIR *dir = opendir(CORPUS_DIR "/data/meshes");
+    CHECK(dir != NULL);
+    if (!dir) return;
+    char *names[1024];
+    size_t count = 0;
+    struct dirent *ent;
+    while ((ent = readdir(dir)) && count < 1024) {
+        const char *n = ent->d_name;
+        if (has_suffix(n, ".off") || has_suffix(n, ".ply") || has_suffix(n, ".stl") ||
+            has_suffix(n, ".obj"))
+            names[count++] = strdup(n);
+    }
+    closedir(dir);
+    size_t loaded = 0, refused = 0, compared = 0;
+    for (size_t i = 0; i < count; i++) {
+        char path[2048];
+        snprintf(path, sizeof path, "%s/data/meshes/%s", CORPUS_DIR, names[i]);
+        pelt_mesh *m = NULL;
+        pelt_error e = {0};
+        pelt_status st = pelt_mesh_load(path, &m, &e);
+        if (st == PELT_OK) {
+            pelt_mesh_stats s = pelt_mesh_get_stats(m);
+            printf("  %-36s %8zu triangles %6zu dropped\n", names[i], s.triangle_count,
+                   s.dropped_degenerate);
+            long long want = has_suffix(names[i], ".off") ? off_declared_triangles(path) : -1;
+            if (want >= 0) {
+                compared++;
+                if ((long long)(s.triangle_count + s.dropped_degenerate) != want) {
+                    fprintf(stderr, "  %s: %zu kept + %zu dropped, the file declares %lld\n", names[i],
+                            s.triangle_count, s.dropped_degenerate, want);
+                    CHECK((long long)(s.triangle_count + s.dropped_degenerate) == want);
+                }
+            }
+            loaded++;
+        } else {
+            printf("  %-36s refused: %s\n", names[i], e.message);
+            int clean = st == PELT_ERR_FORMAT && strstr(e.message, names[i]) != NULL;
+            if (!clean) fprintf(stderr, "  %s: status %d is not a clean format error\n", names[i], st);
+            CHECK(clean);
+            CHECK(m == NULL);
+            refused++;
+        }
+        pelt_mesh_destroy(m);
+        free(names[i]);
+    }
+    printf("  %zu meshes: %zu loaded (%zu checked against their OFF face count), %zu refused\n",
+           count, loaded, compared, refused);
+    CHECK(count > 0);
+    CHECK(loaded > refused); /* the archive is real meshes: most must load */
+}
+
+int main(void)
+{
+    struct stat sb;
+    if (stat(CGAL_ARCHIVE, &sb) != 0) {
+        printf("skipped: libcgal-demo not installed\n");
+        return 0;
+    }
+    RUN(cgal_meshes_load_or_fail_cleanly);
+    return check_summary();
+}
