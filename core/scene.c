@@ -250,6 +250,7 @@ static const key_def scene_keys[] = {
     ENUM("atlas.mode", atlas.mode, atlas_names),
     FLT("atlas.texel_density", atlas.texel_density, 0, BIG, 0),
     VEC("atlas.direction", atlas.direction, 3, -BIG, BIG, 0),
+    FLT("atlas.max_stretch", atlas.max_stretch, 1.1, BIG, F_ZERO_OK),
 };
 
 #undef OFF

@@ -203,6 +203,7 @@ static void full_scene_sets_every_field(void)
     CHECK_NEAR(s.atlas.texel_density, 8, 0);
     CHECK_NEAR(s.atlas.direction[0], 1, 0);
     CHECK_NEAR(s.atlas.direction[1], 0, 0);
+    CHECK_NEAR(s.atlas.max_stretch, 3, 0);
     pelt_scene_free(&s);
     CHECK(s.wetness.droplets == NULL && s.animation.wind_keys == NULL);
 }
@@ -303,6 +304,7 @@ static void each_bad_value_names_file_and_key(void)
          {"wetness.rain.stop", "after"}},
         {"{\"wetness\": {\"mask_size\": 100000}}", PELT_ERR_FORMAT, {"wetness.mask_size"}},
         {"{\"wetness\": {\"clump_blend\": -0.1}}", PELT_ERR_FORMAT, {"wetness.clump_blend"}},
+        {"{\"atlas\": {\"max_stretch\": 1.05}}", PELT_ERR_FORMAT, {"atlas.max_stretch", "1.1"}},
         {"{\"atlas\": {\"mode\": \"uv\"}}", PELT_ERR_FORMAT, {"atlas.mode", "mesh-uvs"}},
         {"[1, 2]", PELT_ERR_FORMAT, {"top level", "object"}},
         {"{\"fur\": {\"layers\": 16}} extra", PELT_ERR_FORMAT, {"line 1", "extra"}},

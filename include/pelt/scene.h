@@ -8,6 +8,7 @@
 #ifndef PELT_SCENE_H
 #define PELT_SCENE_H
 
+#include "pelt/atlas.h"
 #include "pelt/base.h"
 #include "pelt/dynamics.h"
 #include "pelt/fur.h"
@@ -39,13 +40,6 @@ typedef enum pelt_scene_pattern {
     PELT_PATTERN_STRIPES,
     PELT_PATTERN_NOISE
 } pelt_scene_pattern;
-
-/* How the surface gets its atlas (issue 5). */
-typedef enum pelt_atlas_mode {
-    PELT_ATLAS_AUTO = 0,  /* the mesh's uvs when they are a valid atlas, else patches */
-    PELT_ATLAS_MESH_UVS,  /* always the mesh's own uvs */
-    PELT_ATLAS_PATCHES    /* always grow patches */
-} pelt_atlas_mode;
 
 typedef struct pelt_scene_mesh {
     pelt_scene_shape shape;         /* default TORUS */
@@ -135,12 +129,15 @@ typedef struct pelt_scene_wetness {
     float mask_image_wetness;
 } pelt_scene_wetness;
 
+/* How the surface gets its atlas (issue 5); copied into pelt_atlas_desc. */
 typedef struct pelt_scene_atlas {
-    pelt_atlas_mode mode;  /* default AUTO */
-    float texel_density;   /* fur-texture tiles per world unit, 0 = the atlas
-                              builder's default (default 0) */
+    pelt_atlas_mode mode;  /* default AUTO (see pelt/atlas.h) */
+    float texel_density;   /* fur-texture tiles per world unit, default 0 =
+                              the atlas builder's (8 / bounding-box diagonal) */
     float direction[3];    /* global hair direction, projected on each tangent
                               plane; default (0, -1, 0): combed downwards */
+    float max_stretch;     /* patch stretch bound, 0 = builder's default (2.0),
+                              else at least 1.1 */
 } pelt_scene_atlas;
 
 /* A whole scene. Plain data: copy it freely, but the two arrays
