@@ -11,7 +11,6 @@
 #include <string.h>
 
 #define BINS 16
-#define LEAF_MAX 4       /* always split above this if SAH allows */
 #define LEAF_FORCE 32    /* never keep a leaf bigger than this */
 #define STACK_MAX 64
 
@@ -73,6 +72,11 @@ static bool hit_tri(const bvh_tri *tr, pelt_vec3 o, pelt_vec3 d, float best,
     return true;
 }
 
+/* Plain comparisons: fminf/fmaxf are library calls on x86-64 and no NaN
+ * reaches these (positions are validated finite, parallel axes skipped). */
+static inline float min2(float a, float b) { return a < b ? a : b; }
+static inline float max2(float a, float b) { return a > b ? a : b; }
+
 static float box_area(const float lo[3], const float hi[3])
 {
     float x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
@@ -91,8 +95,8 @@ static void box_empty(float lo[3], float hi[3])
 static void box_grow(float lo[3], float hi[3], const float blo[3], const float bhi[3])
 {
     for (int a = 0; a < 3; a++) {
-        lo[a] = fminf(lo[a], blo[a]);
-        hi[a] = fmaxf(hi[a], bhi[a]);
+        lo[a] = min2(lo[a], blo[a]);
+        hi[a] = max2(hi[a], bhi[a]);
     }
 }
 
@@ -127,21 +131,29 @@ static uint32_t split_node(build_ctx *c, const bvh_node *n, uint32_t begin, uint
         const float *p = c->cen + (size_t)c->idx[i] * 3;
         box_grow(clo, chi, p, p);
     }
+    /* One pass bins every triangle on all three axes at once. */
+    float scale[3];
+    uint32_t bcount[3][BINS] = {{0}};
+    float blo[3][BINS][3], bhi[3][BINS][3];
+    for (int a = 0; a < 3; a++) {
+        float ext = chi[a] - clo[a];
+        scale[a] = ext > 0.0f ? (float)BINS / ext : 0.0f;
+        for (int b = 0; b < BINS; b++) box_empty(blo[a][b], bhi[a][b]);
+    }
+    for (uint32_t i = begin; i < end; i++) {
+        uint32_t t = c->idx[i];
+        const float *lo = c->tlo + (size_t)t * 3, *hi = c->thi + (size_t)t * 3;
+        const float *ce = c->cen + (size_t)t * 3;
+        for (int a = 0; a < 3; a++) {
+            int b = bin_of(ce[a], clo[a], scale[a]);
+            bcount[a][b]++;
+            box_grow(blo[a][b], bhi[a][b], lo, hi);
+        }
+    }
     float best_cost = FLT_MAX;
     int best_axis = -1, best_split = 0;
     for (int a = 0; a < 3; a++) {
-        float ext = chi[a] - clo[a];
-        if (!(ext > 0.0f)) continue;
-        float scale = (float)BINS / ext;
-        uint32_t bcount[BINS] = {0};
-        float blo[BINS][3], bhi[BINS][3];
-        for (int b = 0; b < BINS; b++) box_empty(blo[b], bhi[b]);
-        for (uint32_t i = begin; i < end; i++) {
-            uint32_t t = c->idx[i];
-            int b = bin_of(c->cen[(size_t)t * 3 + a], clo[a], scale);
-            bcount[b]++;
-            box_grow(blo[b], bhi[b], c->tlo + (size_t)t * 3, c->thi + (size_t)t * 3);
-        }
+        if (scale[a] == 0.0f) continue; /* all centroids in one plane */
         /* Sweep from the right, then from the left, to cost each plane. */
         float rarea[BINS];
         uint32_t rcount[BINS];
@@ -149,16 +161,16 @@ static uint32_t split_node(build_ctx *c, const bvh_node *n, uint32_t begin, uint
         box_empty(lo, hi);
         uint32_t acc = 0;
         for (int b = BINS - 1; b > 0; b--) {
-            box_grow(lo, hi, blo[b], bhi[b]);
-            acc += bcount[b];
+            box_grow(lo, hi, blo[a][b], bhi[a][b]);
+            acc += bcount[a][b];
             rarea[b] = box_area(lo, hi);
             rcount[b] = acc;
         }
         box_empty(lo, hi);
         acc = 0;
         for (int b = 0; b < BINS - 1; b++) {
-            box_grow(lo, hi, blo[b], bhi[b]);
-            acc += bcount[b];
+            box_grow(lo, hi, blo[a][b], bhi[a][b]);
+            acc += bcount[a][b];
             if (acc == 0 || rcount[b + 1] == 0) continue;
             float cost = box_area(lo, hi) * (float)acc + rarea[b + 1] * (float)rcount[b + 1];
             if (cost < best_cost) {
@@ -174,12 +186,11 @@ static uint32_t split_node(build_ctx *c, const bvh_node *n, uint32_t begin, uint
                         (node_area > 0.0f && 1.0f + best_cost / node_area >= (float)count);
     if (leaf_cheaper && count <= LEAF_FORCE) return begin;
     if (best_axis < 0) return begin + count / 2; /* coincident centroids: halve */
-    if (leaf_cheaper && count <= LEAF_MAX) return begin;
-    float scale = (float)BINS / (chi[best_axis] - clo[best_axis]);
     uint32_t i = begin, j = end;
     while (i < j) {
         uint32_t t = c->idx[i];
-        if (bin_of(c->cen[(size_t)t * 3 + best_axis], clo[best_axis], scale) < best_split) {
+        if (bin_of(c->cen[(size_t)t * 3 + best_axis], clo[best_axis], scale[best_axis]) <
+            best_split) {
             i++;
         } else {
             c->idx[i] = c->idx[--j];
@@ -295,15 +306,20 @@ void pelt__bvh_stats(const pelt__bvh *bvh, size_t *nodes, unsigned *depth)
     if (depth) *depth = bvh->depth;
 }
 
-/* Slab test: entry distance of the ray into the box, or +inf on a miss
- * (fminf/fmaxf drop the NaN of 0 * inf when the origin is on a slab). */
+/* Slab test: entry distance of the ray into the box, or +inf on a miss.
+ * An axis the ray runs parallel to (inv = inf) only checks the origin, so
+ * no 0 * inf NaN reaches the comparisons. */
 static float box_enter(const bvh_node *n, const float o[3], const float inv[3], float best)
 {
     float t0 = 0.0f, t1 = best;
     for (int a = 0; a < 3; a++) {
+        if (isinf(inv[a])) {
+            if (o[a] < n->lo[a] || o[a] > n->hi[a]) return INFINITY;
+            continue;
+        }
         float ta = (n->lo[a] - o[a]) * inv[a], tb = (n->hi[a] - o[a]) * inv[a];
-        t0 = fmaxf(t0, fminf(ta, tb));
-        t1 = fminf(t1, fmaxf(ta, tb));
+        t0 = max2(t0, min2(ta, tb));
+        t1 = min2(t1, max2(ta, tb));
     }
     return t0 <= t1 ? t0 : INFINITY;
 }
