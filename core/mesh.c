@@ -12,6 +12,10 @@
 
 #define PELT__PI 3.14159265358979323846
 
+/* Larger coordinates are corrupt data, not geometry: bbox extents and
+ * products of them must stay finite. */
+#define PELT__MAX_COORD 1e30f
+
 /* A triangle is "zero area" below this fraction of the bbox diagonal squared:
  * small enough to keep genuine slivers of a million-triangle scan. */
 #define PELT__MIN_AREA_FRACTION 1e-12
@@ -120,13 +124,36 @@ static size_t weld_run_end(const weld_key *keys, size_t count, size_t begin, int
 
 /* ---- normals ----------------------------------------------------------- */
 
-static pelt_vec3 tri_cross(const pelt_mesh *m, size_t t)
+/* 1 / the largest bbox extent: frames are computed on the mesh scaled to
+ * unit size, so float cross products neither underflow on a microscopic
+ * mesh nor overflow on a huge one (directions do not change). */
+static double frame_scale(const pelt_mesh *m)
+{
+    double ext = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double e = (double)m->bounds_max[k] - (double)m->bounds_min[k];
+        if (e > ext) ext = e;
+    }
+    return ext > 0.0 && isfinite(ext) ? 1.0 / ext : 1.0;
+}
+
+/* Edges p1 - p0 and p2 - p0 of triangle t, scaled by s. */
+static void tri_edges(const pelt_mesh *m, size_t t, double s, pelt_vec3 *e1, pelt_vec3 *e2)
 {
     const uint32_t *tri = m->indices + 3 * t;
-    pelt_vec3 a = v3_load(m->positions + 3 * tri[0]);
-    pelt_vec3 b = v3_load(m->positions + 3 * tri[1]);
-    pelt_vec3 c = v3_load(m->positions + 3 * tri[2]);
-    return v3_cross(v3_sub(b, a), v3_sub(c, a));
+    const float *a = m->positions + 3 * tri[0], *b = m->positions + 3 * tri[1],
+                *c = m->positions + 3 * tri[2];
+    *e1 = v3((float)(((double)b[0] - a[0]) * s), (float)(((double)b[1] - a[1]) * s),
+             (float)(((double)b[2] - a[2]) * s));
+    *e2 = v3((float)(((double)c[0] - a[0]) * s), (float)(((double)c[1] - a[1]) * s),
+             (float)(((double)c[2] - a[2]) * s));
+}
+
+static pelt_vec3 tri_cross(const pelt_mesh *m, size_t t, double s)
+{
+    pelt_vec3 e1, e2;
+    tri_edges(m, t, s, &e1, &e2);
+    return v3_cross(e1, e2);
 }
 
 /* Area-weighted vertex normals, summed over all vertices that share a
@@ -134,10 +161,11 @@ static pelt_vec3 tri_cross(const pelt_mesh *m, size_t t)
  * sides would open a crack between the offset shells. */
 static void compute_normals(pelt_mesh *m, weld_key *keys)
 {
+    const double s = frame_scale(m);
     float *n = m->normals;
     memset(n, 0, m->vertex_count * 3 * sizeof(float));
     for (size_t t = 0; t < m->triangle_count; t++) {
-        pelt_vec3 c = tri_cross(m, t); /* length = 2 * area */
+        pelt_vec3 c = tri_cross(m, t, s); /* length = 2 * area (scaled) */
         for (int k = 0; k < 3; k++) {
             float *p = n + 3 * m->indices[3 * t + k];
             v3_store(p, v3_add(v3_load(p), c));
@@ -155,7 +183,7 @@ static void compute_normals(pelt_mesh *m, weld_key *keys)
     /* Where faces cancel (a fold), any incident face normal beats none. */
     const pelt_vec3 zero = v3(0, 0, 0);
     for (size_t t = 0; t < m->triangle_count; t++) {
-        pelt_vec3 face = v3_norm_or(tri_cross(m, t), zero);
+        pelt_vec3 face = v3_norm_or(tri_cross(m, t, s), zero);
         for (int k = 0; k < 3; k++) {
             float *p = n + 3 * m->indices[3 * t + k];
             if (v3_len(v3_load(p)) <= 1e-30f) v3_store(p, face);
@@ -182,11 +210,11 @@ static pelt_vec3 perpendicular(pelt_vec3 n)
 static void accumulate_uv_frames(const pelt_mesh *m, const float *uv, float *tan, float *bit)
 {
     const pelt_vec3 zero = v3(0, 0, 0);
+    const double s = frame_scale(m);
     for (size_t t = 0; t < m->triangle_count; t++) {
         const uint32_t *tri = m->indices + 3 * t;
-        pelt_vec3 p0 = v3_load(m->positions + 3 * tri[0]);
-        pelt_vec3 e1 = v3_sub(v3_load(m->positions + 3 * tri[1]), p0);
-        pelt_vec3 e2 = v3_sub(v3_load(m->positions + 3 * tri[2]), p0);
+        pelt_vec3 e1, e2;
+        tri_edges(m, t, s, &e1, &e2);
         float du1 = uv[2 * tri[1]] - uv[2 * tri[0]], dv1 = uv[2 * tri[1] + 1] - uv[2 * tri[0] + 1];
         float du2 = uv[2 * tri[2]] - uv[2 * tri[0]], dv2 = uv[2 * tri[2] + 1] - uv[2 * tri[0] + 1];
         float r = du1 * dv2 - du2 * dv1;
@@ -321,6 +349,13 @@ static int all_finite(const float *v, size_t n)
     return 1;
 }
 
+static int all_bounded(const float *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (!(fabsf(v[i]) <= PELT__MAX_COORD)) return 0;
+    return 1;
+}
+
 /* Spherical map around the bbox centre, for meshes without uvs: enough for
  * a visible, continuous-almost-everywhere wetness mask until an atlas. */
 static void fallback_uvs(pelt_mesh *m)
@@ -360,10 +395,18 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
     for (size_t i = 0; i < nv; i++)
         if (!all_finite(data->positions + 3 * i, 3))
             return pelt__fail(err, PELT_ERR_FORMAT, "vertex %zu has a non-finite coordinate", i);
+    for (size_t i = 0; i < nv; i++)
+        if (!all_bounded(data->positions + 3 * i, 3))
+            return pelt__fail(err, PELT_ERR_FORMAT, "vertex %zu has a coordinate beyond +-%g", i,
+                              (double)PELT__MAX_COORD);
     if (data->uvs) {
         for (size_t i = 0; i < nv; i++)
             if (!all_finite(data->uvs + 2 * i, 2))
                 return pelt__fail(err, PELT_ERR_FORMAT, "vertex %zu has a non-finite uv", i);
+        for (size_t i = 0; i < nv; i++)
+            if (!all_bounded(data->uvs + 2 * i, 2))
+                return pelt__fail(err, PELT_ERR_FORMAT, "vertex %zu has a uv beyond +-%g", i,
+                                  (double)PELT__MAX_COORD);
     }
     for (size_t t = 0; t < nt; t++) {
         for (int k = 0; k < 3; k++) {

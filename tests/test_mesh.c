@@ -95,6 +95,30 @@ static void create_rejects_nonfinite_coordinate_naming_vertex(void)
     CHECK(strstr(e.message, "vertex 3") != NULL);
 }
 
+static void create_rejects_absurd_coordinates(void)
+{
+    float pos[] = {0, 0, 0, 3e38f, 0, 0, 0, 1, 0};
+    pelt_mesh *m = NULL;
+    pelt_error e = {0};
+    CHECK(create(pos, NULL, NULL, 3, tri_idx, 1, &m, &e) == PELT_ERR_FORMAT);
+    CHECK(strstr(e.message, "vertex 1") != NULL);
+    CHECK(m == NULL);
+}
+
+static void microscopic_and_huge_meshes_get_valid_frames(void)
+{
+    const float scales[] = {1e-25f, 1e25f};
+    for (int c = 0; c < 2; c++) {
+        float pos[9];
+        for (int k = 0; k < 9; k++) pos[k] = tri_pos[k] * scales[c];
+        pelt_mesh *m = NULL;
+        CHECK(create(pos, NULL, NULL, 3, tri_idx, 1, &m, NULL) == PELT_OK);
+        for (int v = 0; m && v < 3; v++) CHECK_NEAR(m->normals[3 * v + 2], 1.0, 1e-6);
+        if (m) check_frames_valid(m);
+        pelt_mesh_destroy(m);
+    }
+}
+
 static void create_rejects_index_out_of_range_naming_triangle(void)
 {
     uint32_t idx[] = {0, 1, 2, 0, 2, 3};
@@ -539,6 +563,8 @@ int main(void)
 {
     RUN(create_rejects_null_and_zero_counts);
     RUN(create_rejects_nonfinite_coordinate_naming_vertex);
+    RUN(create_rejects_absurd_coordinates);
+    RUN(microscopic_and_huge_meshes_get_valid_frames);
     RUN(create_rejects_index_out_of_range_naming_triangle);
     RUN(create_drops_repeated_index_and_zero_area_triangles);
     RUN(create_all_degenerate_is_format_error);
