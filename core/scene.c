@@ -865,8 +865,16 @@ pelt_status pelt_scene_set(pelt_scene *s, const char *key_path, const char *valu
     if (strlen(key_path) >= KEY_MAX)
         return pelt__fail(err, PELT_ERR_FORMAT, "--set: unknown key '%.64s...'", key_path);
 
-    /* JSON when it parses as JSON, else the bare string (a path, a name). */
+    /* JSON when it parses as JSON, else the bare string (a path, a name).
+       Keys that only take strings always get one: a file may be named 123. */
+    const key_def *d = find(&scene_table, key_path);
+    bool string_only = d ? (d->k == K_PATH || d->k == K_ENUM || d->k == K_PRESET)
+                         : (is_group(&scene_table, key_path) && value[0] != '{');
     cJSON *v = cJSON_Parse(value);
+    if (v && string_only && !cJSON_IsString(v)) {
+        cJSON_Delete(v);
+        v = NULL;
+    }
     if (!v) v = cJSON_CreateString(value);
     if (!v) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "--set %s: no memory", key_path);
 

@@ -446,6 +446,10 @@ static void set_overrides_and_validates(void)
     CHECK(s.mesh.file[0] == '\0');
     CHECK(pelt_scene_set(&s, "mesh.shape", "file", &err) == PELT_ERR_FORMAT);
     CHECK(s.mesh.shape == PELT_SHAPE_SQUARE);
+    CHECK(pelt_scene_set(&s, "mesh.file", "123", &err) == PELT_OK); /* a path, not a number */
+    CHECK(strcmp(s.mesh.file, "123") == 0);
+    CHECK(pelt_scene_set(&s, "mesh.shape", "\"torus\"", &err) == PELT_OK); /* quoted JSON */
+    CHECK(s.mesh.shape == PELT_SHAPE_TORUS);
     CHECK(pelt_scene_set(&s, "mesh", "cow.off", &err) == PELT_OK);
     CHECK(s.mesh.shape == PELT_SHAPE_FILE && strcmp(s.mesh.file, "cow.off") == 0);
 
