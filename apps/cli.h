@@ -45,8 +45,12 @@ typedef struct cli_session {
 bool cli_session_open(const char *cmd, const pelt_scene *scene, cli_session *s);
 void cli_session_close(cli_session *s);
 
-/* Clears and draws one frame of the scene at time t. */
-void cli_session_draw(cli_session *s, const pelt_scene *scene, float t);
+/* Moves the mesh to where the scene has it at time t and steps the fur by
+ * dt under the scene's forces at t. */
+void cli_session_advance(cli_session *s, const pelt_scene *scene, float t, float dt);
+
+/* Clears and draws the current state. */
+void cli_session_draw(cli_session *s, const pelt_scene *scene);
 
 /* Writes RGBA8 rows (top first) as PNG; prints the error on failure. */
 bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h);

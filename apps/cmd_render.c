@@ -48,7 +48,8 @@ int cmd_render(int argc, char **argv)
     rc = 0;
     for (unsigned i = 0; i < frames && rc == 0; i++) {
         float t = (float)i / fps;
-        cli_session_draw(&s, sc, t);
+        if (i > 0) cli_session_advance(&s, sc, t, 1.0f / fps);
+        cli_session_draw(&s, sc);
         pelt_headless_read_rgba8(s.gl, s.pixels);
         cli_frame_path(o.output, i, path, sizeof path);
         if (!cli_write_png("render", path, s.pixels, sc->output.width, sc->output.height)) rc = 1;

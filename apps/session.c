@@ -40,7 +40,16 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         fprintf(stderr, "pelt %s: warning: the mesh has no uvs; using a spherical fallback "
                         "mapping (expect stretched fur near the poles)\n", cmd);
 
-    if (pelt_fur_create(s->mesh, &sc->fur, &s->fur, &err) != PELT_OK) {
+    pelt_fur_desc fd = sc->fur;
+    if (sc->fur_preset[0] && pelt_fur_desc_curl_preset(&fd, s->mesh, sc->fur_preset, &err) != PELT_OK) {
+        cli_error(cmd, "%s", err.message);
+        cli_session_close(s);
+        return false;
+    }
+    if (sc->dynamics.spring_k > 0.0f) fd.spring_k = sc->dynamics.spring_k;
+    if (sc->dynamics.mass > 0.0f) fd.mass = sc->dynamics.mass;
+    if (sc->dynamics.damping > 0.0f) fd.damping = sc->dynamics.damping;
+    if (pelt_fur_create(s->mesh, &fd, &s->fur, &err) != PELT_OK) {
         cli_error(cmd, "%s", err.message);
         cli_session_close(s);
         return false;
@@ -67,6 +76,9 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
     s->view.light = sc->light;
     s->view.width = sc->output.width;
     s->view.height = sc->output.height;
+    /* Let the fur settle under the forces of time 0 before the first
+     * frame, so a still shows it bent by gravity rather than mid-spring. */
+    for (int i = 0; i < 90; i++) cli_session_advance(s, sc, 0.0f, 1.0f / 60.0f);
     return true;
 }
 
@@ -80,9 +92,17 @@ void cli_session_close(cli_session *s)
     memset(s, 0, sizeof *s);
 }
 
-void cli_session_draw(cli_session *s, const pelt_scene *sc, float t)
+void cli_session_advance(cli_session *s, const pelt_scene *sc, float t, float dt)
 {
     pelt_scene_model_at(sc, t, s->view.model);
+    pelt_fur_set_transform(s->fur, s->view.model, NULL);
+    pelt_forces forces = sc->forces;
+    pelt_scene_wind_at(sc, t, forces.wind);
+    pelt_fur_step(s->fur, dt, &forces);
+}
+
+void cli_session_draw(cli_session *s, const pelt_scene *sc)
+{
     pelt_headless_bind(s->gl);
     const float *bg = sc->output.background;
     glClearColor(bg[0], bg[1], bg[2], bg[3]);

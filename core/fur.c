@@ -2,9 +2,11 @@
 #include "core/fur_internal.h"
 
 #include "core/error.h"
+#include "core/fur_shape.h"
 #include "core/furtex.h"
 #include "core/mesh_internal.h"
 #include "core/vec.h"
+#include "pelt/dynamics.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -37,6 +39,9 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
         d->specular[0] = d->specular[1] = d->specular[2] = 0.5f;
     if (d->shininess == 0.0f) d->shininess = 16.0f;
     if (d->shadow == 0.0f) d->shadow = 2.0f;
+    if (d->mass == 0.0f) d->mass = 1.0f;
+    if (d->spring_k == 0.0f) d->spring_k = d->mass * 9.81f / (0.4f * d->length);
+    if (d->damping == 0.0f) d->damping = 0.5f * sqrtf(d->spring_k * d->mass);
 }
 
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
@@ -61,6 +66,10 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur taper must be in [0, 1], got %g", (double)d->taper);
     if (!(d->shadow >= 1.0f) || !isfinite(d->shadow))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur shadow K must be >= 1, got %g", (double)d->shadow);
+    if (!(d->mass > 0.0f) || !(d->spring_k > 0.0f) || !(d->damping >= 0.0f) || !isfinite(d->mass) ||
+        !isfinite(d->spring_k) || !isfinite(d->damping))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "fur mass and spring constant must be positive, damping >= 0");
     if (!isfinite(d->curl_frequency) || !isfinite(d->curl_radius) || d->curl_radius < 0.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
     return PELT_OK;
@@ -123,18 +132,36 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     size_t bytes = pelt__furtex_bytes(&td);
     f->texture = bytes ? malloc(bytes) : NULL;
     f->fur_uvs = pelt__calloc(mesh->vertex_count, 2 * sizeof(float));
-    f->tips = pelt__calloc(mesh->vertex_count, 3 * sizeof(float));
-    if (!f->texture || !f->fur_uvs || !f->tips) {
+    pelt__strand_params sp = {d.length, d.spring_k, d.mass, d.damping, d.seed};
+    st = pelt__strands_create(mesh, &sp, &f->strands, err);
+    if (st != PELT_OK) {
+        pelt_fur_destroy(f);
+        return st;
+    }
+    f->tips = pelt__strands_tip_offsets(f->strands);
+    if (!f->texture || !f->fur_uvs) {
         pelt_fur_destroy(f);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
     }
     pelt__furtex_generate(&td, f->texture);
     compute_fur_uvs(mesh, d.tiling, f->fur_uvs);
-    /* At rest every tip stands at L0 along the normal. */
-    for (size_t i = 0; i < mesh->vertex_count; i++)
-        v3_store(f->tips + 3 * i, v3_scale(v3_load(mesh->normals + 3 * i), d.length));
     f->tips_version = 1;
     *out = f;
+    return PELT_OK;
+}
+
+pelt_status pelt_fur_desc_curl_preset(pelt_fur_desc *d, const pelt_mesh *mesh, const char *name,
+                                      pelt_error *err)
+{
+    float omega = 0.0f, radius_fraction = 0.0f;
+    if (!name || !pelt__curl_preset(name, &omega, &radius_fraction))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "unknown curl preset '%s' (straight, wavy, few-large-curls, many-small-curls)",
+                          name ? name : "(null)");
+    pelt_fur_desc resolved = *d;
+    pelt__fur_desc_defaults(&resolved, mesh);
+    if (d->curl_frequency == 0.0f) d->curl_frequency = omega;
+    if (d->curl_radius == 0.0f) d->curl_radius = radius_fraction * resolved.length;
     return PELT_OK;
 }
 
@@ -143,9 +170,32 @@ void pelt_fur_destroy(pelt_fur *f)
     if (!f) return;
     free(f->texture);
     free(f->fur_uvs);
-    free(f->tips);
     free(f->color_texture);
+    pelt__strands_destroy(f->strands);
     free(f);
+}
+
+pelt_status pelt_fur_set_transform(pelt_fur *f, const float model[16], pelt_error *err)
+{
+    if (!pelt__strands_set_transform(f->strands, model))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "fur transform must be finite and invertible");
+    return PELT_OK;
+}
+
+void pelt_fur_step(pelt_fur *f, float dt, const pelt_forces *forces)
+{
+    if (!(dt > 0.0f)) return;
+    pelt__strands_step(f->strands, dt, forces, f->time);
+    f->time += dt;
+    f->tips_version++;
+}
+
+void pelt_fur_reset(pelt_fur *f)
+{
+    pelt__strands_reset(f->strands);
+    f->time = 0.0f;
+    f->tips_version++;
 }
 
 pelt_fur_desc pelt_fur_get_desc(const pelt_fur *f) { return f->desc; }

@@ -4,17 +4,22 @@
 
 #include "pelt/fur.h"
 
+#include "core/strand.h"
+
 struct pelt_fur {
     pelt_fur_desc desc;      /* every default filled in */
     const pelt_mesh *mesh;
     uint8_t *texture;        /* fur volume, see core/furtex.h */
     unsigned texture_slices; /* layers + 1 */
     float *fur_uvs;          /* 2 per vertex: fur-texture coordinates in tiles */
-    float *tips;             /* 3 per vertex: tip offset p - p_root, mesh-local */
+    const float *tips;       /* 3 per vertex: tip offset p - p_root, mesh-local,
+                                owned by strands */
     uint8_t *color_texture;  /* RGBA8 or NULL */
     unsigned color_width, color_height;
     unsigned color_version;  /* bumped when the colour texture changes */
     unsigned tips_version;   /* bumped when tips change */
+    pelt__strands *strands;  /* one mass-spring strand per vertex */
+    float time;              /* seconds stepped since creation or reset */
 };
 
 /* Fills the zero fields of `d` with defaults for `mesh`. */

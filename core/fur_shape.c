@@ -44,8 +44,11 @@ static const struct {
 } presets[] = {
     {"straight", 0.0f, 0.0f},
     {"wavy", 6.2831853f, 0.08f},          /* one slow turn, small sway */
-    {"large_curls", 12.566371f, 0.35f},   /* two wide turns */
-    {"small_curls", 37.699112f, 0.12f},   /* six tight turns */
+    {"few-large-curls", 12.566371f, 0.35f},  /* two wide turns */
+    {"many-small-curls", 37.699112f, 0.12f}, /* six tight turns */
+    /* Short spellings the scene file accepts too. */
+    {"large_curls", 12.566371f, 0.35f},
+    {"small_curls", 37.699112f, 0.12f},
 };
 
 bool pelt__curl_preset(const char *name, float *omega, float *radius_fraction)

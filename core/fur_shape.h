@@ -31,7 +31,7 @@ pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, p
                             float omega, float K, float rho, float h);
 
 /* The four looks of Silva Fig. 7 by name: "straight", "wavy",
- * "large_curls" (few large curls), "small_curls" (many small curls).
+ * "few-large-curls", "many-small-curls".
  * omega in radians over the full length, radius as a fraction of L0
  * (K = radius_fraction * L0). Returns false, leaving the outputs untouched,
  * for an unknown or NULL name. */

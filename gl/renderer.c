@@ -184,7 +184,7 @@ void pelt_renderer_destroy(pelt_renderer *r)
 
 /* Brings GPU copies up to date with what changed in the fur since the last
  * frame: only the tip buffer in place, and the colour texture when set. */
-static void sync(pelt_renderer *r)
+void pelt_renderer_upload(pelt_renderer *r)
 {
     pelt_fur *f = r->fur;
     if (r->tips_version != f->tips_version) {
@@ -231,7 +231,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)
 {
     float view_proj[16];
     pelt__mat4_mul(view_proj, v->proj, v->view);
-    sync(r);
+    pelt_renderer_upload(r);
 
     glBindVertexArray(r->vao);
     glActiveTexture(GL_TEXTURE0 + UNIT_FUR);

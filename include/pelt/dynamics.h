@@ -21,6 +21,20 @@ typedef struct pelt_forces {
 
 pelt_forces pelt_forces_default(void);
 
+/* Where the mesh is now (column-major model matrix, mesh-local to world).
+ * Roots move with the mesh at the next step; tips keep their world
+ * position and lag behind (inertia). PELT_ERR_INVALID_ARGUMENT for a
+ * non-finite or singular matrix (the previous one is kept). */
+pelt_status pelt_fur_set_transform(pelt_fur *fur, const float model[16], pelt_error *err);
+
+/* Advances the fur by dt seconds (any dt: the strands substep internally):
+ * mass-spring strands under `forces` (NULL: pelt_forces_default()). The
+ * renderer uploads the new tips at its next draw. No allocation, no I/O. */
+void pelt_fur_step(pelt_fur *fur, float dt, const pelt_forces *forces);
+
+/* Tips back to rest, clock back to 0. */
+void pelt_fur_reset(pelt_fur *fur);
+
 #ifdef __cplusplus
 }
 #endif

@@ -30,7 +30,20 @@ typedef struct pelt_fur_desc {
     float shadow;            /* K_shadow >= 1 of Silva Eq. 6, default 2 */
     float curl_frequency;    /* omega of Silva Eq. 4 (radians over the length), default 0 */
     float curl_radius;       /* K_alpha of Silva Eq. 4 in world units, default 0 */
+    /* Strand dynamics (Silva Eq. 2): tip mass, spring constant and drag.
+     * Defaults scale with the length so gravity sags a strand by 0.4 L0
+     * at every size, with a damping ratio of 0.25. */
+    float mass;              /* default 1 */
+    float spring_k;          /* default mass * 9.81 / (0.4 * length) */
+    float damping;           /* default 0.5 * sqrt(spring_k * mass) */
 } pelt_fur_desc;
+
+/* Fills curl_frequency and curl_radius of `d` from one of the curl looks
+ * of Silva et al. Fig. 7: "straight", "wavy", "few-large-curls",
+ * "many-small-curls", unless they are already non-zero. The radius is a
+ * fraction of the fur length (d->length, or its default for `mesh`). */
+pelt_status pelt_fur_desc_curl_preset(pelt_fur_desc *d, const pelt_mesh *mesh, const char *name,
+                                      pelt_error *err);
 
 /* Synthesizes the fur texture (Lengyel et al. 2001 §2.2) and the strand
  * state for `mesh`. The mesh must outlive the fur. Free with

@@ -52,6 +52,11 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
                                  pelt_renderer **out, pelt_error *err);
 void pelt_renderer_destroy(pelt_renderer *renderer);
 
+/* Uploads what changed in the fur since the last upload (strand tips,
+ * colour texture, the changed rectangle of the wetness mask). Draw calls it
+ * too; call it first to time uploads apart from drawing. */
+void pelt_renderer_upload(pelt_renderer *renderer);
+
 /* Draws skin then all shells (one instanced draw call) into the currently
  * bound framebuffer. Does not clear. No allocation, no file I/O. */
 void pelt_renderer_draw(pelt_renderer *renderer, const pelt_view *view);
