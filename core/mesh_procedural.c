@@ -40,6 +40,22 @@ static void angle(unsigned i, unsigned n, double scale, float *c, float *s)
     *s = (float)sin(a);
 }
 
+/* Two triangles per cell of a grid of (ni + 1) x (nj + 1) vertices stored
+ * i-major: (a, b, c) steps +j then +i, so the triangles are counter-clockwise
+ * seen from where d(P)/dj x d(P)/di points. */
+static void grid_triangles(uint32_t *idx, unsigned ni, unsigned nj)
+{
+    const size_t row = (size_t)nj + 1;
+    for (unsigned i = 0; i < ni; i++) {
+        for (unsigned j = 0; j < nj; j++) {
+            uint32_t a = (uint32_t)(i * row + j), b = a + 1;
+            uint32_t c = (uint32_t)((i + 1) * row + j), d = c + 1;
+            *idx++ = a, *idx++ = b, *idx++ = c;
+            *idx++ = b, *idx++ = d, *idx++ = c;
+        }
+    }
+}
+
 pelt_status pelt_mesh_torus(float major_radius, float minor_radius, unsigned major_segments,
                             unsigned minor_segments, pelt_mesh **out, pelt_error *err)
 {
@@ -73,17 +89,8 @@ pelt_status pelt_mesh_torus(float major_radius, float minor_radius, unsigned maj
             mesh->uvs[2 * v + 1] = (float)j / (float)m;
         }
     }
-    /* Counter-clockwise seen from outside: (a, b, c) spans +v then +u, and
-     * d(P)/dv x d(P)/du points along the outward normal. */
-    uint32_t *idx = mesh->indices;
-    for (unsigned i = 0; i < M; i++) {
-        for (unsigned j = 0; j < m; j++) {
-            uint32_t a = (uint32_t)(i * row + j), b = a + 1;
-            uint32_t c = (uint32_t)((i + 1) * row + j), d = c + 1;
-            *idx++ = a, *idx++ = b, *idx++ = c;
-            *idx++ = b, *idx++ = d, *idx++ = c;
-        }
-    }
+    /* d(P)/dv x d(P)/du points along the outward normal. */
+    grid_triangles(mesh->indices, M, m);
     pelt__mesh_finish(mesh, false);
     *out = mesh;
     return PELT_OK;
@@ -163,16 +170,8 @@ pelt_status pelt_mesh_square(float size, unsigned subdivisions, pelt_mesh **out,
             mesh->uvs[2 * v + 1] = 1.0f - fv;
         }
     }
-    /* (+z) x (+x) = +y: (a, b, c) with b one step in z, c one step in x. */
-    uint32_t *idx = mesh->indices;
-    for (unsigned i = 0; i < n; i++) {
-        for (unsigned j = 0; j < n; j++) {
-            uint32_t a = (uint32_t)(i * row + j), b = a + 1;
-            uint32_t c = (uint32_t)((i + 1) * row + j), d = c + 1;
-            *idx++ = a, *idx++ = b, *idx++ = c;
-            *idx++ = b, *idx++ = d, *idx++ = c;
-        }
-    }
+    /* (+z) x (+x) = +y: j (z) is the grid's inner direction. */
+    grid_triangles(mesh->indices, n, n);
     pelt__mesh_finish(mesh, false);
     *out = mesh;
     return PELT_OK;
