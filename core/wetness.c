@@ -150,10 +150,12 @@ pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
         return PELT_OK;
     float inv_w = 1.0f / (float)m->width, inv_h = 1.0f / (float)m->height;
     float r2 = r * r;
-    unsigned changed[4] = {0, 0, 0, 0};
+    unsigned cx0 = UINT32_MAX, cx1 = 0, cy0 = UINT32_MAX, cy1 = 0; /* changed, inclusive */
     for (unsigned y = y0; y <= y1; y++) {
         float dy = ((float)y + 0.5f) * inv_h - d->center[1];
+        if (dy * dy > r2) continue;
         float *row = m->texels + (size_t)y * m->width * 4;
+        bool row_changed = false;
         for (unsigned x = x0; x <= x1; x++) {
             float dx = ((float)x + 0.5f) * inv_w - d->center[0];
             if (dx * dx + dy * dy > r2) continue;
@@ -161,8 +163,22 @@ pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
             float before[4];
             memcpy(before, t, sizeof before);
             blend_texel(t, d->center, r, wd);
-            if (memcmp(before, t, sizeof before) != 0) rect_add_texel(changed, x, y);
+            if (memcmp(before, t, sizeof before) == 0) continue;
+            row_changed = true;
+            if (x < cx0) cx0 = x;
+            if (x > cx1) cx1 = x;
         }
+        if (row_changed) {
+            if (y < cy0) cy0 = y;
+            cy1 = y;
+        }
+    }
+    unsigned changed[4] = {0, 0, 0, 0};
+    if (cy0 <= cy1) {
+        changed[0] = cx0;
+        changed[1] = cy0;
+        changed[2] = cx1 + 1;
+        changed[3] = cy1 + 1;
     }
     rect_union(m->dirty, changed);
     if (wd > 0.0f) rect_union(m->wet, changed);
