@@ -79,6 +79,12 @@ const uint32_t *pelt_atlas_triangle_patches(const pelt_atlas *a) { return a ? a-
 const float *pelt_atlas_directions(const pelt_atlas *a) { return a ? a->directions : NULL; }
 const float *pelt_atlas_direction_weights(const pelt_atlas *a) { return a ? a->weights : NULL; }
 
+static int compare_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return (x > y) - (x < y);
+}
+
 /* ---- mesh topology ----------------------------------------------------- */
 
 typedef struct half_edge { uint32_t lo, hi, corner; } half_edge; /* corner = 3 * face + k */
@@ -466,6 +472,78 @@ static void singular_values(const double J[4], double *smax, double *smin)
     *smin = fabs(qq - rr);
 }
 
+typedef struct bedge { double minx, maxx; uint32_t a, b; } bedge;
+
+static int compare_bedge(const void *pa, const void *pb)
+{
+    const bedge *x = pa, *y = pb;
+    return (x->minx > y->minx) - (x->minx < y->minx);
+}
+
+static double orient(const double *X, uint32_t a, uint32_t b, uint32_t c)
+{
+    return (X[2 * b] - X[2 * a]) * (X[2 * c + 1] - X[2 * a + 1]) -
+           (X[2 * b + 1] - X[2 * a + 1]) * (X[2 * c] - X[2 * a]);
+}
+
+/* Exact injectivity of a flattened patch without flipped triangles: no
+ * vertex's triangles turn more than once around it, and no two boundary
+ * edges (edges of one patch triangle only) cross or touch. Returns true
+ * when the patch overlaps itself. */
+static bool patch_overlaps(builder *b, size_t n, size_t nl)
+{
+    const double *X = b->X;
+    double *angle = b->s; /* scratch, 1 per local vertex */
+    memset(angle, 0, nl * sizeof(double));
+    for (size_t i = 0; i < n; i++) {
+        const uint32_t *tl = b->tri_local + 3 * i;
+        for (int k = 0; k < 3; k++) {
+            uint32_t o = tl[k], p = tl[(k + 1) % 3], q = tl[(k + 2) % 3];
+            double ax = X[2 * p] - X[2 * o], ay = X[2 * p + 1] - X[2 * o + 1];
+            double bx = X[2 * q] - X[2 * o], by = X[2 * q + 1] - X[2 * o + 1];
+            angle[o] += atan2(fabs(ax * by - ay * bx), ax * bx + ay * by);
+        }
+    }
+    for (size_t l = 0; l < nl; l++)
+        if (angle[l] > 6.283185307179586 + 1e-6) return true;
+    /* Boundary edges: sort the 3n directed edges by their undirected key. */
+    uint64_t *keys = (uint64_t *)b->p; /* scratch: 3n <= 2 * 3 * cap doubles */
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 3; k++) {
+            uint64_t u = b->tri_local[3 * i + k], v = b->tri_local[3 * i + (k + 1) % 3];
+            keys[3 * i + k] = u < v ? (u << 32 | v) : (v << 32 | u);
+        }
+    qsort(keys, 3 * n, sizeof(uint64_t), compare_u64);
+    bedge *edges = (bedge *)b->t; /* scratch: 24 bytes each, fits in 6 * cap doubles */
+    size_t ne = 0;
+    for (size_t i = 0; i < 3 * n;) {
+        size_t j = i + 1;
+        while (j < 3 * n && keys[j] == keys[i]) j++;
+        if (j - i == 1 && ne < 2 * (size_t)b->cap) {
+            uint32_t a = (uint32_t)(keys[i] >> 32), c = (uint32_t)keys[i];
+            edges[ne].a = a, edges[ne].b = c;
+            edges[ne].minx = fmin(X[2 * a], X[2 * c]);
+            edges[ne].maxx = fmax(X[2 * a], X[2 * c]);
+            ne++;
+        }
+        i = j;
+    }
+    qsort(edges, ne, sizeof *edges, compare_bedge);
+    for (size_t i = 0; i < ne; i++) {
+        uint32_t a = edges[i].a, c = edges[i].b;
+        double miny = fmin(X[2 * a + 1], X[2 * c + 1]), maxy = fmax(X[2 * a + 1], X[2 * c + 1]);
+        for (size_t j = i + 1; j < ne && edges[j].minx <= edges[i].maxx; j++) {
+            uint32_t d = edges[j].a, e = edges[j].b;
+            if (d == a || d == c || e == a || e == c) continue;
+            if (fmax(X[2 * d + 1], X[2 * e + 1]) < miny || fmin(X[2 * d + 1], X[2 * e + 1]) > maxy) continue;
+            double o1 = orient(X, a, c, d), o2 = orient(X, a, c, e);
+            double o3 = orient(X, d, e, a), o4 = orient(X, d, e, c);
+            if (o1 * o2 <= 0 && o3 * o4 <= 0) return true; /* crossing or touching */
+        }
+    }
+    return false;
+}
+
 /* Checks the flattened patch: no flipped triangle, area ratio and
  * anisotropy within max_stretch, no overlap when rasterized. Returns the
  * number of faces to keep on failure (a prefix), or n when it passes. */
@@ -491,6 +569,7 @@ static size_t check_patch(builder *b, size_t n, size_t nl, double *scale_out)
         if (!(det > 1e-9) || det > ms || det < 1.0 / ms || smax > ms * smin) return i;
     }
     /* Injectivity: a patch can overlap itself without a flipped triangle. */
+    if (patch_overlaps(b, n, nl)) return (n * 3) / 4;
     double minx = INFINITY, miny = INFINITY, maxx = -INFINITY, maxy = -INFINITY;
     for (size_t l = 0; l < nl; l++) {
         minx = fmin(minx, b->X[2 * l]), maxx = fmax(maxx, b->X[2 * l]);
@@ -973,11 +1052,6 @@ static void draw_line(uint8_t *rgba, unsigned w, unsigned h, double x0, double y
         put_pixel(rgba, w, h, (long)floor(x0 + dx * i / steps), (long)floor(y0 + dy * i / steps), c);
 }
 
-static int compare_u64(const void *a, const void *b)
-{
-    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
-    return (x > y) - (x < y);
-}
 
 pelt_status pelt_atlas_draw(const pelt_atlas *a, uint8_t *rgba, unsigned width, unsigned height,
                             uint32_t seed, pelt_error *err)
