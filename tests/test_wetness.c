@@ -8,6 +8,11 @@
 #include <string.h>
 #include <time.h>
 
+#include <stb_easy_font.h>
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include <stb_image_write.h>
+
 static double now_s(void)
 {
     struct timespec ts;
@@ -423,6 +428,77 @@ static void wetness_painted_word_becomes_clumps_along_strokes(void)
     pelt__wetness_destroy(m);
 }
 
+/* Rasterises `text` with stb_easy_font, scaled by `scale`, into a w x h
+ * 8-bit image: ink 255, paper 0. */
+static uint8_t *text_image(const char *text, unsigned w, unsigned h, float scale, float x0, float y0)
+{
+    static char buf[64 * 1024]; /* 16-byte vertices, 4 per quad */
+    char copy[64];
+    snprintf(copy, sizeof copy, "%s", text);
+    int quads = stb_easy_font_print(0.0f, 0.0f, copy, NULL, buf, (int)sizeof buf);
+    uint8_t *g = calloc((size_t)w * h, 1);
+    for (int q = 0; q < quads; q++) {
+        const float *v0 = (const float *)(buf + (size_t)q * 64);
+        const float *v2 = (const float *)(buf + (size_t)q * 64 + 32);
+        int ax = (int)(x0 + v0[0] * scale), ay = (int)(y0 + v0[1] * scale);
+        int bx = (int)(x0 + v2[0] * scale), by = (int)(y0 + v2[1] * scale);
+        for (int y = ay; y < by; y++)
+            for (int x = ax; x < bx; x++)
+                if (x >= 0 && y >= 0 && (unsigned)x < w && (unsigned)y < h) g[(size_t)y * w + x] = 255;
+    }
+    return g;
+}
+
+static void wetness_word_written_in_water_becomes_clumps_along_letters(void)
+{
+    /* Silva Fig. 12c: "CGI10" written in water on a square. */
+    const unsigned W = 256, iw = 256, ih = 256;
+    uint8_t *g = text_image("CGI10", iw, ih, 8.0f, 12.0f, 90.0f);
+    pelt__wetness *m = make_mask(W, W);
+    CHECK(pelt__wetness_paint_image(m, g, iw, ih, NULL, NULL) == PELT_OK);
+    /* Count distinct clumps and their sizes. */
+    enum { MAXC = 4096 };
+    static float cent[MAXC][3];
+    int clumps = 0;
+    size_t wet = 0, inked = 0;
+    float max_r = 0.0f;
+    for (unsigned y = 0; y < W; y++)
+        for (unsigned x = 0; x < W; x++) {
+            float *t = texel(m, x, y);
+            if (t[3] == 0.0f) continue;
+            wet++;
+            float u = (x + 0.5f) / W, v = (y + 0.5f) / W;
+            CHECK(hypotf(u - t[0], v - t[1]) <= t[2]);
+            /* Ink under the wet texel (image row 0 is v = 1). */
+            unsigned ix = (unsigned)(u * iw), iy = (unsigned)((1.0f - v) * ih);
+            inked += g[(size_t)iy * iw + ix] > 0;
+            max_r = fmaxf(max_r, t[2]);
+            int k = 0;
+            while (k < clumps && !(cent[k][0] == t[0] && cent[k][1] == t[1])) k++;
+            if (k == clumps && clumps < MAXC) {
+                cent[clumps][0] = t[0];
+                cent[clumps][1] = t[1];
+                clumps++;
+            }
+        }
+    /* The word is wet, split into many small clumps (default spacing
+     * 0.03): five glyphs of several strokes each, none a giant clump. */
+    CHECK(wet > 2000);
+    CHECK(inked == wet); /* same size image: resampling is exact */
+    CHECK(clumps >= 5 * 6);
+    CHECK(max_r < 0.06f);
+    uint8_t *px = malloc((size_t)W * W * 4);
+    pelt__wetness_to_rgba8(m, px);
+    char path[512];
+    snprintf(path, sizeof path, "%s/wetness_word_mask.png", PELT_TEST_OUT);
+    CHECK(stbi_write_png(path, (int)W, (int)W, 4, px, (int)W * 4) != 0);
+    printf("info: %zu wet texels in %d clumps, largest radius %.4f; mask picture %s\n", wet,
+           clumps, (double)max_r, path);
+    free(px);
+    free(g);
+    pelt__wetness_destroy(m);
+}
+
 static void wetness_painted_image_top_row_is_v_one(void)
 {
     pelt__wetness *m = make_mask(4, 4);
@@ -497,6 +573,7 @@ int main(void)
     RUN(wetness_rain_rate_is_right_on_average);
     RUN(wetness_rain_positions_cover_the_mask_uniformly);
     RUN(wetness_painted_word_becomes_clumps_along_strokes);
+    RUN(wetness_word_written_in_water_becomes_clumps_along_letters);
     RUN(wetness_painted_image_top_row_is_v_one);
     RUN(wetness_picture_is_black_dry_and_blue_wet);
     RUN(wetness_surface_droplet_scales_radius_by_uv_area);
