@@ -150,13 +150,30 @@ pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
         return PELT_OK;
     float inv_w = 1.0f / (float)m->width, inv_h = 1.0f / (float)m->height;
     float r2 = r * r;
+#if defined(__GNUC__)
+    /* Rows of a large mask lie pages apart: ask for all of them at once so
+     * the cache and TLB misses overlap instead of queueing one per row. */
+    for (unsigned y = y0; y <= y1; y++) {
+        const float *row = m->texels + ((size_t)y * m->width + x0) * 4;
+        const char *end = (const char *)(row + (size_t)(x1 - x0) * 4);
+        for (const char *a = (const char *)row; a <= end; a += 64) __builtin_prefetch(a, 1);
+    }
+#endif
     unsigned cx0 = UINT32_MAX, cx1 = 0, cy0 = UINT32_MAX, cy1 = 0; /* changed, inclusive */
     for (unsigned y = y0; y <= y1; y++) {
         float dy = ((float)y + 0.5f) * inv_h - d->center[1];
         if (dy * dy > r2) continue;
         float *row = m->texels + (size_t)y * m->width * 4;
         bool row_changed = false;
-        for (unsigned x = x0; x <= x1; x++) {
+        /* This row's chord of the disc, one texel wider each side; the exact
+         * test below still decides every texel. */
+        unsigned xa = x0, xb = x1;
+        float half = sqrtf(r2 - dy * dy);
+        float fa = floorf((d->center[0] - half) * (float)m->width - 0.5f);
+        float fb = ceilf((d->center[0] + half) * (float)m->width - 0.5f);
+        if (fa > (float)xa) xa = (unsigned)fa;
+        if (fb < (float)xb) xb = fb < (float)x0 ? x0 : (unsigned)fb;
+        for (unsigned x = xa; x <= xb; x++) {
             float dx = ((float)x + 0.5f) * inv_w - d->center[0];
             if (dx * dx + dy * dy > r2) continue;
             float *t = row + (size_t)x * 4;

@@ -168,6 +168,28 @@ static void wetness_texel_outside_radius_is_untouched(void)
     pelt__wetness_destroy(m);
 }
 
+static void wetness_droplet_wets_exactly_the_texels_within_its_radius(void)
+{
+    /* Odd, non-square mask; droplets on a dry mask, some over the edges. */
+    const unsigned W = 37, H = 53;
+    uint64_t s = 777;
+    for (int k = 0; k < 300; k++) {
+        pelt__wetness *m = make_mask(W, H);
+        s = s * 6364136223846793005ull + 1442695040888963407ull;
+        double cx = (double)((s >> 40) & 0xffff) / 65536.0 * 1.4 - 0.2;
+        double cy = (double)((s >> 20) & 0xffff) / 65536.0 * 1.4 - 0.2;
+        double r = 0.005 + 0.3 * (double)((s >> 8) & 0xfff) / 4096.0;
+        drop(m, (float)cx, (float)cy, (float)r, 0.5f);
+        for (unsigned y = 0; y < H; y++)
+            for (unsigned x = 0; x < W; x++) {
+                double dist = hypot((x + 0.5) / W - cx, (y + 0.5) / H - cy);
+                if (fabs(dist - r) < 1e-5) continue; /* float rounding decides */
+                CHECK((texel(m, x, y)[3] == 0.5f) == (dist < r));
+            }
+        pelt__wetness_destroy(m);
+    }
+}
+
 static void wetness_bad_droplet_is_rejected_and_changes_nothing(void)
 {
     pelt__wetness *m = make_mask(8, 8);
@@ -565,6 +587,7 @@ int main(void)
     RUN(wetness_negative_droplet_never_creates_wetness);
     RUN(wetness_negative_droplet_dries_without_moving_clump);
     RUN(wetness_texel_outside_radius_is_untouched);
+    RUN(wetness_droplet_wets_exactly_the_texels_within_its_radius);
     RUN(wetness_bad_droplet_is_rejected_and_changes_nothing);
     RUN(wetness_drying_reaches_exactly_zero_and_stops);
     RUN(wetness_dirty_rect_covers_exactly_the_changed_texels);
