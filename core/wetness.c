@@ -556,3 +556,17 @@ pelt_status pelt__droplet_on_surface(const pelt_mesh *mesh, size_t tri,
     out->wetness = wetness;
     return PELT_OK;
 }
+
+bool pelt__droplet_from_ray(const pelt_mesh *mesh, const pelt__bvh *bvh,
+                            const float origin[3], const float dir[3],
+                            float radius_world, float wetness,
+                            pelt_droplet *out, pelt__hit *hit)
+{
+    pelt__hit h;
+    if (!mesh || !bvh || !out || !pelt__bvh_raycast(bvh, origin, dir, INFINITY, &h)) return false;
+    if (pelt__droplet_on_surface(mesh, h.triangle, h.bary, radius_world, wetness, out, NULL) !=
+        PELT_OK)
+        return false;
+    if (hit) *hit = h;
+    return true;
+}

@@ -6,6 +6,7 @@
 
 #include "pelt/wetness.h"
 #include "pelt/mesh.h"
+#include "core/raycast.h"
 
 /* Default mask resolution (the paper's Table 1 set-up). */
 #define PELT__WETNESS_DEFAULT_SIZE 256u
@@ -115,5 +116,14 @@ pelt_status pelt__droplet_on_surface(const pelt_mesh *mesh, size_t tri,
                                      const float bary[3], float radius_world,
                                      float wetness, pelt_droplet *out,
                                      pelt_error *err);
+
+/* A droplet where a ray (say from the camera through the mouse) first hits
+ * the mesh: pelt__bvh_raycast on bvh (built from this mesh), then
+ * pelt__droplet_on_surface. Returns false on a miss or bad input. The hit
+ * is written to *hit when hit is not NULL. No allocation. */
+bool pelt__droplet_from_ray(const pelt_mesh *mesh, const pelt__bvh *bvh,
+                            const float origin[3], const float dir[3],
+                            float radius_world, float wetness,
+                            pelt_droplet *out, pelt__hit *hit);
 
 #endif

@@ -575,6 +575,35 @@ static void wetness_surface_droplet_scales_radius_by_uv_area(void)
     CHECK(strstr(err.message, "triangle 1") != NULL);
 }
 
+static void wetness_ray_droplet_lands_where_the_ray_hits(void)
+{
+    /* A unit square in z = 0 of two triangles, uv = (x, y). */
+    float pos[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
+    float uv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
+    uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
+    struct pelt_mesh mesh = {0};
+    mesh.vertex_count = 4;
+    mesh.triangle_count = 2;
+    mesh.positions = pos;
+    mesh.uvs = uv;
+    mesh.indices = idx;
+    pelt__bvh *bvh = NULL;
+    CHECK(pelt__bvh_build(&mesh, &bvh, NULL) == PELT_OK);
+    if (!bvh) return;
+    float o[3] = {0.3f, 0.7f, 2.0f}, dir[3] = {0.0f, 0.0f, -1.0f};
+    pelt_droplet d;
+    pelt__hit hit;
+    CHECK(pelt__droplet_from_ray(&mesh, bvh, o, dir, 0.05f, 0.9f, &d, &hit));
+    CHECK(hit.triangle == 1); /* (0.3, 0.7) lies above the diagonal */
+    CHECK_NEAR(hit.t, 2.0, 1e-6);
+    CHECK_NEAR(d.center[0], 0.3, 1e-6);
+    CHECK_NEAR(d.center[1], 0.7, 1e-6);
+    CHECK_NEAR(d.radius, 0.05, 1e-6); /* uv and world areas equal */
+    float miss[3] = {2.0f, 2.0f, 2.0f};
+    CHECK(!pelt__droplet_from_ray(&mesh, bvh, miss, dir, 0.05f, 0.9f, &d, NULL));
+    pelt__bvh_destroy(bvh);
+}
+
 int main(void)
 {
     RUN(wetness_default_size_is_256);
@@ -600,5 +629,6 @@ int main(void)
     RUN(wetness_painted_image_top_row_is_v_one);
     RUN(wetness_picture_is_black_dry_and_blue_wet);
     RUN(wetness_surface_droplet_scales_radius_by_uv_area);
+    RUN(wetness_ray_droplet_lands_where_the_ray_hits);
     return check_summary();
 }
