@@ -279,6 +279,9 @@ pelt_status pelt__bvh_build(const pelt_mesh *mesh, pelt__bvh **out, pelt_error *
         bvh->source[i] = idx[i];
         bvh->tris[i] = make_tri(mesh, idx[i]);
     }
+    /* 2n nodes was the worst case; give back what the tree did not use. */
+    bvh_node *fit = realloc(bvh->nodes, c.node_count * sizeof *bvh->nodes);
+    if (fit) bvh->nodes = fit;
     bvh->node_count = c.node_count;
     bvh->tri_count = n;
     bvh->depth = depth;
