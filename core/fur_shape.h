@@ -37,7 +37,8 @@ pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, p
  * for an unknown or NULL name. */
 bool pelt__curl_preset(const char *name, float *omega, float *radius_fraction);
 
-/* Name of preset i (0..3), NULL past the end: for listing them. */
+/* Canonical name of preset i (0..3), NULL past the end: for listing
+ * them ("large_curls" and "small_curls" are accepted aliases). */
 const char *pelt__curl_preset_name(unsigned i);
 
 #endif

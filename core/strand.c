@@ -16,6 +16,8 @@
 #define PELT__ACCEL_MAX 1e9f
 #define PELT__RATE_MAX 1e9f
 #define PELT__NOISE_MAX 1e6f
+/* Strands stepped together (see pelt__strands_step). */
+#define PELT__STRAND_BLOCK 32
 
 struct pelt__strands {
     size_t count;
@@ -31,11 +33,15 @@ struct pelt__strands {
     float *tip[3];        /* world tip position p */
     float *vel[3];        /* world tip velocity */
     float *offsets;       /* 3 per vertex, mesh-local p - p_root (interleaved for upload) */
+    float *gust0[3], *gust1[3]; /* cached gust noise slices at the roots (see noise_slice) */
     float *block;
 
     float model[16];  /* column-major, mesh-local to world */
     float inverse[9]; /* inverse of the 3x3 part, column-major */
     bool dirty;       /* model changed since the world arrays were filled */
+    bool gust_valid;  /* gust0/gust1 hold slices gust_t0, gust_t0 + 1 for the current roots */
+    int32_t gust_t0;
+    float gust_inv_scale;
 };
 
 /* ---- small helpers ------------------------------------------------------ */
@@ -129,52 +135,63 @@ static uint32_t mix32(uint32_t h)
     return h;
 }
 
-static uint32_t lattice_hash(uint32_t seed, const int32_t c[4])
+/* Lattice hash built one axis at a time, so the 16 corners of a 4D cell
+ * share the hashing of their outer coordinates (30 mixes, not 64). */
+static uint32_t hash_axis(uint32_t h, int32_t c, uint32_t prime) { return mix32(h ^ ((uint32_t)c * prime)); }
+
+/* Three channels in [-1, 1] from 10 bits each. */
+static pelt_vec3 lattice_value(uint32_t h)
 {
-    uint32_t h = mix32(seed ^ 0x9e3779b9u);
-    for (int k = 0; k < 4; k++) h = mix32(h ^ ((uint32_t)c[k] * 0x27d4eb2fu + (uint32_t)k));
-    return h;
+    const float s = 2.0f / 1023.0f;
+    return v3((float)(h & 1023u) * s - 1.0f, (float)((h >> 10) & 1023u) * s - 1.0f,
+              (float)((h >> 20) & 1023u) * s - 1.0f);
 }
 
-/* Three channels of 4D value noise in [-1, 1], smooth (C1) everywhere. */
-static pelt_vec3 value_noise4(uint32_t seed, const float x[4])
+static pelt_vec3 v3_lerp(pelt_vec3 a, pelt_vec3 b, float t) { return v3_mad(a, v3_sub(b, a), t); }
+
+/* Lattice cell and smoothstep weight (C1 across cells) of one coordinate. */
+static float noise_cell(float x, int32_t *base)
 {
-    int32_t base[4];
-    float w[4];
-    for (int k = 0; k < 4; k++) {
-        float xc = clampf(x[k], -PELT__NOISE_MAX, PELT__NOISE_MAX);
-        float fl = floorf(xc);
-        float f = xc - fl;
-        base[k] = (int32_t)fl;
-        w[k] = f * f * (3.0f - 2.0f * f); /* smoothstep: C1 across lattice cells */
-    }
-    pelt_vec3 sum = v3(0.0f, 0.0f, 0.0f);
-    for (unsigned corner = 0; corner < 16; corner++) {
-        int32_t c[4];
-        float weight = 1.0f;
-        for (int k = 0; k < 4; k++) {
-            unsigned bit = (corner >> k) & 1u;
-            c[k] = base[k] + (int32_t)bit;
-            weight *= bit ? w[k] : 1.0f - w[k];
+    float xc = clampf(x, -PELT__NOISE_MAX, PELT__NOISE_MAX);
+    float fl = floorf(xc);
+    float f = xc - fl;
+    *base = (int32_t)fl;
+    return f * f * (3.0f - 2.0f * f);
+}
+
+/* Three channels of 3D value noise in [-1, 1] at position x on the time
+ * lattice plane t. 4D value noise (x, y, z, time) is the smoothstep blend
+ * of two such slices, t0 and t0 + 1: a static mesh caches the slices. */
+static pelt_vec3 noise_slice(uint32_t seed, pelt_vec3 x, int32_t t)
+{
+    int32_t base[3];
+    float w[3] = {noise_cell(x.x, &base[0]), noise_cell(x.y, &base[1]), noise_cell(x.z, &base[2])};
+    uint32_t ht = hash_axis(mix32(seed ^ 0x9e3779b9u), t, 0x27d4eb2fu);
+    pelt_vec3 along_z[2];
+    for (int z = 0; z < 2; z++) {
+        uint32_t hz = hash_axis(ht, base[2] + z, 0x165667b1u);
+        pelt_vec3 along_y[2];
+        for (int y = 0; y < 2; y++) {
+            uint32_t hy = hash_axis(hz, base[1] + y, 0xd3a2646cu);
+            along_y[y] = v3_lerp(lattice_value(hash_axis(hy, base[0], 0xfd7046c5u)),
+                                 lattice_value(hash_axis(hy, base[0] + 1, 0xfd7046c5u)), w[0]);
         }
-        uint32_t h = lattice_hash(seed, c);
-        /* 10 bits per channel, mapped to [-1, 1]. */
-        pelt_vec3 val = v3((float)(h & 1023u), (float)((h >> 10) & 1023u), (float)((h >> 20) & 1023u));
-        val = v3_add(v3_scale(val, 2.0f / 1023.0f), v3(-1.0f, -1.0f, -1.0f));
-        sum = v3_mad(sum, val, weight);
+        along_z[z] = v3_lerp(along_y[0], along_y[1], w[1]);
     }
-    return sum;
+    return v3_lerp(along_z[0], along_z[1], w[2]);
 }
 
 /* What a step needs to evaluate gusts, derived once per call. */
 typedef struct gust_frame {
     bool enabled;
     uint32_t seed;
-    float inv_scale, frequency, amplitude;
+    float inv_scale, amplitude;
+    int32_t t0;  /* time lattice cell of the sample time */
+    float wt;    /* smoothstep weight between slices t0 and t0 + 1 */
     pelt_vec3 along, side1, side2; /* wind direction and two perpendiculars */
 } gust_frame;
 
-static gust_frame make_gust_frame(const pelt_forces *f, uint32_t seed)
+static gust_frame make_gust_frame(const pelt_forces *f, uint32_t seed, float time)
 {
     gust_frame g;
     memset(&g, 0, sizeof g);
@@ -188,7 +205,8 @@ static gust_frame make_gust_frame(const pelt_forces *f, uint32_t seed)
     g.enabled = true;
     g.seed = seed;
     g.inv_scale = 1.0f / scale;
-    g.frequency = clampf(finite_or(f->gust_frequency, 0.0f), 0.0f, 1e4f);
+    float frequency = clampf(finite_or(f->gust_frequency, 0.0f), 0.0f, 1e4f);
+    g.wt = noise_cell(finite_or(time, 0.0f) * frequency, &g.t0);
     g.amplitude = strength * speed;
     g.along = v3_scale(wind, 1.0f / speed);
     /* Helper axis least aligned with the wind. */
@@ -198,15 +216,20 @@ static gust_frame make_gust_frame(const pelt_forces *f, uint32_t seed)
     return g;
 }
 
+static void gust_slices(const gust_frame *g, pelt_vec3 pos, pelt_vec3 *s0, pelt_vec3 *s1)
+{
+    pelt_vec3 x = v3_scale(pos, g->inv_scale);
+    *s0 = noise_slice(g->seed, x, g->t0);
+    *s1 = noise_slice(g->seed, x, g->t0 + 1);
+}
+
 /* Gust = strength * |wind| * (n0 along the wind + half of (n1, n2) across it):
  * the wind swells and slackens (never reverses for strength <= 1) and
  * sways sideways, differently in neighbouring regions. */
-static pelt_vec3 gust_eval(const gust_frame *g, pelt_vec3 pos, float time)
+static pelt_vec3 gust_combine(const gust_frame *g, pelt_vec3 s0, pelt_vec3 s1)
 {
     if (!g->enabled) return v3(0.0f, 0.0f, 0.0f);
-    float x[4] = {pos.x * g->inv_scale, pos.y * g->inv_scale, pos.z * g->inv_scale,
-                  finite_or(time, 0.0f) * g->frequency};
-    pelt_vec3 n = value_noise4(g->seed, x);
+    pelt_vec3 n = v3_lerp(s0, s1, g->wt);
     pelt_vec3 a = v3_scale(g->along, n.x);
     a = v3_mad(a, g->side1, 0.5f * n.y);
     a = v3_mad(a, g->side2, 0.5f * n.z);
@@ -216,8 +239,10 @@ static pelt_vec3 gust_eval(const gust_frame *g, pelt_vec3 pos, float time)
 void pelt__gust(const pelt_forces *f, uint32_t seed, const float pos[3], float time, float out[3])
 {
     pelt_forces def = pelt_forces_default();
-    gust_frame g = make_gust_frame(f ? f : &def, seed);
-    v3_store(out, gust_eval(&g, v3_load(pos), time));
+    gust_frame g = make_gust_frame(f ? f : &def, seed, time);
+    pelt_vec3 s0 = v3(0.0f, 0.0f, 0.0f), s1 = s0;
+    if (g.enabled) gust_slices(&g, v3_load(pos), &s0, &s1);
+    v3_store(out, gust_combine(&g, s0, s1));
 }
 
 /* ---- create / destroy ----------------------------------------------------- */
@@ -253,8 +278,8 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
     s->c_per_mass = fminf(s->params.damping / s->params.mass, PELT__RATE_MAX);
 
     /* 3 (root_local) + 3 (rest_local) + 3 (root) + 3 (normal) + 1 (length)
-     * + 3 (tip) + 3 (vel) + 3 (offsets) floats per vertex. */
-    const size_t per_vertex = 22;
+     * + 3 (tip) + 3 (vel) + 6 (gust slices) + 3 (offsets) floats per vertex. */
+    const size_t per_vertex = 28;
     if (n > (size_t)-1 / per_vertex) {
         free(s);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: %zu vertices overflow the strand arrays", fn, n);
@@ -271,7 +296,9 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
                         &s->normal[0],     &s->normal[1],     &s->normal[2],
                         &s->length,        &s->tip[0],        &s->tip[1],
                         &s->tip[2],        &s->vel[0],        &s->vel[1],
-                        &s->vel[2]};
+                        &s->vel[2],        &s->gust0[0],      &s->gust0[1],
+                        &s->gust0[2],      &s->gust1[0],      &s->gust1[1],
+                        &s->gust1[2]};
     for (size_t a = 0; a < sizeof arrays / sizeof arrays[0]; a++) {
         *arrays[a] = cursor;
         cursor += n;
@@ -333,6 +360,7 @@ void pelt__strands_reset(pelt__strands *s)
         write_offset(s, i, tip, root);
     }
     s->dirty = false;
+    s->gust_valid = false; /* roots may have moved */
 }
 
 /* ---- stepping --------------------------------------------------------------- */
@@ -389,55 +417,90 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
 
     const pelt_vec3 steady = v3_add(sanitize(v3_load(f->gravity), PELT__ACCEL_MAX),
                                     sanitize(v3_load(f->wind), PELT__ACCEL_MAX));
-    const gust_frame gust = make_gust_frame(f, s->params.seed);
-    const float gust_time = time + 0.5f * dt; /* gusts held over the call, sampled mid-way */
+    /* Gusts are held over the call, sampled mid-way. The noise slices at
+     * the roots are cached while the mesh stands still, so a static mesh
+     * pays for the noise once per time cell (1 / gust_frequency s). */
+    const bool moved = s->dirty;
+    const gust_frame gust = make_gust_frame(f, s->params.seed, time + 0.5f * dt);
+    const bool refresh_gust = gust.enabled && (moved || !s->gust_valid || s->gust_t0 != gust.t0 ||
+                                               s->gust_inv_scale != gust.inv_scale);
     const float km = s->k_per_mass, cm = s->c_per_mass;
     /* v' = (v + h (a - km (p - p0))) / (1 + h cm + h^2 km): v and p at the end. */
     /* Implicit (backward) Euler for the linear spring-damper: stable for
      * every h, and close to symplectic Euler when h is small. */
     const float denom = 1.0f + h * cm + h * h * km;
     const float inv_denom = 1.0f / denom;
-    const bool moved = s->dirty;
 
-    for (size_t i = 0; i < s->count; i++) {
-        pelt_vec3 root, n, v_root = v3(0.0f, 0.0f, 0.0f);
-        float len;
-        if (moved) {
-            /* The root jumps with the mesh; the tip keeps its world position. */
-            pelt_vec3 old = load_soa(s->root, i);
-            place_root(s, i, &root, &n, &len);
-            v_root = sanitize(v3_scale(v3_sub(root, old), 1.0f / dt), PELT__ACCEL_MAX);
-            store_soa(s->root, i, root);
-            store_soa(s->normal, i, n);
-            s->length[i] = len;
-        } else {
-            root = load_soa(s->root, i);
-            n = load_soa(s->normal, i);
-            len = s->length[i];
+    /* Vertices go in blocks, substeps inside a block: the strands are
+     * independent, so interleaving them hides the latency of each one's
+     * sqrt and division, and a block's state stays in L1. */
+    for (size_t first = 0; first < s->count; first += PELT__STRAND_BLOCK) {
+        const size_t nb = s->count - first < PELT__STRAND_BLOCK ? s->count - first : PELT__STRAND_BLOCK;
+        pelt_vec3 root[PELT__STRAND_BLOCK], n[PELT__STRAND_BLOCK], v_root[PELT__STRAND_BLOCK];
+        pelt_vec3 accel[PELT__STRAND_BLOCK], rest[PELT__STRAND_BLOCK];
+        pelt_vec3 p[PELT__STRAND_BLOCK], v[PELT__STRAND_BLOCK];
+        float len[PELT__STRAND_BLOCK], vmax[PELT__STRAND_BLOCK];
+        for (size_t j = 0; j < nb; j++) {
+            const size_t i = first + j;
+            v_root[j] = v3(0.0f, 0.0f, 0.0f);
+            if (moved) {
+                /* The root jumps with the mesh; the tip keeps its world position. */
+                pelt_vec3 old = load_soa(s->root, i);
+                place_root(s, i, &root[j], &n[j], &len[j]);
+                v_root[j] = sanitize(v3_scale(v3_sub(root[j], old), 1.0f / dt), PELT__ACCEL_MAX);
+                store_soa(s->root, i, root[j]);
+                store_soa(s->normal, i, n[j]);
+                s->length[i] = len[j];
+            } else {
+                root[j] = load_soa(s->root, i);
+                n[j] = load_soa(s->normal, i);
+                len[j] = s->length[i];
+            }
+            pelt_vec3 g0 = v3(0.0f, 0.0f, 0.0f), g1 = g0;
+            if (refresh_gust) {
+                gust_slices(&gust, root[j], &g0, &g1);
+                store_soa(s->gust0, i, g0);
+                store_soa(s->gust1, i, g1);
+            } else if (gust.enabled) {
+                g0 = load_soa(s->gust0, i);
+                g1 = load_soa(s->gust1, i);
+            }
+            accel[j] = sanitize(v3_add(steady, gust_combine(&gust, g0, g1)), PELT__ACCEL_MAX);
+            rest[j] = v3_mad(root[j], n[j], len[j]); /* p0 of Silva §3.2.1 */
+            /* Relative speeds above this cross the tip's whole range in one
+             * substep: clamping them loses nothing and bounds the state. */
+            vmax[j] = 4.0f * len[j] / h;
+            p[j] = load_soa(s->tip, i);
+            v[j] = load_soa(s->vel, i);
         }
-        pelt_vec3 accel = v3_add(steady, gust_eval(&gust, root, gust_time));
-        accel = sanitize(accel, PELT__ACCEL_MAX);
-        const pelt_vec3 rest = v3_mad(root, n, len); /* p0 of Silva §3.2.1 */
-        /* Relative speeds above this move the tip across its whole range in
-         * one substep: clamping them loses nothing and bounds the state. */
-        const float vmax = 4.0f * len / h;
-
-        pelt_vec3 p = load_soa(s->tip, i), v = load_soa(s->vel, i);
         for (int k = 0; k < substeps; k++) {
-            /* Silva Eq. 2 with f = m a_ext - k (p - p0) - c v. */
-            pelt_vec3 force = v3_add(accel, v3_scale(v3_sub(p, rest), -km));
-            v = v3_scale(v3_mad(v, force, h), inv_denom);
-            pelt_vec3 rel = v3_sub(v, v_root);
-            float rel2 = v3_dot(rel, rel);
-            if (rel2 > vmax * vmax) v = v3_mad(v_root, rel, vmax / sqrtf(rel2));
-            p = v3_mad(p, v, h);
-            project(root, n, len, v_root, &p, &v); /* Silva Eq. 3 after every substep */
+            for (size_t j = 0; j < nb; j++) {
+                /* Silva Eq. 2 with f = m a_ext - k (p - p0) - c v. */
+                pelt_vec3 force = v3_add(accel[j], v3_scale(v3_sub(p[j], rest[j]), -km));
+                pelt_vec3 vj = v3_scale(v3_mad(v[j], force, h), inv_denom);
+                pelt_vec3 rel = v3_sub(vj, v_root[j]);
+                float rel2 = v3_dot(rel, rel);
+                if (rel2 > vmax[j] * vmax[j]) vj = v3_mad(v_root[j], rel, vmax[j] / sqrtf(rel2));
+                pelt_vec3 pj = v3_mad(p[j], vj, h);
+                project(root[j], n[j], len[j], v_root[j], &pj, &vj); /* Silva Eq. 3 after every substep */
+                p[j] = pj;
+                v[j] = vj;
+            }
         }
-        store_soa(s->tip, i, p);
-        store_soa(s->vel, i, v);
-        write_offset(s, i, p, root);
+        for (size_t j = 0; j < nb; j++) {
+            store_soa(s->tip, first + j, p[j]);
+            store_soa(s->vel, first + j, v[j]);
+            write_offset(s, first + j, p[j], root[j]);
+        }
     }
     s->dirty = false;
+    if (refresh_gust) {
+        s->gust_valid = true;
+        s->gust_t0 = gust.t0;
+        s->gust_inv_scale = gust.inv_scale;
+    } else if (moved) {
+        s->gust_valid = false; /* the roots moved without gusts: slices stale */
+    }
 }
 
 const float *pelt__strands_tip_offsets(const pelt__strands *s) { return s->offsets; }

@@ -131,11 +131,12 @@ static void fur_tangent_of_straight_rest_fur_is_normal(void)
 
 static void curl_presets_cover_fig7_and_differ(void)
 {
-    const char *names[] = {"straight", "wavy", "large_curls", "small_curls"};
+    const char *names[] = {"straight", "wavy", "few-large-curls", "many-small-curls"};
     float om[4], rad[4];
     for (int i = 0; i < 4; i++) {
         CHECK(pelt__curl_preset(names[i], &om[i], &rad[i]));
-        CHECK(pelt__curl_preset_name((unsigned)i) != NULL);
+        const char *listed = pelt__curl_preset_name((unsigned)i);
+        CHECK(listed != NULL && strcmp(listed, names[i]) == 0);
         CHECK(rad[i] >= 0.0f && rad[i] < 1.0f);
     }
     CHECK(pelt__curl_preset_name(4) == NULL);
@@ -143,6 +144,10 @@ static void curl_presets_cover_fig7_and_differ(void)
     CHECK(rad[1] < rad[2] && om[1] < om[2]);   /* wavy: slow and small */
     CHECK(rad[2] > rad[3] && om[2] < om[3]);   /* few large vs many small */
     CHECK(om[3] > 2.0f * TWO_PI);              /* "many": more than two turns */
+    /* The short aliases give the same looks. */
+    float ao, ar;
+    CHECK(pelt__curl_preset("large_curls", &ao, &ar) && ao == om[2] && ar == rad[2]);
+    CHECK(pelt__curl_preset("small_curls", &ao, &ar) && ao == om[3] && ar == rad[3]);
     float keep_o = 123.0f, keep_r = 456.0f;
     CHECK(!pelt__curl_preset("curly", &keep_o, &keep_r));
     CHECK(!pelt__curl_preset(NULL, &keep_o, &keep_r));
