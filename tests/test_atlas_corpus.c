@@ -14,9 +14,10 @@
 
 #define CGAL_ARCHIVE "/usr/share/doc/libcgal-dev/data.tar.gz"
 #define CORPUS_DIR PELT_TEST_OUT "/atlas_corpus"
-/* Keeps the run to a few minutes under ASan: bigger meshes are listed as
+/* Keeps the run under a minute under ASan (the largest corpus mesh has
+ * 88,928 triangles): bigger meshes would be listed as
  * skipped (the 365k-triangle timing is measured separately, in Release). */
-#define MAX_TRIANGLES 60000
+#define MAX_TRIANGLES 100000
 
 static int has_suffix(const char *s, const char *suffix)
 {
