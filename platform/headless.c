@@ -122,7 +122,6 @@ pelt_status pelt_headless_create(const pelt_headless_desc *desc, pelt_headless *
                           "(Debian: libegl-mesa0 libgl1-mesa-dri) or a GPU driver", tried);
     }
     if (!eglBindAPI(EGL_OPENGL_API)) {
-        eglTerminate(c->display);
         free(c);
         return pelt__fail(err, PELT_ERR_NO_CONTEXT, "EGL cannot bind the desktop OpenGL API");
     }
@@ -132,7 +131,6 @@ pelt_status pelt_headless_create(const pelt_headless_desc *desc, pelt_headless *
     bool no_config = !eglChooseConfig(c->display, config_attrs, &config, 1, &n) || n == 0;
     const char *exts = eglQueryString(c->display, EGL_EXTENSIONS);
     if (no_config && !(exts && strstr(exts, "EGL_KHR_no_config_context"))) {
-        eglTerminate(c->display);
         free(c);
         return pelt__fail(err, PELT_ERR_NO_CONTEXT, "EGL has no OpenGL-capable config");
     }
@@ -142,7 +140,6 @@ pelt_status pelt_headless_create(const pelt_headless_desc *desc, pelt_headless *
     c->context = eglCreateContext(c->display, no_config ? EGL_NO_CONFIG_KHR : config,
                                   EGL_NO_CONTEXT, ctx_attrs);
     if (c->context == EGL_NO_CONTEXT) {
-        eglTerminate(c->display);
         free(c);
         return pelt__fail(err, PELT_ERR_NO_CONTEXT,
                           "EGL could not create an OpenGL 3.3 core context (EGL error 0x%x)",
@@ -150,7 +147,6 @@ pelt_status pelt_headless_create(const pelt_headless_desc *desc, pelt_headless *
     }
     if (!eglMakeCurrent(c->display, EGL_NO_SURFACE, EGL_NO_SURFACE, c->context)) {
         eglDestroyContext(c->display, c->context);
-        eglTerminate(c->display);
         free(c);
         return pelt__fail(err, PELT_ERR_NO_CONTEXT,
                           "EGL could not make a surfaceless context current "
@@ -182,7 +178,11 @@ void pelt_headless_destroy(pelt_headless *c)
         eglMakeCurrent(c->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(c->display, c->context);
     }
-    eglTerminate(c->display);
+    /* The display is not terminated: an EGL display is one per process and
+     * platform, shared with anyone else in the process who uses it (an
+     * application's own context, another pelt_headless), and terminating it
+     * would unload the driver under them. eglInitialize on it again is a
+     * no-op, so creating another context later reuses it. */
     eglReleaseThread();
     free(c);
 }
