@@ -2,6 +2,7 @@
 #include "apps/cli.h"
 
 #include <epoxy/gl.h>
+#include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -54,6 +55,18 @@ int cmd_render(int argc, char **argv)
         cli_frame_path(o.output, i, path, sizeof path);
         if (!cli_write_png("render", path, s.pixels, sc->output.width, sc->output.height)) rc = 1;
         if (show_progress) progress(i + 1, frames);
+    }
+    if (rc == 0 && o.mask_out) {
+        unsigned m = pelt_fur_mask_size(s.fur);
+        uint8_t *mask = malloc((size_t)m * m * 4);
+        if (!mask) {
+            cli_error("render", "out of memory for the mask picture");
+            rc = 1;
+        } else {
+            pelt_fur_mask_picture(s.fur, mask);
+            if (!cli_write_png("render", o.mask_out, mask, m, m)) rc = 1;
+            free(mask);
+        }
     }
     if (rc == 0 && !o.quiet && frames == 1) fprintf(stderr, "pelt render: wrote %s\n", path);
     cli_session_close(&s);

@@ -3,6 +3,7 @@
 
 #include <epoxy/gl.h>
 #include <errno.h>
+#include <stb_image.h>
 #include <stb_image_write.h>
 #include <stdlib.h>
 #include <string.h>
@@ -22,6 +23,41 @@ static pelt_status load_mesh(const pelt_scene *sc, pelt_mesh **mesh, pelt_error 
         return pelt_mesh_load(m->file, mesh, err);
     }
     return PELT_ERR_INVALID_ARGUMENT;
+}
+
+/* Droplets, random drops, a painted image, rain and drying from the scene. */
+static bool apply_wetness(const char *cmd, const pelt_scene *sc, pelt_fur *fur)
+{
+    const pelt_scene_wetness *w = &sc->wetness;
+    pelt_error err = {0};
+    for (size_t i = 0; i < w->droplet_count; i++)
+        if (pelt_fur_add_droplet(fur, &w->droplets[i], &err) != PELT_OK) {
+            cli_error(cmd, "wetness.droplets[%zu]: %s", i, err.message);
+            return false;
+        }
+    if (w->drops) {
+        pelt_rain r = {0.0f, w->drops_radius[0], w->drops_radius[1], w->drops_wetness[0],
+                       w->drops_wetness[1], w->drops_seed};
+        pelt_fur_add_random_droplets(fur, &r, w->drops);
+    }
+    if (w->mask_image[0]) {
+        int iw, ih, n;
+        uint8_t *grey = stbi_load(w->mask_image, &iw, &ih, &n, 1);
+        if (!grey) {
+            cli_error(cmd, "wetness.mask_image '%s': %s", w->mask_image, stbi_failure_reason());
+            return false;
+        }
+        pelt_status st = pelt_fur_paint_wetness(fur, grey, (unsigned)iw, (unsigned)ih,
+                                                w->mask_image_wetness, &err);
+        stbi_image_free(grey);
+        if (st != PELT_OK) {
+            cli_error(cmd, "wetness.mask_image '%s': %s", w->mask_image, err.message);
+            return false;
+        }
+    }
+    pelt_fur_set_rain(fur, &w->rain);
+    pelt_fur_set_dry_rate(fur, w->dry_rate);
+    return true;
 }
 
 bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
@@ -46,11 +82,19 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_session_close(s);
         return false;
     }
+    fd.mask_size = sc->wetness.mask_size;
+    fd.clump_blend = sc->wetness.clump_blend;
+    fd.clump_tightness = sc->wetness.clump_tightness;
+    fd.wet_darken = sc->wetness.darken;
     if (sc->dynamics.spring_k > 0.0f) fd.spring_k = sc->dynamics.spring_k;
     if (sc->dynamics.mass > 0.0f) fd.mass = sc->dynamics.mass;
     if (sc->dynamics.damping > 0.0f) fd.damping = sc->dynamics.damping;
     if (pelt_fur_create(s->mesh, &fd, &s->fur, &err) != PELT_OK) {
         cli_error(cmd, "%s", err.message);
+        cli_session_close(s);
+        return false;
+    }
+    if (!apply_wetness(cmd, sc, s->fur)) {
         cli_session_close(s);
         return false;
     }

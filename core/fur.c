@@ -7,6 +7,7 @@
 #include "core/mesh_internal.h"
 #include "core/vec.h"
 #include "pelt/dynamics.h"
+#include "pelt/wetness.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -42,6 +43,10 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->mass == 0.0f) d->mass = 1.0f;
     if (d->spring_k == 0.0f) d->spring_k = d->mass * 9.81f / (0.4f * d->length);
     if (d->damping == 0.0f) d->damping = 0.5f * sqrtf(d->spring_k * d->mass);
+    if (d->mask_size == 0) d->mask_size = 256;
+    if (d->clump_blend == 0.0f) d->clump_blend = 0.5f;
+    if (d->clump_tightness == 0.0f) d->clump_tightness = 0.9f;
+    if (d->wet_darken == 0.0f) d->wet_darken = 0.35f;
 }
 
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
@@ -70,6 +75,13 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         !isfinite(d->spring_k) || !isfinite(d->damping))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "fur mass and spring constant must be positive, damping >= 0");
+    if (d->mask_size > 8192)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness mask size must be 1..8192, got %u", d->mask_size);
+    if (!(d->clump_blend >= 0.0f && d->clump_blend <= 1.0f) ||
+        !(d->clump_tightness > 0.0f && d->clump_tightness <= 1.0f) ||
+        !(d->wet_darken >= 0.0f && d->wet_darken < 1.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "clump blend must be in [0,1], tightness in (0,1], wet darkening in [0,1)");
     if (!isfinite(d->curl_frequency) || !isfinite(d->curl_radius) || d->curl_radius < 0.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
     return PELT_OK;
@@ -80,10 +92,11 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
  * world length of one uv unit along u and along v, so hairs come out round
  * whatever the uv map's aspect (the torus's uv square is 2.5x longer
  * around the hole than around the tube). */
-static void compute_fur_uvs(const pelt_mesh *m, float tiling, float *out)
+static void compute_fur_uvs(const pelt_mesh *m, float tiling, float *out, float fur_per_uv[2])
 {
     if (m->fur_uvs) {
         memcpy(out, m->fur_uvs, m->vertex_count * 2 * sizeof(float));
+        fur_per_uv[0] = fur_per_uv[1] = tiling;
         return;
     }
     double su = 0.0, sv = 0.0, wsum = 0.0;
@@ -106,6 +119,8 @@ static void compute_fur_uvs(const pelt_mesh *m, float tiling, float *out)
     }
     float scale_u = wsum > 0.0 ? (float)(su / wsum) : 1.0f;
     float scale_v = wsum > 0.0 ? (float)(sv / wsum) : 1.0f;
+    fur_per_uv[0] = scale_u * tiling;
+    fur_per_uv[1] = scale_v * tiling;
     for (size_t i = 0; i < m->vertex_count; i++) {
         out[2 * i + 0] = m->uvs[2 * i + 0] * scale_u * tiling;
         out[2 * i + 1] = m->uvs[2 * i + 1] * scale_v * tiling;
@@ -139,12 +154,17 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
         return st;
     }
     f->tips = pelt__strands_tip_offsets(f->strands);
+    st = pelt__wetness_create(d.mask_size, d.mask_size, &f->wetness, err);
+    if (st != PELT_OK) {
+        pelt_fur_destroy(f);
+        return st;
+    }
     if (!f->texture || !f->fur_uvs) {
         pelt_fur_destroy(f);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
     }
     pelt__furtex_generate(&td, f->texture);
-    compute_fur_uvs(mesh, d.tiling, f->fur_uvs);
+    compute_fur_uvs(mesh, d.tiling, f->fur_uvs, f->fur_per_uv);
     f->tips_version = 1;
     *out = f;
     return PELT_OK;
@@ -172,6 +192,7 @@ void pelt_fur_destroy(pelt_fur *f)
     free(f->fur_uvs);
     free(f->color_texture);
     pelt__strands_destroy(f->strands);
+    pelt__wetness_destroy(f->wetness);
     free(f);
 }
 
@@ -187,6 +208,8 @@ void pelt_fur_step(pelt_fur *f, float dt, const pelt_forces *forces)
 {
     if (!(dt > 0.0f)) return;
     pelt__strands_step(f->strands, dt, forces, f->time);
+    if (f->rain.rate > 0.0f) pelt__wetness_rain(f->wetness, &f->rain, &f->rain_state, dt);
+    if (f->dry_rate > 0.0f) pelt__wetness_dry(f->wetness, f->dry_rate, dt);
     f->time += dt;
     f->tips_version++;
 }
@@ -215,3 +238,56 @@ pelt_status pelt_fur_set_color_texture(pelt_fur *f, const uint8_t *rgba, unsigne
     f->color_version++;
     return PELT_OK;
 }
+
+pelt_status pelt_fur_add_droplet(pelt_fur *f, const pelt_droplet *d, pelt_error *err)
+{
+    return pelt__wetness_add_droplet(f->wetness, d, err);
+}
+
+pelt_status pelt_fur_add_droplet_at(pelt_fur *f, size_t triangle, const float bary[3],
+                                    float radius_world, float wetness, pelt_error *err)
+{
+    pelt_droplet d;
+    pelt_status st = pelt__droplet_on_surface(f->mesh, triangle, bary, radius_world, wetness, &d, err);
+    return st == PELT_OK ? pelt__wetness_add_droplet(f->wetness, &d, err) : st;
+}
+
+void pelt_fur_add_random_droplets(pelt_fur *f, const pelt_rain *rain, unsigned count)
+{
+    /* Rain of `count` droplets per second for one second. */
+    pelt_rain r = *rain;
+    r.rate = (float)count;
+    pelt__rain_state state;
+    pelt__rain_start(&state, &r);
+    pelt__wetness_rain(f->wetness, &r, &state, 1.0f);
+}
+
+void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain)
+{
+    f->rain = *rain;
+    pelt__rain_start(&f->rain_state, rain);
+}
+
+void pelt_fur_set_dry_rate(pelt_fur *f, float rate)
+{
+    f->dry_rate = isfinite(rate) && rate > 0.0f ? rate : 0.0f;
+}
+
+pelt_status pelt_fur_paint_wetness(pelt_fur *f, const uint8_t *grey, unsigned w, unsigned h,
+                                   float wetness, pelt_error *err)
+{
+    if (!grey || w == 0 || h == 0)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness image is empty");
+    /* Scale the grey levels by `wetness` into a copy the painter reads. */
+    uint8_t *scaled = pelt__calloc((size_t)w * h, 1);
+    if (!scaled) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a %ux%u image", w, h);
+    float k = clampf(wetness, 0.0f, 1.0f);
+    for (size_t i = 0; i < (size_t)w * h; i++) scaled[i] = (uint8_t)(grey[i] * k + 0.5f);
+    pelt_status st = pelt__wetness_paint_image(f->wetness, scaled, w, h, NULL, err);
+    free(scaled);
+    return st;
+}
+
+unsigned pelt_fur_mask_size(const pelt_fur *f) { return f->wetness->width; }
+
+void pelt_fur_mask_picture(const pelt_fur *f, uint8_t *rgba) { pelt__wetness_to_rgba8(f->wetness, rgba); }

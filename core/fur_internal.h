@@ -5,6 +5,7 @@
 #include "pelt/fur.h"
 
 #include "core/strand.h"
+#include "core/wetness.h"
 
 struct pelt_fur {
     pelt_fur_desc desc;      /* every default filled in */
@@ -20,6 +21,11 @@ struct pelt_fur {
     unsigned tips_version;   /* bumped when tips change */
     pelt__strands *strands;  /* one mass-spring strand per vertex */
     float time;              /* seconds stepped since creation or reset */
+    float fur_per_uv[2];     /* fur tiles per uv unit along u and v */
+    pelt__wetness *wetness;  /* the wetness mask over the uvs */
+    pelt_rain rain;
+    pelt__rain_state rain_state;
+    float dry_rate;
 };
 
 /* Fills the zero fields of `d` with defaults for `mesh`. */

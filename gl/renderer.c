@@ -20,6 +20,7 @@ typedef struct uniforms {
     GLint color, tip_color, specular, shininess, shadow, eye;
     GLint light_dir, light_color, ambient;
     GLint fur, color_tex, mask;
+    GLint clump_blend, clump_tightness, wet_darken, fur_per_uv;
 } uniforms;
 
 struct pelt_renderer {
@@ -44,7 +45,9 @@ static void find_uniforms(GLuint p, uniforms *u)
     LOC(specular, "u_specular"); LOC(shininess, "u_shininess"); LOC(shadow, "u_shadow");
     LOC(eye, "u_eye"); LOC(light_dir, "u_light_dir"); LOC(light_color, "u_light_color");
     LOC(ambient, "u_ambient"); LOC(fur, "u_fur"); LOC(color_tex, "u_color_tex");
-    LOC(mask, "u_mask");
+    LOC(mask, "u_mask"); LOC(clump_blend, "u_clump_blend");
+    LOC(clump_tightness, "u_clump_tightness"); LOC(wet_darken, "u_wet_darken");
+    LOC(fur_per_uv, "u_fur_per_uv");
 #undef LOC
     glUseProgram(p);
     glUniform1i(u->fur, UNIT_FUR);
@@ -103,7 +106,7 @@ static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
 
 static void upload_textures(pelt_renderer *r)
 {
-    const pelt_fur *f = r->fur;
+    pelt_fur *f = r->fur;
     GLsizei s = (GLsizei)f->desc.texture_size;
     glGenTextures(1, &r->fur_texture);
     glBindTexture(GL_TEXTURE_2D_ARRAY, r->fur_texture);
@@ -123,13 +126,19 @@ static void upload_textures(pelt_renderer *r)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     r->color_version = (unsigned)-1;
 
-    /* Dry wetness mask until the wetness module owns one. */
-    static const float dry[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    /* The wetness mask: float texels, nearest sampling (Silva §3.1). */
+    const pelt__wetness *m = f->wetness;
     glGenTextures(1, &r->mask_texture);
     glBindTexture(GL_TEXTURE_2D, r->mask_texture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 1, 1, 0, GL_RGBA, GL_FLOAT, dry);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)m->width, (GLsizei)m->height, 0, GL_RGBA,
+                 GL_FLOAT, m->texels);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    unsigned rect[4];
+    pelt__wetness_take_dirty(f->wetness, rect); /* all of it went up just now */
 }
 
 pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
@@ -152,7 +161,7 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
     const char *skin_vs[] = {pelt__shader_skin_vs, NULL};
     const char *skin_fs[] = {pelt__shader_shading, pelt__shader_skin_fs, NULL};
     const char *shell_vs[] = {pelt__shader_fur_shape, pelt__shader_shell_vs, NULL};
-    const char *shell_fs[] = {pelt__shader_shading, pelt__shader_shell_fs, NULL};
+    const char *shell_fs[] = {pelt__shader_shading, pelt__shader_clump, pelt__shader_shell_fs, NULL};
     pelt_status st = pelt__program_build("skin", skin_vs, skin_fs, &r->skin_program, err);
     if (st == PELT_OK)
         st = pelt__program_build("shell", shell_vs, shell_fs, &r->shell_program, err);
@@ -204,6 +213,17 @@ void pelt_renderer_upload(pelt_renderer *r)
         glGenerateMipmap(GL_TEXTURE_2D);
         r->color_version = f->color_version;
     }
+    /* Only the rectangle of the mask that changed since the last upload. */
+    unsigned rect[4];
+    if (pelt__wetness_take_dirty(f->wetness, rect)) {
+        const pelt__wetness *m = f->wetness;
+        glBindTexture(GL_TEXTURE_2D, r->mask_texture);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, (GLint)m->width);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, (GLint)rect[0], (GLint)rect[1], (GLsizei)(rect[2] - rect[0]),
+                        (GLsizei)(rect[3] - rect[1]), GL_RGBA, GL_FLOAT,
+                        m->texels + ((size_t)rect[1] * m->width + rect[0]) * 4);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+    }
 }
 
 static void set_common(const pelt_renderer *r, const uniforms *u, const pelt_view *v,
@@ -225,6 +245,10 @@ static void set_common(const pelt_renderer *r, const uniforms *u, const pelt_vie
     glUniform3fv(u->light_dir, 1, v->light.direction);
     glUniform3fv(u->light_color, 1, v->light.color);
     glUniform1f(u->ambient, v->light.ambient);
+    glUniform1f(u->clump_blend, d->clump_blend);
+    glUniform1f(u->clump_tightness, d->clump_tightness);
+    glUniform1f(u->wet_darken, d->wet_darken);
+    glUniform2fv(u->fur_per_uv, 1, r->fur->fur_per_uv);
 }
 
 void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)

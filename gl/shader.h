@@ -9,6 +9,7 @@
 /* Embedded sources, generated from gl/shaders/NAME.glsl. */
 extern const char pelt__shader_shading[];
 extern const char pelt__shader_fur_shape[];
+extern const char pelt__shader_clump[];
 extern const char pelt__shader_skin_vs[];
 extern const char pelt__shader_skin_fs[];
 extern const char pelt__shader_shell_vs[];

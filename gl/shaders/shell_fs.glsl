@@ -19,18 +19,32 @@ uniform vec3 u_eye;
 uniform vec3 u_light_dir;
 uniform vec3 u_light_color;
 uniform float u_ambient;
+uniform float u_layers;
+uniform sampler2D u_mask;
+uniform float u_clump_blend;
+uniform float u_clump_tightness;
+uniform float u_wet_darken;
+uniform vec2 u_fur_per_uv;
 
 out vec4 o_color;
 
 void main()
 {
-    vec4 hair = texture(u_fur, vec3(v_fur_uv, v_layer + 1.0));
+    // Clumps (Silva Eq. 5, Alg. 2 as DESIGN.md reads them): sample the hair
+    // rooted at q; colour and fur coordinates move together.
+    vec2 q;
+    int clump = clump_lookup(u_mask, v_uv, v_h, u_clump_blend, u_layers, u_clump_tightness, q);
+    if (clump == CLUMP_DISCARD) discard;
+    vec2 d = clump == CLUMP_DISPLACED ? q - v_uv : vec2(0.0);
+    float rho = clump_texel(u_mask, v_uv).a;
+    vec4 hair = texture(u_fur, vec3(v_fur_uv + d * u_fur_per_uv, v_layer + 1.0));
     if (hair.a < 0.05) discard;
     vec3 T = normalize(v_tangent);
     vec3 L = normalize(u_light_dir);
     vec3 E = normalize(v_world - u_eye);
     vec2 kk = kajiya_kay(T, L, E, u_shininess);
-    vec3 base = mix(u_color, u_tip_color, hair.g) * texture(u_color_tex, v_uv).rgb * hair.r;
+    vec3 base = mix(u_color, u_tip_color, hair.g) * texture(u_color_tex, v_uv + d).rgb * hair.r;
+    base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
     // Hair on the side of the body facing away from the light is in the
     // body's shadow: Kajiya-Kay alone would light it as brightly.
     float facing = clamp(dot(normalize(v_normal), L) * 0.8 + 0.35, 0.0, 1.0);

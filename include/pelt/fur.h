@@ -36,6 +36,11 @@ typedef struct pelt_fur_desc {
     float mass;              /* default 1 */
     float spring_k;          /* default mass * 9.81 / (0.4 * length) */
     float damping;           /* default 0.5 * sqrt(spring_k * mass) */
+    /* Wet fur (Silva §3.1, §3.3). */
+    unsigned mask_size;      /* wetness mask width = height, default 256 */
+    float clump_blend;       /* w of Silva Eq. 5 in [0,1], default 0.5 */
+    float clump_tightness;   /* s in (0,1]: 1 = tips meet at the clump centre, default 0.9 */
+    float wet_darken;        /* brightness fully wet fur loses, [0,1), default 0.35 */
 } pelt_fur_desc;
 
 /* Fills curl_frequency and curl_radius of `d` from one of the curl looks

@@ -32,6 +32,34 @@ typedef struct pelt_rain {
     uint32_t seed;
 } pelt_rain;
 
+/* Blends one droplet into the fur's wetness mask (Silva Alg. 1 as
+ * docs/wetness.md reads it). Work is proportional to its footprint. */
+pelt_status pelt_fur_add_droplet(pelt_fur *fur, const pelt_droplet *droplet, pelt_error *err);
+
+/* A droplet at a surface point: triangle index and barycentrics, radius in
+ * world units (converted through that triangle's uv scale). */
+pelt_status pelt_fur_add_droplet_at(pelt_fur *fur, size_t triangle, const float bary[3],
+                                    float radius_world, float wetness, pelt_error *err);
+
+/* `count` droplets at seeded random places, radii and wetness from the
+ * ranges of `rain` (its rate is ignored). */
+void pelt_fur_add_random_droplets(pelt_fur *fur, const pelt_rain *rain, unsigned count);
+
+/* Rain that pelt_fur_step lets fall (rate 0 stops it) and the drying rate:
+ * wetness lost per second. */
+void pelt_fur_set_rain(pelt_fur *fur, const pelt_rain *rain);
+void pelt_fur_set_dry_rate(pelt_fur *fur, float rate_per_second);
+
+/* Paints wetness from an 8-bit greyscale image (Silva Fig. 12c): grey
+ * level times `wetness`, cut into clumps. */
+pelt_status pelt_fur_paint_wetness(pelt_fur *fur, const uint8_t *grey, unsigned width,
+                                   unsigned height, float wetness, pelt_error *err);
+
+/* The mask as a picture like the insets of Silva Fig. 11 (black dry, blue
+ * wet), RGBA8, mask_size^2 * 4 bytes, top row first. */
+unsigned pelt_fur_mask_size(const pelt_fur *fur);
+void pelt_fur_mask_picture(const pelt_fur *fur, uint8_t *rgba);
+
 #ifdef __cplusplus
 }
 #endif
