@@ -3,7 +3,9 @@
  * of the pixel, computed the same way on both sides. */
 #include "gl_test.h"
 
+#include "core/clump.h"
 #include "core/fur_shape.h"
+#include "core/wetness.h"
 #include "core/shading.h"
 
 enum { W = 64, H = 48 };
@@ -115,6 +117,65 @@ static void fur_shape_glsl_matches_c(void)
     }
 }
 
+static const char clump_main[] =
+    "uniform sampler2D u_mask;\n"
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  vec2 p = (c + vec2(0.37, 0.61)) / vec2(64.0, 48.0);\n"
+    "  float h = (1.0 + mod(c.x + c.y, 16.0)) / 16.0;\n"
+    "  float w = mod(c.y, 3.0) * 0.5;\n"
+    "  vec2 q = p;\n"
+    "  int r = clump_lookup(u_mask, p, h, w, 16.0, 0.9, q);\n"
+    "  o = vec4(float(r), q, clump_profile(h, w, 16.0));\n"
+    "}\n";
+
+/* Silva Eq. 5 and Alg. 2 in the shell fragment shader vs core/clump.c, on
+ * a mask with overlapping droplets. */
+static void clump_glsl_matches_c(void)
+{
+    pelt__wetness *m = NULL;
+    CHECK(pelt__wetness_create(64, 64, &m, NULL) == PELT_OK);
+    if (!m) return;
+    const pelt_droplet drops[] = {{{0.3f, 0.4f}, 0.2f, 0.9f}, {{0.45f, 0.5f}, 0.15f, 0.6f},
+                                  {{0.8f, 0.2f}, 0.1f, 1.0f}, {{0.7f, 0.75f}, 0.2f, 0.4f}};
+    for (size_t i = 0; i < 4; i++) pelt__wetness_add_droplet(m, &drops[i], NULL);
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 64, 64, 0, GL_RGBA, GL_FLOAT, m->texels);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    const char *fs[] = {pelt__shader_clump, clump_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    int mismatched = 0, displaced = 0, discarded = 0;
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float p[2] = {((float)x + 0.37f) / 64.0f, ((float)y + 0.61f) / 48.0f};
+            float h = (1.0f + fmodf((float)(x + y), 16.0f)) / 16.0f;
+            float w = fmodf((float)y, 3.0f) * 0.5f;
+            float q[2] = {p[0], p[1]};
+            int r = (int)pelt__clump_lookup(m->texels, 64, 64, p, h, w, 16.0f, 0.9f, q);
+            const float *g = out + 4 * (y * W + x);
+            if ((int)g[0] != r) mismatched++;
+            if (r == PELT__CLUMP_DISPLACED) {
+                displaced++;
+                worst = fmax(worst, fmax(fabs(g[1] - q[0]), fabs(g[2] - q[1])));
+            }
+            if (r == PELT__CLUMP_DISCARD) discarded++;
+            worst = fmax(worst, fabs(g[3] - pelt__clump_profile(h, w, 16.0f)));
+        }
+    printf("  %d displaced, %d discarded, %d results differ, worst |GLSL - C| = %.3g\n", displaced,
+           discarded, mismatched, worst);
+    CHECK(displaced > 100 && discarded > 10);
+    CHECK(mismatched == 0);
+    CHECK(worst < 2e-4);
+    glDeleteTextures(1, &tex);
+    pelt__wetness_destroy(m);
+}
+
 int main(void)
 {
     pelt_error err = {0};
@@ -125,6 +186,7 @@ int main(void)
     }
     RUN(kajiya_kay_glsl_matches_c);
     RUN(fur_shape_glsl_matches_c);
+    RUN(clump_glsl_matches_c);
     pelt_headless_destroy(gl);
     return check_summary();
 }
