@@ -51,7 +51,15 @@ pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
     float k = 1.0f / (1.0f - pull);
     q[0] = t[0] + ox * k;
     q[1] = t[1] + oy * k;
+    /* The root must lie in this clump: strands from beyond its radius
+     * belong to a neighbour, so the clump narrows towards its tip. */
+    if (sqrtf(ox * ox + oy * oy) * k > t[2]) return PELT__CLUMP_DISCARD;
     const float *tq = pelt__clump_texel(mask, width, height, q);
     if (!(tq[3] > 0.0f)) return PELT__CLUMP_DISCARD; /* root lies in dry fur */
     return PELT__CLUMP_DISPLACED;
+}
+
+float pelt__clump_coverage(float a, float k)
+{
+    return 1.0f - powf(fmaxf(1.0f - a, 0.0f), 1.0f / k);
 }

@@ -41,4 +41,11 @@ pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
                                       float h, float w, float n_layers,
                                       float s, float q[2]);
 
+/* Coverage of strands squeezed by a factor k in (0, 1] towards the clump
+ * centre: the texture's coverage a, as independent strands, seen through
+ * a bundle 1/k times as dense: 1 - (1 - a)^(1 / k). An extension of Silva
+ * Alg. 2, which samples a minified texture and so thins the tuft to a
+ * haze; see docs/wetness.md. */
+float pelt__clump_coverage(float a, float k);
+
 #endif

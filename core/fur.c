@@ -37,8 +37,8 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
         d->tip_color[0] = 1.0f; d->tip_color[1] = 0.82f; d->tip_color[2] = 0.58f;
     }
     if (d->specular[0] == 0.0f && d->specular[1] == 0.0f && d->specular[2] == 0.0f)
-        d->specular[0] = d->specular[1] = d->specular[2] = 0.5f;
-    if (d->shininess == 0.0f) d->shininess = 16.0f;
+        d->specular[0] = 0.9f, d->specular[1] = 0.85f, d->specular[2] = 0.8f;
+    if (d->shininess == 0.0f) d->shininess = 20.0f;
     if (d->shadow == 0.0f) d->shadow = 2.0f;
     if (d->mass == 0.0f) d->mass = 1.0f;
     if (d->spring_k == 0.0f) d->spring_k = d->mass * 9.81f / (0.4f * d->length);

@@ -104,5 +104,13 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
                 splat(slice, d->size, cx, cy, r, weight * (2.0f / SUBSAMPLES), st.shade, along);
             }
         }
+        /* Premultiply by coverage so mipmaps average colour correctly (a
+         * straight-alpha average would mix in the black of empty texels). */
+        for (size_t i = 0; i < texels; i++) {
+            uint8_t *t = slice + i * 4;
+            t[0] = (uint8_t)((t[0] * t[3] + 127) / 255);
+            t[1] = (uint8_t)((t[1] * t[3] + 127) / 255);
+            t[2] = t[3];
+        }
     }
 }

@@ -176,6 +176,29 @@ static void clump_glsl_matches_c(void)
     pelt__wetness_destroy(m);
 }
 
+static const char coverage_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  float a = c.x / 63.0, k = 0.05 + 0.95 * c.y / 47.0;\n"
+    "  o = vec4(clump_coverage(a, k), 0.0, 0.0, 0.0);\n"
+    "}\n";
+
+/* The tuft's coverage of squeezed strands, GLSL vs C. */
+static void clump_coverage_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_clump, coverage_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float a = (float)x / 63.0f, k = 0.05f + 0.95f * (float)y / 47.0f;
+            worst = fmax(worst, fabs(out[4 * (y * W + x)] - pelt__clump_coverage(a, k)));
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-4);
+}
+
 int main(void)
 {
     pelt_error err = {0};
@@ -187,6 +210,7 @@ int main(void)
     RUN(kajiya_kay_glsl_matches_c);
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
+    RUN(clump_coverage_glsl_matches_c);
     pelt_headless_destroy(gl);
     return check_summary();
 }

@@ -98,6 +98,139 @@ static void shells_are_one_instanced_draw(void)
     }
 }
 
+static void wet_left_half(pelt_fur *fur, void *user)
+{
+    (void)user;
+    /* Rain-sized droplets over u < 0.5 only: each makes a clump (Silva
+     * §3.1), overlapping ones merge or overwrite as Alg. 1 says. */
+    pelt_rain r = {0.0f, 0.03f, 0.05f, 1.0f, 1.0f, 7};
+    pelt_fur_add_random_droplets(fur, &r, 300);
+    /* Dry the right half again with a hair dryer: negative droplets. */
+    for (float v = 0.0f; v <= 1.0f; v += 0.02f)
+        for (float u = 0.52f; u <= 1.0f; u += 0.02f) {
+            pelt_droplet d = {{u, v}, 0.03f, -1.0f};
+            pelt_fur_add_droplet(fur, &d, NULL);
+        }
+    for (float v = 0.0f; v <= 1.0f; v += 0.02f) {
+        pelt_droplet d = {{0.5f + 0.03f, v}, 0.035f, -1.0f};
+        pelt_fur_add_droplet(fur, &d, NULL);
+    }
+}
+
+static double luma(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Luminance below which `frac` of the fur pixels of columns [x0, x1) lie. */
+static double luma_percentile(const uint8_t *px, int x0, int x1, double frac)
+{
+    static double v[W * H];
+    size_t n = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = x0; x < x1; x++) {
+            const uint8_t *p = px + 4 * ((size_t)y * W + (size_t)x);
+            if (gl_test_coverage(p, 1)) v[n++] = luma(p);
+        }
+    if (n == 0) return 0.0;
+    qsort(v, n, sizeof v[0], cmp_double);
+    return v[(size_t)(frac * (double)(n - 1))];
+}
+
+/* Fraction of the fur pixels of columns [x0, x1) darker than `level`. */
+static double dark_fraction(const uint8_t *px, int x0, int x1, double level)
+{
+    size_t dark = 0, n = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = x0; x < x1; x++) {
+            const uint8_t *p = px + 4 * ((size_t)y * W + (size_t)x);
+            if (!gl_test_coverage(p, 1)) continue;
+            n++;
+            if (luma(p) < level) dark++;
+        }
+    return n ? (double)dark / (double)n : 0.0;
+}
+
+static double mean_diff_in(const uint8_t *a, const uint8_t *b, int x0, int x1)
+{
+    double s = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = x0; x < x1; x++)
+            for (int k = 0; k < 3; k++) {
+                size_t i = 4 * ((size_t)y * W + (size_t)x) + (size_t)k;
+                s += fabs((double)a[i] - (double)b[i]);
+            }
+    return s / (3.0 * (double)(x1 - x0) * H);
+}
+
+/* Clumps open gaps (Silva Fig. 8, 13): seen at an angle, dry fur hides
+ * the skin; wet fur gathered into clumps shows skin and shadowed roots
+ * between them. "Skin-coloured" = darker than the darkest tenth of the
+ * dry fur in the same place; wet darkening is off so only the clump
+ * geometry counts. The dry half of the square must render as before. */
+static void wet_clumps_show_skin_and_leave_dry_fur_alone(void)
+{
+    /* Looking along -Z at the square, u along x. */
+    const pelt_camera cam = {0.0f, 35.0f, 2.6f, 45.0f, {0, 0, 0}};
+    pelt_fur_desc d = {.wet_darken = 1e-6f};
+    uint8_t *dry = gl_test_render(gl, square, &d, &cam, NULL, NULL, NULL);
+    uint8_t *wet = gl_test_render(gl, square, &d, &cam, NULL, wet_left_half, NULL);
+    CHECK(dry && wet);
+    if (dry && wet) {
+        double left = mean_diff_in(dry, wet, 0, W / 2), right = mean_diff_in(dry, wet, W / 2, W);
+        /* The wet half is the one that changed; look away from the middle. */
+        int wet_is_left = left > right;
+        int wx0 = wet_is_left ? W / 8 : W / 2 + W / 8, wx1 = wx0 + W / 4;
+        int dx0 = wet_is_left ? W / 2 + W / 8 : W / 8, dx1 = dx0 + W / 4;
+        double level = luma_percentile(dry, wx0, wx1, 0.10);
+        double dark_dry = dark_fraction(dry, wx0, wx1, level);
+        double dark_wet = dark_fraction(wet, wx0, wx1, level);
+        double dry_half = mean_diff_in(dry, wet, dx0, dx1);
+        printf("  halves changed by %.2f (left) / %.2f (right); skin-coloured fraction of the "
+               "wet half: dry %.3f, wet %.3f; dry half changed by %.3f\n",
+               left, right, dark_dry, dark_wet, dry_half);
+        CHECK(dark_wet > 2.0 * dark_dry + 0.05);
+        CHECK(dry_half < 0.5);
+    }
+    free(dry);
+    free(wet);
+}
+
+static void wet_then_dry(pelt_fur *fur, void *user)
+{
+    (void)user;
+    wet_left_half(fur, NULL);
+    /* Dry at 0.5 per second for 3 s with no forces (tips stay at rest). */
+    pelt_forces none = pelt_forces_default();
+    none.gravity[1] = 0.0f;
+    pelt_fur_set_dry_rate(fur, 0.5f);
+    for (int i = 0; i < 180; i++) pelt_fur_step(fur, 1.0f / 60.0f, &none);
+}
+
+/* Dried to zero wetness, the fur renders as if it had never been wet:
+ * clumps open and curls come back (Silva §1). */
+static void dried_fur_matches_dry_render(void)
+{
+    const pelt_camera cam = {0.0f, 35.0f, 2.6f, 45.0f, {0, 0, 0}};
+    pelt_fur_desc d = {.curl_frequency = 12.0f, .curl_radius = 0.02f};
+    uint8_t *dry = gl_test_render(gl, square, &d, &cam, NULL, NULL, NULL);
+    uint8_t *wet = gl_test_render(gl, square, &d, &cam, NULL, wet_left_half, NULL);
+    uint8_t *dried = gl_test_render(gl, square, &d, &cam, NULL, wet_then_dry, NULL);
+    CHECK(dry && wet && dried);
+    if (dry && wet && dried) {
+        double was = mean_diff_in(dry, wet, 0, W), now = mean_diff_in(dry, dried, 0, W);
+        printf("  mean difference from the dry render: wet %.3f, dried %.3f\n", was, now);
+        CHECK(was > 2.0);
+        CHECK(now < 0.05);
+    }
+    free(dry);
+    free(wet);
+    free(dried);
+}
+
 int main(void)
 {
     pelt_error err = {0};
@@ -115,6 +248,8 @@ int main(void)
         RUN(fur_covers_beyond_bare_silhouette);
         RUN(longer_fur_covers_more);
         RUN(shells_are_one_instanced_draw);
+        RUN(wet_clumps_show_skin_and_leave_dry_fur_alone);
+        RUN(dried_fur_matches_dry_render);
     }
     pelt_mesh_destroy(torus);
     pelt_mesh_destroy(square);

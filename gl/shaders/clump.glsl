@@ -39,6 +39,17 @@ int clump_lookup(sampler2D mask, vec2 p, float h, float w, float N, float s, out
     if (length(o) > t.z) return CLUMP_DISCARD;
     float pull = clamp(s * t.a * clump_profile(h, w, N), 0.0, CLUMP_MAX_PULL);
     q = t.xy + o * (1.0 / (1.0 - pull));
+    // The root must lie in this clump: strands from beyond its radius
+    // belong to a neighbour, so the clump narrows towards its tip.
+    if (length(q - t.xy) > t.z) return CLUMP_DISCARD;
     if (!(clump_texel(mask, q).a > 0.0)) return CLUMP_DISCARD;
     return CLUMP_DISPLACED;
+}
+
+// Coverage of strands squeezed by a factor k (0 < k <= 1) towards the clump
+// centre: coverage a seen through a bundle 1/k times as dense,
+// 1 - (1 - a)^(1 / k). Mirrors pelt__clump_coverage.
+float clump_coverage(float a, float k)
+{
+    return 1.0 - pow(max(1.0 - a, 0.0), 1.0 / k);
 }

@@ -38,6 +38,14 @@ void main()
     vec2 d = clump == CLUMP_DISPLACED ? q - v_uv : vec2(0.0);
     float rho = clump_texel(u_mask, v_uv).a;
     vec4 hair = texture(u_fur, vec3(v_fur_uv + d * u_fur_per_uv, v_layer + 1.0));
+    hair.rg /= max(hair.a, 1e-3);   // the volume is premultiplied
+    if (clump == CLUMP_DISPLACED) {
+        // The clump squeezes its strands towards the centre by k: the
+        // bundle is 1/k times as dense (see docs/wetness.md).
+        float k = 1.0 - min(u_clump_tightness * rho * clump_profile(v_h, u_clump_blend, u_layers),
+                            CLUMP_MAX_PULL);
+        hair.a = clump_coverage(hair.a, k);
+    }
     if (hair.a < 0.05) discard;
     vec3 T = normalize(v_tangent);
     vec3 L = normalize(u_light_dir);

@@ -25,8 +25,8 @@ typedef struct pelt_fur_desc {
     float tiling;            /* fur-texture tiles per uv unit, default 6 */
     float color[3];          /* base hair colour (linear RGB), default warm brown */
     float tip_color[3];      /* colour at the tips, default lighter brown */
-    float specular[3];       /* Kajiya-Kay K_s, default 0.5 grey */
-    float shininess;         /* Kajiya-Kay exponent p, default 16 */
+    float specular[3];       /* Kajiya-Kay K_s, default (0.9, 0.85, 0.8) */
+    float shininess;         /* Kajiya-Kay exponent p, default 20 */
     float shadow;            /* K_shadow >= 1 of Silva Eq. 6, default 2 */
     float curl_frequency;    /* omega of Silva Eq. 4 (radians over the length), default 0 */
     float curl_radius;       /* K_alpha of Silva Eq. 4 in world units, default 0 */
