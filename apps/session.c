@@ -1,8 +1,11 @@
 /* Loading a scene into a headless context and drawing its frames. */
 #include "apps/cli.h"
 
+#include "pelt/atlas.h"
+
 #include <epoxy/gl.h>
 #include <errno.h>
+#include <math.h>
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <stdlib.h>
@@ -23,6 +26,53 @@ static pelt_status load_mesh(const pelt_scene *sc, pelt_mesh **mesh, pelt_error 
         return pelt_mesh_load(m->file, mesh, err);
     }
     return PELT_ERR_INVALID_ARGUMENT;
+}
+
+/* Gives a mesh file an atlas (Lengyel §2.1): its own uvs when they are a
+ * valid injective map, else patches; procedural shapes keep their uvs
+ * unless the scene asks for patches. Replaces *mesh with the atlas mesh. */
+static bool build_atlas(const char *cmd, const pelt_scene *sc, pelt_mesh **mesh,
+                        unsigned *mask_size)
+{
+    if (sc->mesh.shape != PELT_SHAPE_FILE && sc->atlas.mode != PELT_ATLAS_PATCHES) return true;
+    float lo[3], hi[3];
+    pelt_mesh_bounds(*mesh, lo, hi);
+    float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    float diag = sqrtf(dx * dx + dy * dy + dz * dz);
+    char cache[1024];
+    pelt_atlas_desc ad = {0};
+    ad.mode = (int)sc->atlas.mode;
+    /* The atlas is the wetness mask's space: they share one size. The
+     * default 256 grows with big meshes (the atlas picks it). */
+    ad.mask_size = sc->wetness.mask_size != 256 ? sc->wetness.mask_size : 0;
+    /* The same fur density as pelt_fur_create's default: 5 tiles per diagonal. */
+    ad.texel_density = sc->atlas.texel_density > 0.0f ? sc->atlas.texel_density
+                       : diag > 0.0f                  ? 5.0f / diag
+                                                      : 0.0f;
+    memcpy(ad.direction, sc->atlas.direction, sizeof ad.direction);
+    ad.max_stretch = sc->atlas.max_stretch;
+    ad.seed = sc->fur.seed;
+    ad.cache_dir = pelt_atlas_default_cache_dir(cache, sizeof cache) ? cache : NULL;
+    pelt_atlas *atlas = NULL;
+    pelt_error err = {0};
+    if (pelt_atlas_create(*mesh, &ad, &atlas, &err) != PELT_OK) {
+        cli_error(cmd, "atlas: %s", err.message);
+        return false;
+    }
+    const pelt_atlas_stats *st = pelt_atlas_get_stats(atlas);
+    if (st->uv_warning[0])
+        fprintf(stderr, "pelt %s: warning: not using the mesh's uvs: %s; grew %zu patches\n", cmd,
+                st->uv_warning, st->patch_count);
+    *mask_size = st->mask_size;
+    pelt_mesh *split = pelt_atlas_take_mesh(atlas);
+    pelt_atlas_destroy(atlas);
+    if (!split) {
+        cli_error(cmd, "atlas: out of memory");
+        return false;
+    }
+    pelt_mesh_destroy(*mesh);
+    *mesh = split;
+    return true;
 }
 
 /* Droplets, random drops, a painted image, rain and drying from the scene. */
@@ -68,6 +118,11 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_error(cmd, "%s", err.message);
         return false;
     }
+    unsigned mask_size = sc->wetness.mask_size;
+    if (!build_atlas(cmd, sc, &s->mesh, &mask_size)) {
+        cli_session_close(s);
+        return false;
+    }
     pelt_mesh_stats ms = pelt_mesh_get_stats(s->mesh);
     if (ms.dropped_degenerate)
         fprintf(stderr, "pelt %s: warning: %zu degenerate triangle(s) dropped\n", cmd,
@@ -82,7 +137,7 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_session_close(s);
         return false;
     }
-    fd.mask_size = sc->wetness.mask_size;
+    fd.mask_size = mask_size;
     fd.clump_blend = sc->wetness.clump_blend;
     fd.clump_tightness = sc->wetness.clump_tightness;
     fd.wet_darken = sc->wetness.darken;
@@ -111,10 +166,24 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_session_close(s);
         return false;
     }
-    /* Aim the camera at the middle of the mesh. */
-    float lo[3], hi[3];
-    pelt_mesh_bounds(s->mesh, lo, hi);
+    /* A mesh file seen through the default camera is framed: the camera
+     * aims at the middle of its bounds from a distance that fits it. */
     pelt_camera cam = sc->camera;
+    pelt_scene defaults;
+    pelt_scene_defaults(&defaults);
+    if (sc->mesh.shape == PELT_SHAPE_FILE &&
+        !memcmp(&cam, &defaults.camera, sizeof cam)) {
+        float lo[3], hi[3];
+        pelt_mesh_bounds(s->mesh, lo, hi);
+        float radius = 0.0f;
+        for (int k = 0; k < 3; k++) {
+            cam.target[k] = 0.5f * (lo[k] + hi[k]);
+            radius += 0.25f * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+        }
+        radius = sqrtf(radius);
+        cam.distance = 0.8f * radius / sinf(cam.fov_y * 0.5f * 3.14159265f / 180.0f);
+    }
+    pelt_scene_free(&defaults);
     float aspect = (float)sc->output.width / (float)sc->output.height;
     pelt_camera_to_view(&cam, aspect, &s->view);
     s->view.light = sc->light;
