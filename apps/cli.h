@@ -20,6 +20,8 @@ typedef struct cli_options {
     const char *mask_out;  /* --mask-out FILE */
     unsigned warmup;       /* bench */
     unsigned repeats;      /* bench: measured frames */
+    bool bench_clumps;     /* bench --clumps */
+    bool bench_droplets;   /* bench --droplets */
     bool quiet;
 } cli_options;
 
@@ -38,6 +40,8 @@ typedef struct cli_session {
     pelt_renderer *renderer;
     pelt_view view;
     uint8_t *pixels; /* width * height * 4 */
+    double atlas_seconds; /* atlas build time, 0 when none was built */
+    bool atlas_from_cache;
 } cli_session;
 
 /* Loads the mesh, makes the fur, the context and the renderer. Prints the
@@ -63,5 +67,6 @@ bool cli_frame_pattern_ok(const char *pattern);
 int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_info(int argc, char **argv);
+int cmd_atlas(int argc, char **argv);
 
 #endif

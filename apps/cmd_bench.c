@@ -1,8 +1,10 @@
-/* pelt bench: milliseconds per frame, median of repeated runs. Timings
- * live here, never in tests. */
+/* pelt bench: milliseconds per frame, median of repeated runs, with the
+ * parts of a frame timed apart and variants measured in the same run.
+ * Timings live here, never in tests. */
 #include "apps/cli.h"
 
 #include <epoxy/gl.h>
+#include <math.h>
 #include <stdlib.h>
 #include <time.h>
 
@@ -28,6 +30,113 @@ static stats summarize(double *v, unsigned n)
     return s;
 }
 
+static void print_stats(const char *name, stats s)
+{
+    printf("  %-12s median %9.3f ms  min %9.3f ms  max %9.3f ms\n", name, s.median, s.min, s.max);
+}
+
+enum { PART_STEP, PART_UPLOAD, PART_DRAW, PART_FRAME, PARTS };
+
+/* Warm-up, then `frames` frames with the strand step, the upload of what
+ * it changed and the draw timed apart (glFinish closes each GL part).
+ * `t` holds PARTS * frames doubles of scratch. */
+static void measure(cli_session *s, const pelt_scene *sc, unsigned warmup, unsigned frames,
+                    double *t, stats out[PARTS])
+{
+    float fps = sc->animation.fps > 0.0f ? sc->animation.fps : 30.0f;
+    for (unsigned i = 0; i < warmup; i++) {
+        cli_session_advance(s, sc, (float)i / fps, 1.0f / fps);
+        cli_session_draw(s, sc);
+        glFinish();
+    }
+    for (unsigned i = 0; i < frames; i++) {
+        double t0 = now_ms();
+        cli_session_advance(s, sc, (float)(warmup + i) / fps, 1.0f / fps);
+        double t1 = now_ms();
+        pelt_renderer_upload(s->renderer);
+        glFinish();
+        double t2 = now_ms();
+        cli_session_draw(s, sc);
+        glFinish();
+        double t3 = now_ms();
+        t[PART_STEP * frames + i] = t1 - t0;
+        t[PART_UPLOAD * frames + i] = t2 - t1;
+        t[PART_DRAW * frames + i] = t3 - t2;
+        t[PART_FRAME * frames + i] = t3 - t0;
+    }
+    for (int p = 0; p < PARTS; p++) out[p] = summarize(t + (size_t)p * frames, frames);
+}
+
+static void report(const char *title, const stats st[PARTS])
+{
+    static const char *names[PARTS] = {"strand step", "upload", "draw", "frame"};
+    printf("%s\n", title);
+    for (int p = 0; p < PARTS; p++) print_stats(names[p], st[p]);
+    printf("  dynamics (step + upload) share of the frame: %.2f%%\n",
+           100.0 * (st[PART_STEP].median + st[PART_UPLOAD].median) / st[PART_FRAME].median);
+}
+
+/* 50 clumps whose discs cover a third of the mask (uv) area. */
+static void add_third_of_clumps(pelt_fur *fur)
+{
+    const float radius = sqrtf(1.0f / (3.0f * 50.0f * 3.14159265f));
+    pelt_rain r = {0.0f, radius, radius, 1.0f, 1.0f, 12345};
+    pelt_fur_add_random_droplets(fur, &r, 50);
+}
+
+/* 10,000 droplets of radius 4 texels into a 2048^2 mask vs one whole
+ * upload of that mask (RGBA32F), each the median of 5 runs. */
+static int bench_droplets(const pelt_mesh *mesh)
+{
+    enum { MASK = 2048, DROPS = 10000, RUNS = 5 };
+    pelt_fur *fur = NULL;
+    pelt_error err = {0};
+    pelt_fur_desc d = {.mask_size = MASK, .texture_size = 8, .layers = 1};
+    if (pelt_fur_create(mesh, &d, &fur, &err) != PELT_OK) {
+        cli_error("bench", "%s", err.message);
+        return 1;
+    }
+    float *whole = calloc((size_t)MASK * MASK, 4 * sizeof(float));
+    pelt_droplet *list = calloc(DROPS, sizeof *list);
+    if (!whole || !list) {
+        free(whole);
+        free(list);
+        pelt_fur_destroy(fur);
+        cli_error("bench", "out of memory");
+        return 1;
+    }
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, MASK, MASK, 0, GL_RGBA, GL_FLOAT, NULL);
+    double drops[RUNS], upload[RUNS];
+    const float r = 4.0f / MASK;
+    for (int run = 0; run < RUNS; run++) {
+        uint32_t x = 2463534242u + (uint32_t)run; /* xorshift: places made off the clock */
+        for (int i = 0; i < DROPS; i++) {
+            x ^= x << 13, x ^= x >> 17, x ^= x << 5;
+            list[i] = (pelt_droplet){{(float)(x & 0xffff) / 65535.0f, (float)(x >> 16) / 65535.0f}, r, 0.8f};
+        }
+        double t0 = now_ms();
+        pelt_fur_add_droplets(fur, list, DROPS, NULL);
+        drops[run] = now_ms() - t0;
+        t0 = now_ms();
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, MASK, MASK, GL_RGBA, GL_FLOAT, whole);
+        glFinish();
+        upload[run] = now_ms() - t0;
+    }
+    stats sd = summarize(drops, RUNS), su = summarize(upload, RUNS);
+    printf("droplets into a %dx%d mask (median of %d runs)\n", MASK, MASK, RUNS);
+    print_stats("10k drops r=4", sd);
+    print_stats("whole upload", su);
+    printf("  10,000 droplets cost %.2fx one whole-mask upload\n", sd.median / su.median);
+    glDeleteTextures(1, &tex);
+    free(whole);
+    free(list);
+    pelt_fur_destroy(fur);
+    return 0;
+}
+
 int cmd_bench(int argc, char **argv)
 {
     cli_options o;
@@ -43,63 +152,38 @@ int cmd_bench(int argc, char **argv)
         cli_options_free(&o);
         return 1;
     }
-    double *draw = calloc(frames, sizeof *draw);
-    if (!draw) {
+    double *t = calloc((size_t)frames * PARTS, sizeof *t);
+    if (!t) {
         cli_error("bench", "out of memory");
         cli_session_close(&s);
         cli_options_free(&o);
         return 1;
     }
-    float fps = sc->animation.fps > 0.0f ? sc->animation.fps : 30.0f;
-    double *step = calloc(frames, sizeof *step), *upload = calloc(frames, sizeof *upload);
-    for (unsigned i = 0; i < o.warmup; i++) {
-        cli_session_advance(&s, sc, (float)i / fps, 1.0f / fps);
-        cli_session_draw(&s, sc);
-        glFinish();
-    }
-    /* Each part timed alone: the strand step on the CPU, the upload of what
-     * it changed, then the draw; glFinish closes each GL part. */
-    for (unsigned i = 0; i < frames && step && upload; i++) {
-        double t0 = now_ms();
-        cli_session_advance(&s, sc, (float)(o.warmup + i) / fps, 1.0f / fps);
-        double t1 = now_ms();
-        pelt_renderer_upload(s.renderer);
-        glFinish();
-        double t2 = now_ms();
-        cli_session_draw(&s, sc);
-        glFinish();
-        double t3 = now_ms();
-        step[i] = t1 - t0;
-        upload[i] = t2 - t1;
-        draw[i] = t3 - t2;
-    }
-    double *total = calloc(frames, sizeof *total);
-    if (!step || !upload || !total) {
-        cli_error("bench", "out of memory");
-        free(step), free(upload), free(total), free(draw);
-        cli_session_close(&s);
-        cli_options_free(&o);
-        return 1;
-    }
-    for (unsigned i = 0; i < frames; i++) total[i] = step[i] + upload[i] + draw[i];
-    stats st = summarize(step, frames), up = summarize(upload, frames);
-    stats d = summarize(draw, frames), tot = summarize(total, frames);
     pelt_mesh_stats ms = pelt_mesh_get_stats(s.mesh);
     pelt_fur_desc fd = pelt_fur_get_desc(s.fur);
     printf("pelt bench: %s\n", pelt_headless_renderer_name(s.gl));
-    printf("scene: %zu triangles, %u layers, %ux%u, fur texture %u, %u frames after %u warm-up\n",
+    printf("scene: %zu triangles, %u layers, %ux%u, fur texture %u, mask %u, %u frames after %u "
+           "warm-up\n",
            ms.triangle_count, fd.layers, sc->output.width, sc->output.height, fd.texture_size,
-           frames, o.warmup);
-    const char *names[] = {"strand step", "upload", "draw", "frame"};
-    const stats *all[] = {&st, &up, &d, &tot};
-    for (int k = 0; k < 4; k++)
-        printf("%-12s median %8.3f ms  min %8.3f ms  max %8.3f ms\n", names[k], all[k]->median,
-               all[k]->min, all[k]->max);
-    printf("dynamics share of the frame (step + upload): %.2f%%\n",
-           100.0 * (st.median + up.median) / tot.median);
+           pelt_fur_mask_size(s.fur), frames, o.warmup);
+    if (s.atlas_seconds > 0.0)
+        printf("atlas build: %.3f s%s\n", s.atlas_seconds, s.atlas_from_cache ? " (from the cache)" : "");
+
+    stats plain[PARTS], wet[PARTS];
+    measure(&s, sc, o.warmup, frames, t, plain);
+    report(o.bench_clumps ? "as given (dry unless the scene wets it):" : "frame:", plain);
     printf("shell draw calls per frame: %u\n", pelt_renderer_shell_draw_calls(s.renderer));
-    free(step), free(upload), free(total), free(draw);
+    if (o.bench_clumps) {
+        add_third_of_clumps(s.fur);
+        measure(&s, sc, o.warmup, frames, t, wet);
+        report("with 50 clumps over a third of the surface:", wet);
+        printf("clumps cost %+.1f%% per frame (draw %+.1f%%)\n",
+               100.0 * (wet[PART_FRAME].median / plain[PART_FRAME].median - 1.0),
+               100.0 * (wet[PART_DRAW].median / plain[PART_DRAW].median - 1.0));
+    }
+    if (o.bench_droplets) rc = bench_droplets(s.mesh);
+    free(t);
     cli_session_close(&s);
     cli_options_free(&o);
-    return 0;
+    return rc;
 }

@@ -27,6 +27,8 @@ typedef enum flag_kind {
     FLAG_OUTPUT,  /* -o */
     FLAG_MASK_OUT,
     FLAG_WARMUP,
+    FLAG_CLUMPS,
+    FLAG_DROPLETS,
     FLAG_QUIET
 } flag_kind;
 
@@ -70,6 +72,10 @@ static const flag flags[] = {
     {"--mask-out", NULL, "FILE", FLAG_MASK_OUT, NULL, "write the wetness mask as a PNG"},
     {"--set", NULL, "KEY=VALUE", FLAG_SET, NULL, "set any scene key (see docs/scene-format.md)"},
     {"--warmup", NULL, "N", FLAG_WARMUP, NULL, "bench: untimed frames first (default 5)"},
+    {"--clumps", NULL, NULL, FLAG_CLUMPS, NULL,
+     "bench: also time the scene with 50 clumps over a third of the surface"},
+    {"--droplets", NULL, NULL, FLAG_DROPLETS, NULL,
+     "bench: time 10,000 droplets into a 2048^2 mask against one whole-mask upload"},
     {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
 };
 
@@ -193,6 +199,12 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
             cli_error(cmd, "--warmup '%s': expected a whole number 0..100000", value);
             return false;
         }
+        return true;
+    case FLAG_CLUMPS:
+        o->bench_clumps = true;
+        return true;
+    case FLAG_DROPLETS:
+        o->bench_droplets = true;
         return true;
     case FLAG_QUIET:
         o->quiet = true;

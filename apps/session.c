@@ -32,7 +32,7 @@ static pelt_status load_mesh(const pelt_scene *sc, pelt_mesh **mesh, pelt_error 
  * valid injective map, else patches; procedural shapes keep their uvs
  * unless the scene asks for patches. Replaces *mesh with the atlas mesh. */
 static bool build_atlas(const char *cmd, const pelt_scene *sc, pelt_mesh **mesh,
-                        unsigned *mask_size)
+                        unsigned *mask_size, cli_session *s)
 {
     if (sc->mesh.shape != PELT_SHAPE_FILE && sc->atlas.mode != PELT_ATLAS_PATCHES) return true;
     float lo[3], hi[3];
@@ -64,6 +64,8 @@ static bool build_atlas(const char *cmd, const pelt_scene *sc, pelt_mesh **mesh,
         fprintf(stderr, "pelt %s: warning: not using the mesh's uvs: %s; grew %zu patches\n", cmd,
                 st->uv_warning, st->patch_count);
     *mask_size = st->mask_size;
+    s->atlas_seconds = st->build_seconds;
+    s->atlas_from_cache = st->from_cache;
     pelt_mesh *split = pelt_atlas_take_mesh(atlas);
     pelt_atlas_destroy(atlas);
     if (!split) {
@@ -119,7 +121,7 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         return false;
     }
     unsigned mask_size = sc->wetness.mask_size;
-    if (!build_atlas(cmd, sc, &s->mesh, &mask_size)) {
+    if (!build_atlas(cmd, sc, &s->mesh, &mask_size, s)) {
         cli_session_close(s);
         return false;
     }

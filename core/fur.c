@@ -257,6 +257,11 @@ pelt_status pelt_fur_add_droplet(pelt_fur *f, const pelt_droplet *d, pelt_error 
     return pelt__wetness_add_droplet(f->wetness, d, err);
 }
 
+pelt_status pelt_fur_add_droplets(pelt_fur *f, const pelt_droplet *d, size_t count, pelt_error *err)
+{
+    return pelt__wetness_add_droplets(f->wetness, d, count, err);
+}
+
 pelt_status pelt_fur_add_droplet_at(pelt_fur *f, size_t triangle, const float bary[3],
                                     float radius_world, float wetness, pelt_error *err)
 {

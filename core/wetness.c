@@ -1,4 +1,5 @@
 /* Wetness mask: Silva et al. §3.1 and Alg. 1 as DESIGN.md reads them. */
+#define _DEFAULT_SOURCE /* madvise(MADV_HUGEPAGE) */
 #include "core/wetness.h"
 
 #include "core/error.h"
@@ -8,6 +9,9 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 
 /* ---- rectangles {x0, y0, x1, y1}, x1/y1 exclusive, empty when x0 >= x1 */
 
@@ -34,6 +38,25 @@ static void rect_add_texel(unsigned r[4], unsigned x, unsigned y)
     rect_union(r, one);
 }
 
+/* Zeroed texel storage. Droplets land at random places, each touching a
+ * few rows that lie a whole row (pages) apart, so on a large mask most of
+ * their cost is TLB misses: ask for huge pages there (Linux, where the
+ * kernel grants them on request). */
+static float *alloc_texels(size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    const size_t huge = (size_t)2 << 20;
+    if (bytes >= 2 * huge) {
+        void *p = NULL;
+        if (posix_memalign(&p, huge, bytes) != 0) return NULL;
+        madvise(p, bytes, MADV_HUGEPAGE);
+        memset(p, 0, bytes);
+        return p;
+    }
+#endif
+    return pelt__calloc(bytes, 1);
+}
+
 pelt_status pelt__wetness_create(unsigned width, unsigned height,
                                  pelt__wetness **out, pelt_error *err)
 {
@@ -48,7 +71,7 @@ pelt_status pelt__wetness_create(unsigned width, unsigned height,
     pelt__wetness *m = pelt__calloc(1, sizeof *m);
     if (!m) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "wetness mask: out of memory");
     size_t count = (size_t)width * height;
-    m->texels = count <= (size_t)-1 / 4 ? pelt__calloc(count * 4, sizeof(float)) : NULL;
+    m->texels = count <= (size_t)-1 / 16 ? alloc_texels(count * 4 * sizeof(float)) : NULL;
     if (!m->texels) {
         free(m);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY,
@@ -94,46 +117,37 @@ static bool texel_range(float c, float r, unsigned n, unsigned *lo, unsigned *hi
 
 /* Alg. 1 for one texel, as pelt reads it (docs/wetness.md). cd = droplet
  * centre, rd = droplet radius, wd = droplet wetness in [-1,1], wd != 0. */
-static void blend_texel(float *t, const float cd[2], float rd, float wd)
+/* Alg. 1 for one texel; returns whether it changed. */
+static bool blend_texel(float *t, const float cd[2], float rd, float wd)
 {
     float rho = t[3];
     if (wd < 0.0f) {
         /* A hair dryer only lowers wetness; it never moves or makes a clump
          * (the printed alpha = wd / total would extrapolate c and r). */
-        if (rho > 0.0f) t[3] = fmaxf(rho + wd, 0.0f);
-        return;
-    }
-    if (rho <= 0.0f) {
-        /* Dry texel takes the droplet (the printed test on its stale centre
-         * would leave it dry). */
-        t[0] = cd[0];
-        t[1] = cd[1];
-        t[2] = rd;
-        t[3] = wd;
-        return;
+        if (!(rho > 0.0f)) return false;
+        t[3] = fmaxf(rho + wd, 0.0f);
+        return true;
     }
     float dx = t[0] - cd[0], dy = t[1] - cd[1];
-    if (dx * dx + dy * dy <= rd * rd) {
+    if (rho > 0.0f && dx * dx + dy * dy <= rd * rd) {
         /* Same clump: merge with alpha = rho_drop / rho_total (Alg. 1). */
         float total = clampf(rho + wd, 0.0f, 1.0f);
         float a = clampf(wd / total, 0.0f, 1.0f);
-        t[0] = (1.0f - a) * t[0] + a * cd[0];
-        t[1] = (1.0f - a) * t[1] + a * cd[1];
-        t[2] = (1.0f - a) * t[2] + a * rd;
-        t[3] = total;
-        return;
+        float n0 = (1.0f - a) * t[0] + a * cd[0], n1 = (1.0f - a) * t[1] + a * cd[1];
+        float n2 = (1.0f - a) * t[2] + a * rd;
+        bool changed = n0 != t[0] || n1 != t[1] || n2 != t[2] || total != rho;
+        t[0] = n0, t[1] = n1, t[2] = n2, t[3] = total;
+        return changed;
     }
-    /* A texel of another clump: the new droplet overwrites it. */
-    t[0] = cd[0];
-    t[1] = cd[1];
-    t[2] = rd;
-    t[3] = wd;
+    /* A dry texel takes the droplet (the printed test on its stale centre
+     * would leave it dry); a texel of another clump is overwritten. */
+    bool changed = t[0] != cd[0] || t[1] != cd[1] || t[2] != rd || rho != wd;
+    t[0] = cd[0], t[1] = cd[1], t[2] = rd, t[3] = wd;
+    return changed;
 }
 
-pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
-                                      pelt_error *err)
+static pelt_status check_droplet(const pelt_droplet *d, pelt_error *err)
 {
-    if (!m || !d) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "droplet: NULL argument");
     if (!isfinite(d->center[0]) || !isfinite(d->center[1]) || !isfinite(d->radius) ||
         !isfinite(d->wetness) || d->radius < 0.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
@@ -141,24 +155,42 @@ pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
                           "finite with radius >= 0",
                           (double)d->center[0], (double)d->center[1],
                           (double)d->radius, (double)d->wetness);
+    return PELT_OK;
+}
+
+/* Rows of a large mask lie pages apart: ask for all of a droplet's rows at
+ * once so the cache and TLB misses overlap instead of queueing one per
+ * row. */
+static void prefetch_droplet(const pelt__wetness *m, const pelt_droplet *d)
+{
+#if defined(__GNUC__)
+    unsigned x0, x1, y0, y1;
+    if (!texel_range(d->center[0], d->radius, m->width, &x0, &x1) ||
+        !texel_range(d->center[1], d->radius, m->height, &y0, &y1))
+        return;
+    for (unsigned y = y0; y <= y1; y++) {
+        const float *row = m->texels + ((size_t)y * m->width + x0) * 4;
+        const char *end = (const char *)(row + (size_t)(x1 - x0) * 4);
+        for (const char *p = (const char *)row; p <= end; p += 64) __builtin_prefetch(p, 1);
+    }
+#else
+    (void)m;
+    (void)d;
+#endif
+}
+
+/* Alg. 1 over the texels of one checked droplet. */
+static void blend_droplet(pelt__wetness *m, const pelt_droplet *d)
+{
     float wd = clampf(d->wetness, -1.0f, 1.0f);
-    if (wd == 0.0f) return PELT_OK; /* merges with alpha 0: changes nothing */
+    if (wd == 0.0f) return; /* merges with alpha 0: changes nothing */
     float r = d->radius;
     unsigned x0, x1, y0, y1;
     if (!texel_range(d->center[0], r, m->width, &x0, &x1) ||
         !texel_range(d->center[1], r, m->height, &y0, &y1))
-        return PELT_OK;
+        return;
     float inv_w = 1.0f / (float)m->width, inv_h = 1.0f / (float)m->height;
     float r2 = r * r;
-#if defined(__GNUC__)
-    /* Rows of a large mask lie pages apart: ask for all of them at once so
-     * the cache and TLB misses overlap instead of queueing one per row. */
-    for (unsigned y = y0; y <= y1; y++) {
-        const float *row = m->texels + ((size_t)y * m->width + x0) * 4;
-        const char *end = (const char *)(row + (size_t)(x1 - x0) * 4);
-        for (const char *a = (const char *)row; a <= end; a += 64) __builtin_prefetch(a, 1);
-    }
-#endif
     unsigned cx0 = UINT32_MAX, cx1 = 0, cy0 = UINT32_MAX, cy1 = 0; /* changed, inclusive */
     for (unsigned y = y0; y <= y1; y++) {
         float dy = ((float)y + 0.5f) * inv_h - d->center[1];
@@ -176,11 +208,7 @@ pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
         for (unsigned x = xa; x <= xb; x++) {
             float dx = ((float)x + 0.5f) * inv_w - d->center[0];
             if (dx * dx + dy * dy > r2) continue;
-            float *t = row + (size_t)x * 4;
-            float before[4];
-            memcpy(before, t, sizeof before);
-            blend_texel(t, d->center, r, wd);
-            if (memcmp(before, t, sizeof before) == 0) continue;
+            if (!blend_texel(row + (size_t)x * 4, d->center, r, wd)) continue;
             row_changed = true;
             if (x < cx0) cx0 = x;
             if (x > cx1) cx1 = x;
@@ -199,8 +227,35 @@ pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
     }
     rect_union(m->dirty, changed);
     if (wd > 0.0f) rect_union(m->wet, changed);
+}
+
+pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
+                                      pelt_error *err)
+{
+    return pelt__wetness_add_droplets(m, d, 1, err);
+}
+
+pelt_status pelt__wetness_add_droplets(pelt__wetness *m, const pelt_droplet *d, size_t n,
+                                       pelt_error *err)
+{
+    if (!m || !d) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "droplet: NULL argument");
+    for (size_t i = 0; i < n; i++) {
+        pelt_status st = check_droplet(&d[i], err);
+        if (st != PELT_OK) return st; /* all checked first: a bad one changes nothing */
+    }
+    /* Software pipelining: the rows of a droplet a few places ahead are
+     * fetched while this one blends, so random droplets overlap their
+     * memory latency. */
+    enum { AHEAD = 4 };
+    for (size_t i = 0; i < n && i < AHEAD; i++) prefetch_droplet(m, &d[i]);
+    for (size_t i = 0; i < n; i++) {
+        if (i + AHEAD < n) prefetch_droplet(m, &d[i + AHEAD]);
+        blend_droplet(m, &d[i]);
+    }
     return PELT_OK;
 }
+
+
 
 void pelt__wetness_dry(pelt__wetness *m, float rate, float dt)
 {

@@ -45,6 +45,13 @@ void pelt__wetness_clear(pelt__wetness *m);
 pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
                                       pelt_error *err);
 
+/* As pelt__wetness_add_droplet for n droplets in order, faster for many:
+ * the memory of later droplets is fetched while earlier ones blend. All are
+ * checked first; a bad one gives PELT_ERR_INVALID_ARGUMENT and changes
+ * nothing. No allocation. */
+pelt_status pelt__wetness_add_droplets(pelt__wetness *m, const pelt_droplet *d, size_t n,
+                                       pelt_error *err);
+
 /* Lowers every wet texel's rho by rate * dt (clamped at 0), visiting only
  * the wet bounding box, which then shrinks to the texels still wet.
  * Non-positive or non-finite rate * dt does nothing. No allocation. */

@@ -36,6 +36,11 @@ typedef struct pelt_rain {
  * docs/wetness.md reads it). Work is proportional to its footprint. */
 pelt_status pelt_fur_add_droplet(pelt_fur *fur, const pelt_droplet *droplet, pelt_error *err);
 
+/* Many droplets in order; faster than one call each (their memory is
+ * fetched ahead). All are checked first: a bad one changes nothing. */
+pelt_status pelt_fur_add_droplets(pelt_fur *fur, const pelt_droplet *droplets, size_t count,
+                                  pelt_error *err);
+
 /* A droplet at a surface point: triangle index and barycentrics, radius in
  * world units (converted through that triangle's uv scale). */
 pelt_status pelt_fur_add_droplet_at(pelt_fur *fur, size_t triangle, const float bary[3],
