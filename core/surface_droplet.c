@@ -1,0 +1,493 @@
+/* Seam-free droplets: Silva et al. §3.1 Alg. 1 applied to the texels whose
+ * surface point lies within the droplet's world radius, per atlas chart. */
+#include "core/surface_droplet.h"
+
+#include "core/error.h"
+#include "core/mesh_internal.h"
+#include "core/vec.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define SUB 256 /* fixed-point steps per texel, as pelt_atlas_check_uvs */
+#define NONE UINT32_MAX
+
+/* ---- building the index -------------------------------------------------- */
+
+static uint32_t float_bits(float f)
+{
+    if (f == 0.0f) f = 0.0f; /* -0 and +0 are one position */
+    uint32_t u;
+    memcpy(&u, &f, sizeof u);
+    return u;
+}
+
+static uint64_t position_hash(const float *p)
+{
+    uint64_t h = 1469598103934665603ull;
+    for (int k = 0; k < 3; k++) {
+        h ^= float_bits(p[k]);
+        h *= 1099511628211ull;
+        h ^= h >> 29;
+    }
+    return h;
+}
+
+static bool same_position(const float *a, const float *b)
+{
+    return float_bits(a[0]) == float_bits(b[0]) && float_bits(a[1]) == float_bits(b[1]) &&
+           float_bits(a[2]) == float_bits(b[2]);
+}
+
+/* Welded id per vertex by exact position (open-addressing hash). */
+static bool weld(const pelt_mesh *mesh, uint32_t *welded, size_t *count)
+{
+    size_t n = mesh->vertex_count, cap = 16;
+    while (cap < 2 * n) cap *= 2;
+    uint32_t *slot = malloc(cap * sizeof *slot); /* vertex index or NONE */
+    if (!slot) return false;
+    memset(slot, 0xff, cap * sizeof *slot);
+    size_t next = 0;
+    for (size_t v = 0; v < n; v++) {
+        const float *p = mesh->positions + v * 3;
+        size_t s = (size_t)position_hash(p) & (cap - 1);
+        while (slot[s] != NONE && !same_position(mesh->positions + (size_t)slot[s] * 3, p))
+            s = (s + 1) & (cap - 1);
+        if (slot[s] == NONE) {
+            slot[s] = (uint32_t)v;
+            welded[v] = (uint32_t)next++;
+        } else {
+            welded[v] = welded[slot[s]];
+        }
+    }
+    free(slot);
+    *count = next;
+    return true;
+}
+
+static uint32_t find_root(uint32_t *parent, uint32_t v)
+{
+    while (parent[v] != v) {
+        parent[v] = parent[parent[v]]; /* path halving */
+        v = parent[v];
+    }
+    return v;
+}
+
+/* Charts = components of triangles sharing a (split) vertex: the pieces of
+ * the surface that are connected in uv. */
+static bool find_charts(const pelt_mesh *mesh, uint32_t *chart, size_t *count)
+{
+    size_t n = mesh->vertex_count;
+    uint32_t *parent = pelt__calloc(n ? n : 1, sizeof *parent);
+    uint32_t *label = pelt__calloc(n ? n : 1, sizeof *label);
+    if (!parent || !label) {
+        free(parent);
+        free(label);
+        return false;
+    }
+    for (size_t v = 0; v < n; v++) {
+        parent[v] = (uint32_t)v;
+        label[v] = NONE;
+    }
+    const uint32_t *ix = mesh->indices;
+    for (size_t t = 0; t < mesh->triangle_count; t++)
+        for (int k = 1; k < 3; k++) {
+            uint32_t a = find_root(parent, ix[3 * t]), b = find_root(parent, ix[3 * t + k]);
+            if (a != b) parent[a] = b;
+        }
+    size_t charts = 0;
+    for (size_t t = 0; t < mesh->triangle_count; t++) {
+        uint32_t r = find_root(parent, ix[3 * t]);
+        if (label[r] == NONE) label[r] = (uint32_t)charts++;
+        chart[t] = label[r];
+    }
+    free(parent);
+    free(label);
+    *count = charts;
+    return true;
+}
+
+void pelt__surface_index_destroy(pelt__surface_index *index)
+{
+    if (!index) return;
+    free(index->welded);
+    free(index->fan_start);
+    free(index->fan);
+    free(index->chart);
+    free(index->tri_stamp);
+    free(index->queue);
+    free(index->chart_stamp);
+    free(index->chart_ref);
+    free(index->chart_dist2);
+    free(index);
+}
+
+pelt_status pelt__surface_index_create(const pelt_mesh *mesh, pelt__surface_index **out,
+                                       pelt_error *err)
+{
+    if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "surface index: out is NULL");
+    *out = NULL;
+    if (!mesh || !mesh->positions || !mesh->uvs || !mesh->indices)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "surface index: mesh with positions, uvs and indices required");
+    size_t nv = mesh->vertex_count, nt = mesh->triangle_count;
+    if (nv >= NONE || nt >= NONE / 3)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "surface index: %zu vertices / %zu triangles exceed 32-bit indices",
+                          nv, nt);
+    for (size_t i = 0; i < 3 * nt; i++)
+        if (mesh->indices[i] >= nv)
+            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                              "surface index: triangle %zu names vertex %u of %zu", i / 3,
+                              mesh->indices[i], nv);
+    pelt__surface_index *x = pelt__calloc(1, sizeof *x);
+    if (!x) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "surface index: out of memory");
+    x->mesh = mesh;
+    x->triangle_count = nt;
+    size_t nt1 = nt ? nt : 1, nv1 = nv ? nv : 1;
+    x->welded = pelt__calloc(nv1, sizeof *x->welded);
+    x->fan = pelt__calloc(nt1, 3 * sizeof *x->fan);
+    x->chart = pelt__calloc(nt1, sizeof *x->chart);
+    x->tri_stamp = pelt__calloc(nt1, sizeof *x->tri_stamp);
+    x->queue = pelt__calloc(nt1, sizeof *x->queue);
+    bool ok = x->welded && x->fan && x->chart && x->tri_stamp && x->queue &&
+              weld(mesh, x->welded, &x->welded_count) &&
+              find_charts(mesh, x->chart, &x->chart_count);
+    if (ok) {
+        size_t nc1 = x->chart_count ? x->chart_count : 1;
+        x->fan_start = pelt__calloc(x->welded_count + 1, sizeof *x->fan_start);
+        x->chart_stamp = pelt__calloc(nc1, sizeof *x->chart_stamp);
+        x->chart_ref = pelt__calloc(nc1, sizeof *x->chart_ref);
+        x->chart_dist2 = pelt__calloc(nc1, sizeof *x->chart_dist2);
+        ok = x->fan_start && x->chart_stamp && x->chart_ref && x->chart_dist2;
+    }
+    if (!ok) {
+        pelt__surface_index_destroy(x);
+        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY,
+                          "surface index: out of memory for %zu vertices, %zu triangles", nv, nt);
+    }
+    /* Triangles around each welded position, compressed rows. */
+    for (size_t i = 0; i < 3 * nt; i++) x->fan_start[x->welded[mesh->indices[i]] + 1]++;
+    for (size_t w = 0; w < x->welded_count; w++) x->fan_start[w + 1] += x->fan_start[w];
+    /* A cursor per row fills it. */
+    uint32_t *cursor = pelt__calloc(x->welded_count ? x->welded_count : 1, sizeof *cursor);
+    if (!cursor) {
+        pelt__surface_index_destroy(x);
+        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "surface index: out of memory");
+    }
+    for (size_t i = 0; i < 3 * nt; i++) {
+        uint32_t w = x->welded[mesh->indices[i]];
+        x->fan[x->fan_start[w] + cursor[w]++] = (uint32_t)(i / 3);
+    }
+    free(cursor);
+    *out = x;
+    return PELT_OK;
+}
+
+/* ---- geometry ------------------------------------------------------------ */
+
+/* Squared distance from p to triangle abc (closest point by the Voronoi
+ * regions of vertices, edges and face). */
+static float triangle_dist2(pelt_vec3 p, pelt_vec3 a, pelt_vec3 b, pelt_vec3 c)
+{
+    pelt_vec3 ab = v3_sub(b, a), ac = v3_sub(c, a), ap = v3_sub(p, a);
+    float d1 = v3_dot(ab, ap), d2 = v3_dot(ac, ap);
+    pelt_vec3 q;
+    if (d1 <= 0.0f && d2 <= 0.0f) {
+        q = a;
+    } else {
+        pelt_vec3 bp = v3_sub(p, b);
+        float d3 = v3_dot(ab, bp), d4 = v3_dot(ac, bp);
+        pelt_vec3 cp = v3_sub(p, c);
+        float d5 = v3_dot(ab, cp), d6 = v3_dot(ac, cp);
+        float vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+        if (d3 >= 0.0f && d4 <= d3) {
+            q = b;
+        } else if (d6 >= 0.0f && d5 <= d6) {
+            q = c;
+        } else if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+            q = v3_mad(a, ab, d1 / (d1 - d3));
+        } else if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+            q = v3_mad(a, ac, d2 / (d2 - d6));
+        } else if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+            q = v3_mad(b, v3_sub(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6)));
+        } else {
+            float den = va + vb + vc;
+            if (!(den > 0.0f)) { /* degenerate: nearest of the vertices */
+                float da = v3_dot(ap, ap), db = v3_dot(bp, bp), dc = v3_dot(cp, cp);
+                return fminf(da, fminf(db, dc));
+            }
+            q = v3_add(a, v3_add(v3_scale(ab, vb / den), v3_scale(ac, vc / den)));
+        }
+    }
+    pelt_vec3 d = v3_sub(p, q);
+    return v3_dot(d, d);
+}
+
+static pelt_vec3 corner(const pelt_mesh *mesh, size_t t, int k)
+{
+    return v3_load(mesh->positions + (size_t)mesh->indices[3 * t + k] * 3);
+}
+
+static const float *corner_uv(const pelt_mesh *mesh, size_t t, int k)
+{
+    return mesh->uvs + (size_t)mesh->indices[3 * t + k] * 2;
+}
+
+/* The droplet in triangle t's chart: c = t's affine uv map at P projected
+ * on t's plane, r = radius * uv length per world length on t. False when t
+ * is degenerate in 3D or in uv. */
+static bool droplet_in_triangle(const pelt_mesh *mesh, size_t t, pelt_vec3 p, float radius,
+                                float c[2], float *r)
+{
+    pelt_vec3 p0 = corner(mesh, t, 0);
+    pelt_vec3 e1 = v3_sub(corner(mesh, t, 1), p0), e2 = v3_sub(corner(mesh, t, 2), p0);
+    const float *t0 = corner_uv(mesh, t, 0), *t1 = corner_uv(mesh, t, 1), *t2 = corner_uv(mesh, t, 2);
+    double a11 = v3_dot(e1, e1), a12 = v3_dot(e1, e2), a22 = v3_dot(e2, e2);
+    double det = a11 * a22 - a12 * a12; /* = |e1 x e2|^2 */
+    double uv_area2 = fabs(((double)t1[0] - t0[0]) * ((double)t2[1] - t0[1]) -
+                           ((double)t2[0] - t0[0]) * ((double)t1[1] - t0[1]));
+    if (!(det > 0.0) || !(uv_area2 > 0.0)) return false;
+    pelt_vec3 d = v3_sub(p, p0);
+    double b1 = v3_dot(d, e1), b2 = v3_dot(d, e2);
+    /* Least squares d ~ s e1 + u e2: the projection of P on the plane. */
+    double s = (a22 * b1 - a12 * b2) / det, u = (a11 * b2 - a12 * b1) / det;
+    c[0] = (float)(t0[0] + s * ((double)t1[0] - t0[0]) + u * ((double)t2[0] - t0[0]));
+    c[1] = (float)(t0[1] + s * ((double)t1[1] - t0[1]) + u * ((double)t2[1] - t0[1]));
+    /* Same scale as pelt__droplet_on_surface: sqrt(uv area / world area). */
+    *r = radius * (float)sqrt(uv_area2 / sqrt(det));
+    return true;
+}
+
+/* ---- Alg. 1 on one texel ------------------------------------------------- */
+
+/* Silva Alg. 1 as docs/wetness.md reads it (the same branches as
+ * core/wetness.c; tests compare the two). wd in [-1,1], nonzero. Returns
+ * whether the texel changed. */
+static bool alg1_texel(float *t, const float c[2], float r, float wd)
+{
+    float old[4] = {t[0], t[1], t[2], t[3]};
+    float rho = t[3];
+    if (wd < 0.0f) {
+        /* Drying only lowers wetness; it never makes or moves a clump. */
+        if (rho > 0.0f) t[3] = fmaxf(rho + wd, 0.0f);
+    } else if (rho > 0.0f && (t[0] - c[0]) * (t[0] - c[0]) + (t[1] - c[1]) * (t[1] - c[1]) <=
+                                 r * r) {
+        /* Same clump: blend with alpha = rho_drop / rho_total. */
+        float total = clampf(rho + wd, 0.0f, 1.0f);
+        float alpha = clampf(wd / total, 0.0f, 1.0f);
+        t[0] = (1.0f - alpha) * t[0] + alpha * c[0];
+        t[1] = (1.0f - alpha) * t[1] + alpha * c[1];
+        t[2] = (1.0f - alpha) * t[2] + alpha * r;
+        t[3] = total;
+    } else {
+        /* Dry texel, or another clump's: the droplet takes it. */
+        t[0] = c[0];
+        t[1] = c[1];
+        t[2] = r;
+        t[3] = wd;
+    }
+    return memcmp(old, t, sizeof old) != 0;
+}
+
+/* ---- the droplet ---------------------------------------------------------- */
+
+static int64_t to_fixed(float x, unsigned res)
+{
+    double v = (double)x * (double)res;
+    double lim = 4.0 * (double)res + 4.0;
+    if (!(v > -lim)) v = -lim;
+    if (v > lim) v = lim;
+    return (int64_t)llround(v * SUB);
+}
+
+/* Of the two traversals of a shared edge exactly one is top-left. */
+static bool top_left(int64_t dx, int64_t dy) { return dy < 0 || (dy == 0 && dx > 0); }
+
+typedef struct changed_box {
+    unsigned x0, y0, x1, y1; /* inclusive; empty when x0 > x1 */
+} changed_box;
+
+/* Rasterizes triangle t's uv footprint at texel centres and applies the
+ * droplet (c, r, wd) to each texel whose surface point is within the
+ * world radius of p. */
+static void wet_triangle(pelt__wetness *m, const pelt_mesh *mesh, size_t t, pelt_vec3 p,
+                         float radius2, const float c[2], float r, float wd, changed_box *box)
+{
+    uint32_t vi[3];
+    int64_t x[3], y[3];
+    for (int k = 0; k < 3; k++) {
+        vi[k] = mesh->indices[3 * t + k];
+        x[k] = to_fixed(mesh->uvs[(size_t)vi[k] * 2], m->width);
+        y[k] = to_fixed(mesh->uvs[(size_t)vi[k] * 2 + 1], m->height);
+    }
+    int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
+    if (area == 0) return;
+    if (area < 0) { /* counter-clockwise order for the edge tests */
+        int64_t tx = x[1], ty = y[1];
+        uint32_t tv = vi[1];
+        x[1] = x[2], y[1] = y[2], vi[1] = vi[2];
+        x[2] = tx, y[2] = ty, vi[2] = tv;
+        area = -area;
+    }
+    int64_t minx = x[0], maxx = x[0], miny = y[0], maxy = y[0];
+    for (int k = 1; k < 3; k++) {
+        minx = x[k] < minx ? x[k] : minx;
+        maxx = x[k] > maxx ? x[k] : maxx;
+        miny = y[k] < miny ? y[k] : miny;
+        maxy = y[k] > maxy ? y[k] : maxy;
+    }
+    /* Texel (px, py) has its centre at (px*SUB + SUB/2, py*SUB + SUB/2). */
+    int64_t px0 = minx - SUB / 2 < 0 ? 0 : (minx - SUB / 2 + SUB - 1) / SUB;
+    int64_t py0 = miny - SUB / 2 < 0 ? 0 : (miny - SUB / 2 + SUB - 1) / SUB;
+    int64_t px1 = maxx - SUB / 2 < 0 ? -1 : (maxx - SUB / 2) / SUB;
+    int64_t py1 = maxy - SUB / 2 < 0 ? -1 : (maxy - SUB / 2) / SUB;
+    if (px1 > (int64_t)m->width - 1) px1 = (int64_t)m->width - 1;
+    if (py1 > (int64_t)m->height - 1) py1 = (int64_t)m->height - 1;
+    if (px0 > px1 || py0 > py1) return;
+    bool tl[3];
+    for (int k = 0; k < 3; k++) tl[k] = top_left(x[(k + 1) % 3] - x[k], y[(k + 1) % 3] - y[k]);
+    pelt_vec3 q[3];
+    for (int k = 0; k < 3; k++) q[k] = v3_load(mesh->positions + (size_t)vi[k] * 3);
+    double inv_area = 1.0 / (double)area;
+    for (int64_t py = py0; py <= py1; py++) {
+        int64_t sy = py * SUB + SUB / 2;
+        float *row = m->texels + (size_t)py * m->width * 4;
+        bool row_changed = false;
+        for (int64_t px = px0; px <= px1; px++) {
+            int64_t sx = px * SUB + SUB / 2;
+            int64_t e[3];
+            bool inside = true;
+            for (int k = 0; k < 3 && inside; k++) {
+                int j = (k + 1) % 3;
+                e[k] = (x[j] - x[k]) * (sy - y[k]) - (y[j] - y[k]) * (sx - x[k]);
+                inside = e[k] > 0 || (e[k] == 0 && tl[k]);
+            }
+            if (!inside) continue;
+            /* Edge k is opposite vertex (k + 2) % 3: its weight. */
+            float w0 = (float)((double)e[1] * inv_area), w1 = (float)((double)e[2] * inv_area);
+            float w2 = 1.0f - w0 - w1;
+            pelt_vec3 X = v3_add(v3_scale(q[0], w0), v3_add(v3_scale(q[1], w1), v3_scale(q[2], w2)));
+            pelt_vec3 d = v3_sub(X, p);
+            if (v3_dot(d, d) > radius2) continue;
+            if (!alg1_texel(row + (size_t)px * 4, c, r, wd)) continue;
+            row_changed = true;
+            if ((unsigned)px < box->x0) box->x0 = (unsigned)px;
+            if ((unsigned)px > box->x1) box->x1 = (unsigned)px;
+        }
+        if (row_changed) {
+            if ((unsigned)py < box->y0) box->y0 = (unsigned)py;
+            if ((unsigned)py > box->y1) box->y1 = (unsigned)py;
+        }
+    }
+}
+
+/* r |= {x0, y0, x1, y1} (exclusive ends), the rectangle convention of
+ * core/wetness.c. */
+static void grow_rect(unsigned r[4], const changed_box *b)
+{
+    if (b->x0 > b->x1 || b->y0 > b->y1) return;
+    unsigned add[4] = {b->x0, b->y0, b->x1 + 1, b->y1 + 1};
+    if (r[0] >= r[2] || r[1] >= r[3]) {
+        memcpy(r, add, sizeof add);
+        return;
+    }
+    if (add[0] < r[0]) r[0] = add[0];
+    if (add[1] < r[1]) r[1] = add[1];
+    if (add[2] > r[2]) r[2] = add[2];
+    if (add[3] > r[3]) r[3] = add[3];
+}
+
+/* A triangle can carry its chart's droplet when it has area in 3D and uv. */
+static bool usable(const pelt_mesh *mesh, size_t t, pelt_vec3 p, float radius)
+{
+    float c[2], r;
+    return droplet_in_triangle(mesh, t, p, radius, c, &r);
+}
+
+pelt_status pelt__droplet_surface(pelt__wetness *m, const pelt_mesh *mesh,
+                                  pelt__surface_index *index, size_t triangle,
+                                  const float bary[3], float radius_world, float wetness,
+                                  pelt_error *err)
+{
+    if (!m || !mesh || !index || !bary)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "surface droplet: NULL argument");
+    if (index->mesh != mesh || index->triangle_count != mesh->triangle_count)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "surface droplet: the index was built for another mesh");
+    if (triangle >= mesh->triangle_count)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "surface droplet: triangle %zu out of range (mesh has %zu)", triangle,
+                          mesh->triangle_count);
+    if (!isfinite(bary[0]) || !isfinite(bary[1]) || !isfinite(bary[2]) ||
+        !isfinite(radius_world) || radius_world < 0.0f || !isfinite(wetness))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "surface droplet: barycentrics (%g, %g, %g), radius %g, wetness %g "
+                          "must be finite with radius >= 0",
+                          (double)bary[0], (double)bary[1], (double)bary[2],
+                          (double)radius_world, (double)wetness);
+    pelt_vec3 p = v3_add(v3_scale(corner(mesh, triangle, 0), bary[0]),
+                         v3_add(v3_scale(corner(mesh, triangle, 1), bary[1]),
+                                v3_scale(corner(mesh, triangle, 2), bary[2])));
+    if (!isfinite(p.x) || !isfinite(p.y) || !isfinite(p.z))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "surface droplet: non-finite point on triangle %zu", triangle);
+    float wd = clampf(wetness, -1.0f, 1.0f);
+    if (wd == 0.0f) return PELT_OK; /* Alg. 1 with alpha 0 changes nothing */
+    float radius2 = radius_world * radius_world;
+
+    if (++index->stamp == 0) { /* wrapped: forget every old stamp once */
+        memset(index->tri_stamp, 0, index->triangle_count * sizeof *index->tri_stamp);
+        memset(index->chart_stamp, 0, index->chart_count * sizeof *index->chart_stamp);
+        index->stamp = 1;
+    }
+    uint32_t stamp = index->stamp;
+
+    /* Breadth-first over triangles sharing a position, keeping those that
+     * reach into the ball |X - P| <= radius; per chart remember the one
+     * nearest P (the hit triangle wins ties in its chart). */
+    size_t head = 0, tail = 0;
+    index->queue[tail++] = (uint32_t)triangle;
+    index->tri_stamp[triangle] = stamp;
+    while (head < tail) {
+        size_t t = index->queue[head++];
+        float d2 = t == triangle ? 0.0f
+                                 : triangle_dist2(p, corner(mesh, t, 0), corner(mesh, t, 1),
+                                                  corner(mesh, t, 2));
+        uint32_t ch = index->chart[t];
+        if ((index->chart_stamp[ch] != stamp || d2 < index->chart_dist2[ch]) &&
+            usable(mesh, t, p, radius_world)) {
+            index->chart_stamp[ch] = stamp;
+            index->chart_ref[ch] = (uint32_t)t;
+            index->chart_dist2[ch] = d2;
+        }
+        for (int k = 0; k < 3; k++) {
+            uint32_t w = index->welded[mesh->indices[3 * t + k]];
+            for (uint32_t f = index->fan_start[w]; f < index->fan_start[w + 1]; f++) {
+                uint32_t n = index->fan[f];
+                if (index->tri_stamp[n] == stamp) continue;
+                index->tri_stamp[n] = stamp;
+                if (triangle_dist2(p, corner(mesh, n, 0), corner(mesh, n, 1),
+                                   corner(mesh, n, 2)) <= radius2)
+                    index->queue[tail++] = n;
+            }
+        }
+    }
+
+    /* Alg. 1 on the texels of every triangle reached, with the droplet
+     * expressed in its chart's coordinates. */
+    changed_box box = {UINT32_MAX, UINT32_MAX, 0, 0};
+    for (size_t i = 0; i < tail; i++) {
+        size_t t = index->queue[i];
+        uint32_t ch = index->chart[t];
+        if (index->chart_stamp[ch] != stamp) continue; /* only degenerate triangles */
+        float c[2], r;
+        if (!droplet_in_triangle(mesh, index->chart_ref[ch], p, radius_world, c, &r)) continue;
+        wet_triangle(m, mesh, t, p, radius2, c, r, wd, &box);
+    }
+    grow_rect(m->dirty, &box);
+    if (wd > 0.0f) grow_rect(m->wet, &box);
+    return PELT_OK;
+}
