@@ -77,6 +77,48 @@ static bool build_atlas(const char *cmd, const pelt_scene *sc, pelt_mesh **mesh,
     return true;
 }
 
+/* Loads an image with stb_image; errors name the scene key and the file,
+ * with the system's reason when the file cannot be opened. */
+static uint8_t *load_image(const char *cmd, const char *key, const char *path, int channels,
+                           int *w, int *h)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        cli_error(cmd, "%s: cannot open '%s': %s", key, path, strerror(errno));
+        return NULL;
+    }
+    int n;
+    uint8_t *px = stbi_load_from_file(f, w, h, &n, channels);
+    fclose(f);
+    if (!px) cli_error(cmd, "%s: '%s' is not a readable image (%s)", key, path, stbi_failure_reason());
+    return px;
+}
+
+/* The colour texture: an image file or a procedural pattern. */
+static bool apply_color(const char *cmd, const pelt_scene *sc, pelt_fur *fur)
+{
+    pelt_error err = {0};
+    if (sc->texture.image[0]) {
+        int w, h;
+        uint8_t *rgba = load_image(cmd, "texture.image", sc->texture.image, 4, &w, &h);
+        if (!rgba) return false;
+        pelt_status st = pelt_fur_set_color_texture(fur, rgba, (unsigned)w, (unsigned)h, &err);
+        stbi_image_free(rgba);
+        if (st != PELT_OK) {
+            cli_error(cmd, "texture.image '%s': %s", sc->texture.image, err.message);
+            return false;
+        }
+        return true;
+    }
+    if (sc->texture.pattern != PELT_PATTERN_NONE &&
+        pelt_fur_set_color_pattern(fur, (pelt_color_pattern)sc->texture.pattern, sc->fur.seed,
+                                   &err) != PELT_OK) {
+        cli_error(cmd, "texture.pattern: %s", err.message);
+        return false;
+    }
+    return true;
+}
+
 /* Droplets, random drops, a painted image, rain and drying from the scene. */
 static bool apply_wetness(const char *cmd, const pelt_scene *sc, pelt_fur *fur)
 {
@@ -93,12 +135,9 @@ static bool apply_wetness(const char *cmd, const pelt_scene *sc, pelt_fur *fur)
         pelt_fur_add_random_droplets(fur, &r, w->drops);
     }
     if (w->mask_image[0]) {
-        int iw, ih, n;
-        uint8_t *grey = stbi_load(w->mask_image, &iw, &ih, &n, 1);
-        if (!grey) {
-            cli_error(cmd, "wetness.mask_image '%s': %s", w->mask_image, stbi_failure_reason());
-            return false;
-        }
+        int iw, ih;
+        uint8_t *grey = load_image(cmd, "wetness.mask_image", w->mask_image, 1, &iw, &ih);
+        if (!grey) return false;
         pelt_status st = pelt_fur_paint_wetness(fur, grey, (unsigned)iw, (unsigned)ih,
                                                 w->mask_image_wetness, &err);
         stbi_image_free(grey);
@@ -140,6 +179,7 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         return false;
     }
     fd.mask_size = mask_size;
+    fd.color_scale = sc->texture.scale;
     fd.clump_blend = sc->wetness.clump_blend;
     fd.clump_tightness = sc->wetness.clump_tightness;
     fd.wet_darken = sc->wetness.darken;
@@ -151,7 +191,7 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_session_close(s);
         return false;
     }
-    if (!apply_wetness(cmd, sc, s->fur)) {
+    if (!apply_color(cmd, sc, s->fur) || !apply_wetness(cmd, sc, s->fur)) {
         cli_session_close(s);
         return false;
     }

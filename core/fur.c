@@ -47,6 +47,7 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->clump_blend == 0.0f) d->clump_blend = 0.5f;
     if (d->clump_tightness == 0.0f) d->clump_tightness = 0.9f;
     if (d->wet_darken == 0.0f) d->wet_darken = 0.35f;
+    if (d->color_scale == 0.0f) d->color_scale = 1.0f;
 }
 
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
@@ -82,6 +83,8 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         !(d->wet_darken >= 0.0f && d->wet_darken < 1.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "clump blend must be in [0,1], tightness in (0,1], wet darkening in [0,1)");
+    if (!(d->color_scale > 0.0f) || !isfinite(d->color_scale))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour scale must be positive");
     if (!isfinite(d->curl_frequency) || !isfinite(d->curl_radius) || d->curl_radius < 0.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
     return PELT_OK;

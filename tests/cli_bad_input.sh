@@ -49,6 +49,12 @@ expect_fail scene_unknown_key "fur.lenght" $pelt render "$out/typo.json" -q -o "
 printf '{"fur": {"layers": "many"}}' > "$out/type.json"
 expect_fail scene_wrong_type "fur.layers" $pelt render "$out/type.json" -q -o "$out/cli_out.png"
 
+printf 'not a png' > "$out/corrupt.png"
+expect_fail texture_missing "no_texture.png" $r --texture "$out/no_texture.png"
+expect_fail texture_corrupt "corrupt.png" $r --texture "$out/corrupt.png"
+expect_fail mask_image_corrupt "corrupt.png" $r --mask-image "$out/corrupt.png"
+expect_fail pattern_unknown "--pattern" $r --pattern plaid
+
 expect_fail layers_zero "--layers" $r --layers 0
 expect_fail layers_word "--layers" $r --layers many
 expect_fail layers_negative "--layers" $r --layers -3
@@ -71,6 +77,8 @@ expect_ok good_obj $r --mesh "$data/meshes/square_uv.obj"
 expect_ok good_off $r --mesh "$data/meshes/tetra.off"
 expect_ok good_ply $r --mesh "$data/meshes/tetra.ply"
 expect_ok good_stl $r --mesh "$data/meshes/two_facets.stl"
+expect_ok pattern_spots $r --pattern spots
+expect_ok mask_out $r --drops 5 --mask-out "$out/cli_mask.png"
 
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]

@@ -10,6 +10,7 @@ flat in float v_layer;
 
 uniform highp sampler2DArray u_fur;
 uniform sampler2D u_color_tex;
+uniform float u_color_scale;
 uniform vec3 u_color;
 uniform vec3 u_tip_color;
 uniform vec3 u_specular;
@@ -51,7 +52,7 @@ void main()
     vec3 L = normalize(u_light_dir);
     vec3 E = normalize(v_world - u_eye);
     vec2 kk = kajiya_kay(T, L, E, u_shininess);
-    vec3 base = mix(u_color, u_tip_color, hair.g) * texture(u_color_tex, v_uv + d).rgb * hair.r;
+    vec3 base = mix(u_color, u_tip_color, hair.g) * texture(u_color_tex, (v_uv + d) * u_color_scale).rgb * hair.r;
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
     // Hair on the side of the body facing away from the light is in the
     // body's shadow: Kajiya-Kay alone would light it as brightly.

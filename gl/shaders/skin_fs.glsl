@@ -4,6 +4,7 @@ in vec2 v_fur_uv;
 
 uniform highp sampler2DArray u_fur;
 uniform sampler2D u_color_tex;
+uniform float u_color_scale;
 uniform vec3 u_color;
 uniform vec3 u_light_dir;
 uniform vec3 u_light_color;
@@ -16,7 +17,7 @@ void main()
 {
     vec3 n = normalize(v_normal);
     float shade = texture(u_fur, vec3(v_fur_uv, 0.0)).r;
-    vec3 base = u_color * texture(u_color_tex, v_uv).rgb * shade;
+    vec3 base = u_color * texture(u_color_tex, v_uv * u_color_scale).rgb * shade;
     float lambert = max(dot(n, normalize(u_light_dir)), 0.0);
     // The skin sits under all the fur: gamma at h = 0.
     float gamma = shadow_factor(u_shadow, 0.0);

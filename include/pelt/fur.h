@@ -41,6 +41,7 @@ typedef struct pelt_fur_desc {
     float clump_blend;       /* w of Silva Eq. 5 in [0,1], default 0.5 */
     float clump_tightness;   /* s in (0,1]: 1 = tips meet at the clump centre, default 0.9 */
     float wet_darken;        /* brightness fully wet fur loses, [0,1), default 0.35 */
+    float color_scale;       /* colour texture repeats per uv unit, default 1 */
 } pelt_fur_desc;
 
 /* Fills curl_frequency and curl_radius of `d` from one of the curl looks
@@ -64,6 +65,19 @@ pelt_fur_desc pelt_fur_get_desc(const pelt_fur *fur);
  * RGBA8, width * height * 4 bytes, copied. */
 pelt_status pelt_fur_set_color_texture(pelt_fur *fur, const uint8_t *rgba,
                                        unsigned width, unsigned height,
+                                       pelt_error *err);
+
+/* Procedural colour patterns, multiplied with the hair colour. */
+typedef enum pelt_color_pattern {
+    PELT_COLOR_PATTERN_NONE = 0,
+    PELT_COLOR_PATTERN_SPOTS,
+    PELT_COLOR_PATTERN_STRIPES,
+    PELT_COLOR_PATTERN_NOISE
+} pelt_color_pattern;
+
+/* Makes a seeded, tileable 512x512 pattern the colour texture (NONE
+ * removes the colour texture). */
+pelt_status pelt_fur_set_color_pattern(pelt_fur *fur, pelt_color_pattern pattern, uint32_t seed,
                                        pelt_error *err);
 
 #ifdef __cplusplus
