@@ -1,5 +1,6 @@
 /* Seam-free droplets: Silva et al. §3.1 Alg. 1 applied to the texels whose
- * surface point lies within the droplet's world radius, per atlas chart. */
+ * surface point lies within the droplet's world radius, per piece of the
+ * atlas connected in uv. */
 #include "core/surface_droplet.h"
 
 #include "core/error.h"
@@ -66,61 +67,21 @@ static bool weld(const pelt_mesh *mesh, uint32_t *welded, size_t *count)
     return true;
 }
 
-static uint32_t find_root(uint32_t *parent, uint32_t v)
-{
-    while (parent[v] != v) {
-        parent[v] = parent[parent[v]]; /* path halving */
-        v = parent[v];
-    }
-    return v;
-}
-
-/* Charts = components of triangles sharing a (split) vertex: the pieces of
- * the surface that are connected in uv. */
-static bool find_charts(const pelt_mesh *mesh, uint32_t *chart, size_t *count)
-{
-    size_t n = mesh->vertex_count;
-    uint32_t *parent = pelt__calloc(n ? n : 1, sizeof *parent);
-    uint32_t *label = pelt__calloc(n ? n : 1, sizeof *label);
-    if (!parent || !label) {
-        free(parent);
-        free(label);
-        return false;
-    }
-    for (size_t v = 0; v < n; v++) {
-        parent[v] = (uint32_t)v;
-        label[v] = NONE;
-    }
-    const uint32_t *ix = mesh->indices;
-    for (size_t t = 0; t < mesh->triangle_count; t++)
-        for (int k = 1; k < 3; k++) {
-            uint32_t a = find_root(parent, ix[3 * t]), b = find_root(parent, ix[3 * t + k]);
-            if (a != b) parent[a] = b;
-        }
-    size_t charts = 0;
-    for (size_t t = 0; t < mesh->triangle_count; t++) {
-        uint32_t r = find_root(parent, ix[3 * t]);
-        if (label[r] == NONE) label[r] = (uint32_t)charts++;
-        chart[t] = label[r];
-    }
-    free(parent);
-    free(label);
-    *count = charts;
-    return true;
-}
-
 void pelt__surface_index_destroy(pelt__surface_index *index)
 {
     if (!index) return;
     free(index->welded);
     free(index->fan_start);
     free(index->fan);
-    free(index->chart);
+    free(index->vert_stamp);
     free(index->tri_stamp);
+    free(index->tri_dist2);
     free(index->queue);
-    free(index->chart_stamp);
-    free(index->chart_ref);
-    free(index->chart_dist2);
+    free(index->group_stamp);
+    free(index->group);
+    free(index->stack);
+    free(index->group_ref);
+    free(index->group_dist2);
     free(index);
 }
 
@@ -149,19 +110,21 @@ pelt_status pelt__surface_index_create(const pelt_mesh *mesh, pelt__surface_inde
     size_t nt1 = nt ? nt : 1, nv1 = nv ? nv : 1;
     x->welded = pelt__calloc(nv1, sizeof *x->welded);
     x->fan = pelt__calloc(nt1, 3 * sizeof *x->fan);
-    x->chart = pelt__calloc(nt1, sizeof *x->chart);
     x->tri_stamp = pelt__calloc(nt1, sizeof *x->tri_stamp);
+    x->tri_dist2 = pelt__calloc(nt1, sizeof *x->tri_dist2);
     x->queue = pelt__calloc(nt1, sizeof *x->queue);
-    bool ok = x->welded && x->fan && x->chart && x->tri_stamp && x->queue &&
-              weld(mesh, x->welded, &x->welded_count) &&
-              find_charts(mesh, x->chart, &x->chart_count);
+    x->group_stamp = pelt__calloc(nt1, sizeof *x->group_stamp);
+    x->group = pelt__calloc(nt1, sizeof *x->group);
+    x->stack = pelt__calloc(nt1, sizeof *x->stack);
+    x->group_ref = pelt__calloc(nt1, sizeof *x->group_ref);
+    x->group_dist2 = pelt__calloc(nt1, sizeof *x->group_dist2);
+    bool ok = x->welded && x->fan && x->tri_stamp && x->tri_dist2 && x->queue &&
+              x->group_stamp && x->group && x->stack && x->group_ref && x->group_dist2 &&
+              weld(mesh, x->welded, &x->welded_count);
     if (ok) {
-        size_t nc1 = x->chart_count ? x->chart_count : 1;
         x->fan_start = pelt__calloc(x->welded_count + 1, sizeof *x->fan_start);
-        x->chart_stamp = pelt__calloc(nc1, sizeof *x->chart_stamp);
-        x->chart_ref = pelt__calloc(nc1, sizeof *x->chart_ref);
-        x->chart_dist2 = pelt__calloc(nc1, sizeof *x->chart_dist2);
-        ok = x->fan_start && x->chart_stamp && x->chart_ref && x->chart_dist2;
+        x->vert_stamp = pelt__calloc(x->welded_count + 1, sizeof *x->vert_stamp);
+        ok = x->fan_start && x->vert_stamp;
     }
     if (!ok) {
         pelt__surface_index_destroy(x);
@@ -236,7 +199,7 @@ static const float *corner_uv(const pelt_mesh *mesh, size_t t, int k)
     return mesh->uvs + (size_t)mesh->indices[3 * t + k] * 2;
 }
 
-/* The droplet in triangle t's chart: c = t's affine uv map at P projected
+/* The droplet in triangle t's coordinates: c = t's affine uv map at P projected
  * on t's plane, r = radius * uv length per world length on t. False when t
  * is degenerate in 3D or in uv. */
 static bool droplet_in_triangle(const pelt_mesh *mesh, size_t t, pelt_vec3 p, float radius,
@@ -400,7 +363,27 @@ static void grow_rect(unsigned r[4], const changed_box *b)
     if (add[3] > r[3]) r[3] = add[3];
 }
 
-/* A triangle can carry its chart's droplet when it has area in 3D and uv. */
+static bool same_uv(const pelt_mesh *mesh, uint32_t a, uint32_t b)
+{
+    return a == b || (mesh->uvs[(size_t)a * 2] == mesh->uvs[(size_t)b * 2] &&
+                      mesh->uvs[(size_t)a * 2 + 1] == mesh->uvs[(size_t)b * 2 + 1]);
+}
+
+/* Whether triangle n has the edge of positions (wa, wb) with the same uvs
+ * as vertices a and b: the two triangles are then continuous in uv. */
+static bool uv_continuous(const pelt_mesh *mesh, const pelt__surface_index *x, uint32_t n,
+                          uint32_t a, uint32_t b, uint32_t wa, uint32_t wb)
+{
+    uint32_t va = NONE, vb = NONE;
+    for (int k = 0; k < 3; k++) {
+        uint32_t v = mesh->indices[3 * (size_t)n + k];
+        if (x->welded[v] == wa) va = v;
+        else if (x->welded[v] == wb) vb = v;
+    }
+    return va != NONE && vb != NONE && same_uv(mesh, va, a) && same_uv(mesh, vb, b);
+}
+
+/* A triangle can carry its piece's droplet when it has area in 3D and uv. */
 static bool usable(const pelt_mesh *mesh, size_t t, pelt_vec3 p, float radius)
 {
     float c[2], r;
@@ -440,51 +423,87 @@ pelt_status pelt__droplet_surface(pelt__wetness *m, const pelt_mesh *mesh,
 
     if (++index->stamp == 0) { /* wrapped: forget every old stamp once */
         memset(index->tri_stamp, 0, index->triangle_count * sizeof *index->tri_stamp);
-        memset(index->chart_stamp, 0, index->chart_count * sizeof *index->chart_stamp);
+        memset(index->group_stamp, 0, index->triangle_count * sizeof *index->group_stamp);
+        memset(index->vert_stamp, 0, index->welded_count * sizeof *index->vert_stamp);
         index->stamp = 1;
     }
     uint32_t stamp = index->stamp;
 
     /* Breadth-first over triangles sharing a position, keeping those that
-     * reach into the ball |X - P| <= radius; per chart remember the one
-     * nearest P (the hit triangle wins ties in its chart). */
+     * reach into the ball |X - P| <= radius. */
     size_t head = 0, tail = 0;
     index->queue[tail++] = (uint32_t)triangle;
     index->tri_stamp[triangle] = stamp;
+    index->tri_dist2[triangle] = 0.0f;
     while (head < tail) {
         size_t t = index->queue[head++];
-        float d2 = t == triangle ? 0.0f
-                                 : triangle_dist2(p, corner(mesh, t, 0), corner(mesh, t, 1),
-                                                  corner(mesh, t, 2));
-        uint32_t ch = index->chart[t];
-        if ((index->chart_stamp[ch] != stamp || d2 < index->chart_dist2[ch]) &&
-            usable(mesh, t, p, radius_world)) {
-            index->chart_stamp[ch] = stamp;
-            index->chart_ref[ch] = (uint32_t)t;
-            index->chart_dist2[ch] = d2;
-        }
         for (int k = 0; k < 3; k++) {
             uint32_t w = index->welded[mesh->indices[3 * t + k]];
+            /* Each position's fan once: a pole shared by hundreds of
+             * triangles is not rescanned for every one of them. */
+            if (index->vert_stamp[w] == stamp) continue;
+            index->vert_stamp[w] = stamp;
             for (uint32_t f = index->fan_start[w]; f < index->fan_start[w + 1]; f++) {
                 uint32_t n = index->fan[f];
                 if (index->tri_stamp[n] == stamp) continue;
                 index->tri_stamp[n] = stamp;
-                if (triangle_dist2(p, corner(mesh, n, 0), corner(mesh, n, 1),
-                                   corner(mesh, n, 2)) <= radius2)
-                    index->queue[tail++] = n;
+                float d2 = triangle_dist2(p, corner(mesh, n, 0), corner(mesh, n, 1),
+                                          corner(mesh, n, 2));
+                index->tri_dist2[n] = d2;
+                if (d2 <= radius2) index->queue[tail++] = n;
             }
         }
     }
 
-    /* Alg. 1 on the texels of every triangle reached, with the droplet
-     * expressed in its chart's coordinates. */
+    /* Pieces of the ball connected in uv; each gets the droplet through its
+     * triangle nearest P (the hit triangle wins ties). */
+    size_t groups = 0;
+    for (size_t i = 0; i < tail; i++) {
+        uint32_t seed = index->queue[i];
+        if (index->group_stamp[seed] == stamp) continue;
+        uint32_t g = (uint32_t)groups++;
+        index->group_ref[g] = NONE;
+        index->group_dist2[g] = INFINITY;
+        size_t top = 0;
+        index->stack[top++] = seed;
+        index->group_stamp[seed] = stamp;
+        index->group[seed] = g;
+        while (top > 0) {
+            uint32_t t = index->stack[--top];
+            float d2 = index->tri_dist2[t];
+            if ((d2 < index->group_dist2[g] || t == triangle) && usable(mesh, t, p, radius_world)) {
+                index->group_ref[g] = t;
+                index->group_dist2[g] = t == triangle ? -1.0f : d2;
+            }
+            for (int k = 0; k < 3; k++) {
+                uint32_t a = mesh->indices[3 * t + k], b = mesh->indices[3 * t + (k + 1) % 3];
+                uint32_t wa = index->welded[a], wb = index->welded[b];
+                /* Triangles on the edge are in both fans: scan the smaller. */
+                uint32_t ws = index->fan_start[wa + 1] - index->fan_start[wa] <=
+                                      index->fan_start[wb + 1] - index->fan_start[wb]
+                                  ? wa
+                                  : wb;
+                for (uint32_t f = index->fan_start[ws]; f < index->fan_start[ws + 1]; f++) {
+                    uint32_t n = index->fan[f];
+                    if (index->tri_stamp[n] != stamp || index->tri_dist2[n] > radius2 ||
+                        index->group_stamp[n] == stamp || !uv_continuous(mesh, index, n, a, b, wa, wb))
+                        continue;
+                    index->group_stamp[n] = stamp;
+                    index->group[n] = g;
+                    index->stack[top++] = n;
+                }
+            }
+        }
+    }
+
+    /* Alg. 1 on the texels of every triangle in the ball, with the droplet
+     * expressed in its piece's coordinates. */
     changed_box box = {UINT32_MAX, UINT32_MAX, 0, 0};
     for (size_t i = 0; i < tail; i++) {
         size_t t = index->queue[i];
-        uint32_t ch = index->chart[t];
-        if (index->chart_stamp[ch] != stamp) continue; /* only degenerate triangles */
+        uint32_t ref = index->group_ref[index->group[t]];
         float c[2], r;
-        if (!droplet_in_triangle(mesh, index->chart_ref[ch], p, radius_world, c, &r)) continue;
+        if (ref == NONE || !droplet_in_triangle(mesh, ref, p, radius_world, c, &r)) continue;
         wet_triangle(m, mesh, t, p, radius2, c, r, wd, &box);
     }
     grow_rect(m->dirty, &box);

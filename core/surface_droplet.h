@@ -1,5 +1,5 @@
 /* Seam-free droplets: a droplet wets the mask by distance on the surface,
- * not in texture space (Silva et al. §3.1, Alg. 1 applied per atlas chart;
+ * not in texture space (Silva et al. §3.1, Alg. 1 applied per atlas patch;
  * DESIGN.md "Arbitrary topology"). A drop on a patch border wets texels in
  * every patch within its radius, each storing the clump centre in its own
  * patch coordinates, so the clump renders as one. No GL here. */
@@ -11,25 +11,28 @@
 #include <stdint.h>
 
 /* Built once per mesh: triangles around each welded position (vertices
- * split on patch borders are joined again by exact position), the uv chart
- * (patch) of each triangle, and the scratch one droplet needs, so
- * pelt__droplet_surface never allocates. The mesh is not copied: it must
- * outlive the index and keep its positions, uvs and indices. */
+ * split on patch borders or uv seams are joined again by exact position)
+ * and the scratch one droplet needs, so pelt__droplet_surface never
+ * allocates. The mesh is not copied: it must outlive the index and keep its
+ * positions, uvs and indices. */
 typedef struct pelt__surface_index {
     const pelt_mesh *mesh;
-    size_t triangle_count, welded_count, chart_count;
+    size_t triangle_count, welded_count;
     uint32_t *welded;     /* per vertex: welded position id */
     uint32_t *fan_start;  /* welded_count + 1 offsets into fan */
     uint32_t *fan;        /* triangles around each welded position */
-    uint32_t *chart;      /* per triangle: uv chart (connected in uv) */
-    /* Scratch of one droplet (the index is therefore not shareable between
-     * threads that drop at the same time). */
+    /* Scratch of one droplet (so an index is not shared by threads that
+     * drop at the same time). Per triangle unless said otherwise. */
     uint32_t stamp;
-    uint32_t *tri_stamp;   /* per triangle: visited in droplet `stamp` */
-    uint32_t *queue;       /* breadth-first queue, then the triangles hit */
-    uint32_t *chart_stamp; /* per chart: touched in droplet `stamp` */
-    uint32_t *chart_ref;   /* per chart: its triangle nearest the centre */
-    float *chart_dist2;    /* per chart: that triangle's squared distance */
+    uint32_t *vert_stamp;  /* per welded position: fan scanned by `stamp` */
+    uint32_t *tri_stamp;   /* reached by droplet `stamp` */
+    float *tri_dist2;      /* its squared distance to the centre */
+    uint32_t *queue;       /* breadth-first queue = the triangles in the ball */
+    uint32_t *group_stamp; /* grouped by droplet `stamp` */
+    uint32_t *group;       /* its piece of the ball connected in uv */
+    uint32_t *stack;       /* flood fill of the pieces */
+    uint32_t *group_ref;   /* per piece: its triangle nearest the centre */
+    float *group_dist2;    /* per piece: that triangle's squared distance */
 } pelt__surface_index;
 
 /* Builds the index of mesh (positions, uvs and indices needed). Allocates
@@ -42,8 +45,10 @@ void pelt__surface_index_destroy(pelt__surface_index *index);
  * wetting every mask texel whose surface point X (barycentric blend of its
  * triangle's positions at the texel centre) has |X - P| <= radius_world.
  * Triangles are visited breadth-first from the hit triangle over shared
- * positions while their 3D distance to P is <= radius_world. Per uv chart
- * the droplet is expressed through the chart's triangle nearest P: the
+ * positions while their 3D distance to P is <= radius_world. The ball's
+ * triangles fall into pieces connected in uv (across edges whose two ends
+ * have the same uvs on both sides: a patch border or uv seam cuts them);
+ * per piece the droplet is expressed through its triangle nearest P: the
  * clump centre c = that triangle's affine uv map at P projected on its
  * plane, r = radius_world * sqrt(uv area / world area) of that triangle;
  * then each texel gets Alg. 1 (docs/wetness.md) with (c, r, wetness),

@@ -439,6 +439,56 @@ static void torus_border_drop_covers_the_ball(void)
     fixture_free(&f);
 }
 
+/* The procedural sphere's own uvs wrap once around: the seam at u = 0 / 1
+ * joins two ends of one chart. A drop on it must express its centre on
+ * each side in that side's coordinates, not carry u = 0.99 over to u = 0.01. */
+static void drop_on_uv_seam_keeps_each_side_local(void)
+{
+    pelt_mesh *s = NULL;
+    CHECK(pelt_mesh_sphere(1.0f, 48, 24, &s, NULL) == PELT_OK);
+    pelt__wetness *mask = NULL;
+    pelt__surface_index *index = NULL;
+    CHECK(pelt__wetness_create(256, 256, &mask, NULL) == PELT_OK);
+    CHECK(pelt__surface_index_create(s, &index, NULL) == PELT_OK);
+    /* A corner at u = 0 near the equator. */
+    size_t tri = SIZE_MAX;
+    int corner = 0;
+    for (size_t t = 0; t < s->triangle_count && tri == SIZE_MAX; t++)
+        for (int k = 0; k < 3; k++)
+            if (uv(s, t, k)[0] == 0.0f && fabsf(pos(s, t, k).y) < 0.2f) {
+                tri = t;
+                corner = k;
+                break;
+            }
+    CHECK(tri != SIZE_MAX);
+    if (tri == SIZE_MAX) return;
+    float bary[3] = {0, 0, 0};
+    bary[corner] = 1.0f;
+    pelt_vec3 p = pos(s, tri, corner);
+    float radius = 2.0f * edge_length(s, tri);
+    CHECK(pelt__droplet_surface(mask, s, index, tri, bary, radius, 1.0f, NULL) == PELT_OK);
+    size_t n = (size_t)mask->width * mask->height, low = 0, high = 0;
+    double worst = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        const float *t = mask->texels + i * 4;
+        if (!(t[3] > 0.0f)) continue;
+        double q[2];
+        texel_centre(mask, i, q);
+        low += q[0] < 0.5;
+        high += q[0] >= 0.5;
+        /* The centre sits on this texel's side of the seam: a few
+         * triangles away in u, not across the whole texture. */
+        double du = fabs(q[0] - t[0]);
+        if (du > worst) worst = du;
+    }
+    (void)p;
+    CHECK(low > 0 && high > 0);
+    CHECK(worst <= 4.0 / 48.0);
+    pelt__surface_index_destroy(index);
+    pelt__wetness_destroy(mask);
+    pelt_mesh_destroy(s);
+}
+
 /* Time per droplet of about 4 texels radius on a ~100k-triangle atlas. */
 static void droplet_cost_follows_footprint(void)
 {
@@ -502,6 +552,7 @@ int main(void)
     RUN(negative_drop_dries_the_clump);
     RUN(bad_arguments_are_rejected);
     RUN(torus_border_drop_covers_the_ball);
+    RUN(drop_on_uv_seam_keeps_each_side_local);
     RUN(droplet_cost_follows_footprint);
     return check_summary();
 }
