@@ -171,6 +171,8 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     }
     f->tips = pelt__strands_tip_offsets(f->strands);
     st = pelt__wetness_create(d.mask_size, d.mask_size, &f->wetness, err);
+    if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->surface, err);
+    if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->bvh, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
@@ -209,6 +211,8 @@ void pelt_fur_destroy(pelt_fur *f)
     free(f->color_texture);
     pelt__strands_destroy(f->strands);
     pelt__wetness_destroy(f->wetness);
+    pelt__surface_index_destroy(f->surface);
+    pelt__bvh_destroy(f->bvh);
     free(f);
 }
 
@@ -268,9 +272,17 @@ pelt_status pelt_fur_add_droplets(pelt_fur *f, const pelt_droplet *d, size_t cou
 pelt_status pelt_fur_add_droplet_at(pelt_fur *f, size_t triangle, const float bary[3],
                                     float radius_world, float wetness, pelt_error *err)
 {
-    pelt_droplet d;
-    pelt_status st = pelt__droplet_on_surface(f->mesh, triangle, bary, radius_world, wetness, &d, err);
-    return st == PELT_OK ? pelt__wetness_add_droplet(f->wetness, &d, err) : st;
+    /* By distance on the surface, across patch borders (issue 5). */
+    return pelt__droplet_surface(f->wetness, f->mesh, f->surface, triangle, bary, radius_world,
+                                 wetness, err);
+}
+
+bool pelt_fur_add_droplet_ray(pelt_fur *f, const float origin[3], const float direction[3],
+                              float radius_world, float wetness)
+{
+    pelt__hit hit;
+    if (!pelt__bvh_raycast(f->bvh, origin, direction, INFINITY, &hit)) return false;
+    return pelt_fur_add_droplet_at(f, hit.triangle, hit.bary, radius_world, wetness, NULL) == PELT_OK;
 }
 
 void pelt_fur_add_random_droplets(pelt_fur *f, const pelt_rain *rain, unsigned count)

@@ -4,7 +4,9 @@
 
 #include "pelt/fur.h"
 
+#include "core/raycast.h"
 #include "core/strand.h"
+#include "core/surface_droplet.h"
 #include "core/wetness.h"
 
 struct pelt_fur {
@@ -23,6 +25,8 @@ struct pelt_fur {
     float time;              /* seconds stepped since creation or reset */
     float fur_per_uv[2];     /* fur tiles per uv unit along u and v */
     pelt__wetness *wetness;  /* the wetness mask over the uvs */
+    pelt__surface_index *surface; /* droplets by distance on the surface */
+    pelt__bvh *bvh;          /* droplets by a ray */
     pelt_rain rain;
     pelt__rain_state rain_state;
     float dry_rate;

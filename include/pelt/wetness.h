@@ -41,10 +41,18 @@ pelt_status pelt_fur_add_droplet(pelt_fur *fur, const pelt_droplet *droplet, pel
 pelt_status pelt_fur_add_droplets(pelt_fur *fur, const pelt_droplet *droplets, size_t count,
                                   pelt_error *err);
 
-/* A droplet at a surface point: triangle index and barycentrics, radius in
- * world units (converted through that triangle's uv scale). */
+/* A droplet at a surface point (triangle index and barycentrics) that wets
+ * by distance on the surface, radius in world units: across patch borders
+ * every patch within the radius is wetted, each texel storing the clump
+ * centre in its own patch's coordinates, so the clump renders as one. */
 pelt_status pelt_fur_add_droplet_at(pelt_fur *fur, size_t triangle, const float bary[3],
                                     float radius_world, float wetness, pelt_error *err);
+
+/* A droplet where a ray (in mesh coordinates) first hits the mesh, found
+ * through a BVH built with the fur (fast enough per mouse event on a
+ * 365k-triangle mesh). False when the ray misses. */
+bool pelt_fur_add_droplet_ray(pelt_fur *fur, const float origin[3], const float direction[3],
+                              float radius_world, float wetness);
 
 /* `count` droplets at seeded random places, radii and wetness from the
  * ranges of `rain` (its rate is ignored). */

@@ -1,0 +1,176 @@
+/* Fur over a patch atlas, rendered: a droplet that lands on a patch border
+ * wets by distance on the surface and makes one round clump (issue 5). */
+#include "gl_test.h"
+
+#include "core/mesh_internal.h"
+#include "pelt/atlas.h"
+
+enum { W = 200, H = 200 };
+
+static pelt_headless *gl;
+
+typedef struct drop_at {
+    size_t triangle;
+    float bary[3];
+    float radius;
+    const float *uv; /* NULL: surface droplet; else a plain uv-space droplet here */
+    float uv_radius;
+} drop_at;
+
+static void add_drop(pelt_fur *fur, void *user)
+{
+    const drop_at *d = user;
+    if (d->uv) {
+        pelt_droplet dr = {{d->uv[0], d->uv[1]}, d->uv_radius, 1.0f};
+        CHECK(pelt_fur_add_droplet(fur, &dr, NULL) == PELT_OK);
+    } else {
+        CHECK(pelt_fur_add_droplet_at(fur, d->triangle, d->bary, d->radius, 1.0f, NULL) == PELT_OK);
+    }
+}
+
+/* The changed pixels' largest 4-connected blob: its share of all changed
+ * pixels and the ratio of its largest to smallest radial extent over 16
+ * directions around its centroid. */
+static void blob_shape(const uint8_t *a, const uint8_t *b, double *share, double *roundness,
+                       size_t *pixels)
+{
+    static uint8_t mask[W * H];
+    static int label[W * H], queue[W * H];
+    size_t changed = 0;
+    for (int i = 0; i < W * H; i++) {
+        int d = 0;
+        for (int k = 0; k < 3; k++) {
+            int e = abs((int)a[4 * i + k] - (int)b[4 * i + k]);
+            if (e > d) d = e;
+        }
+        mask[i] = d > 12;
+        label[i] = 0;
+        changed += mask[i];
+    }
+    int best = 0, best_size = 0, next = 0;
+    for (int i = 0; i < W * H; i++) {
+        if (!mask[i] || label[i]) continue;
+        int head = 0, tail = 0, size = 0;
+        label[i] = ++next;
+        queue[tail++] = i;
+        while (head < tail) {
+            int p = queue[head++], x = p % W, y = p / W;
+            size++;
+            const int nb[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+            for (int k = 0; k < 4; k++) {
+                int nx = x + nb[k][0], ny = y + nb[k][1];
+                if (nx < 0 || ny < 0 || nx >= W || ny >= H) continue;
+                int q = ny * W + nx;
+                if (mask[q] && !label[q]) {
+                    label[q] = next;
+                    queue[tail++] = q;
+                }
+            }
+        }
+        if (size > best_size) best_size = size, best = next;
+    }
+    double cx = 0, cy = 0;
+    for (int i = 0; i < W * H; i++)
+        if (label[i] == best && best) cx += i % W, cy += i / W;
+    cx /= best_size > 0 ? best_size : 1;
+    cy /= best_size > 0 ? best_size : 1;
+    double extent[16] = {0};
+    for (int i = 0; i < W * H; i++) {
+        if (label[i] != best || !best) continue;
+        double dx = i % W - cx, dy = i / W - cy, r = sqrt(dx * dx + dy * dy);
+        int bin = (int)((atan2(dy, dx) + 3.14159265358979) / (2 * 3.14159265358979) * 16) % 16;
+        if (r > extent[bin]) extent[bin] = r;
+    }
+    double lo = 1e9, hi = 0;
+    for (int k = 0; k < 16; k++) lo = fmin(lo, extent[k]), hi = fmax(hi, extent[k]);
+    *share = changed ? (double)best_size / (double)changed : 0.0;
+    *roundness = lo > 0 ? hi / lo : 1e9;
+    *pixels = (size_t)best_size;
+}
+
+static void droplet_on_patch_border_makes_one_round_clump(void)
+{
+    pelt_mesh *sphere = NULL;
+    pelt_atlas *atlas = NULL;
+    CHECK(pelt_mesh_sphere(1.0f, 48, 24, &sphere, NULL) == PELT_OK);
+    pelt_atlas_desc ad = {.mode = PELT_ATLAS_PATCHES, .mask_size = 512};
+    CHECK(sphere && pelt_atlas_create(sphere, &ad, &atlas, NULL) == PELT_OK);
+    if (!atlas) {
+        pelt_mesh_destroy(sphere);
+        return;
+    }
+    const pelt_mesh *m = pelt_atlas_mesh(atlas);
+    const uint32_t *patch = pelt_atlas_triangle_patches(atlas);
+    /* A corner on a patch border, facing the camera (+Z) as well as can be:
+     * a position whose triangles belong to two patches. */
+    size_t best_t = 0;
+    int best_c = 0;
+    float best_z = -2.0f;
+    for (size_t t = 0; t < m->triangle_count; t++)
+        for (int c = 0; c < 3; c++) {
+            const float *p = m->positions + 3 * m->indices[3 * t + c];
+            if (p[2] <= best_z || fabsf(p[1]) > 0.5f) continue;
+            bool border = false;
+            for (size_t u = 0; u < m->triangle_count && !border; u++) {
+                if (patch[u] == patch[t]) continue;
+                for (int k = 0; k < 3; k++) {
+                    const float *q = m->positions + 3 * m->indices[3 * u + k];
+                    if (q[0] == p[0] && q[1] == p[1] && q[2] == p[2]) border = true;
+                }
+            }
+            if (border) best_z = p[2], best_t = t, best_c = c;
+        }
+    CHECK(best_z > 0.7f);
+    printf("  border corner at z %.3f\n", (double)best_z);
+    const float *p = m->positions + 3 * m->indices[3 * best_t + best_c];
+    pelt_camera cam = {0};
+    cam.yaw = atan2f(p[0], p[2]) * 57.29578f;
+    cam.pitch = asinf(p[1]) * 57.29578f;
+    cam.distance = 1.4f;
+    memcpy(cam.target, p, sizeof cam.target);
+    cam.fov_y = 40.0f;
+    pelt_fur_desc d = {.length = 0.08f, .mask_size = 512};
+    drop_at surface = {best_t, {0, 0, 0}, 0.15f, NULL, 0};
+    surface.bary[best_c] = 1.0f;
+    uint8_t *dry = gl_test_render(gl, m, &d, &cam, NULL, NULL, NULL);
+    uint8_t *wet = gl_test_render(gl, m, &d, &cam, NULL, add_drop, &surface);
+    /* The same drop as a plain uv-space droplet: it stops at the border. */
+    const float *uv = m->uvs + 2 * m->indices[3 * best_t + best_c];
+    drop_at flat = {0, {0, 0, 0}, 0, uv, 0.15f * pelt_atlas_get_stats(atlas)->texel_density /
+                                                pelt_atlas_get_stats(atlas)->fur_per_atlas};
+    uint8_t *cut = gl_test_render(gl, m, &d, &cam, NULL, add_drop, &flat);
+    CHECK(dry && wet && cut);
+    if (dry && wet && cut) {
+        stbi_write_png(PELT_TEST_OUT "/border_clump.png", W, H, 4, wet, W * 4);
+        stbi_write_png(PELT_TEST_OUT "/border_dry.png", W, H, 4, dry, W * 4);
+        stbi_write_png(PELT_TEST_OUT "/border_clump_uv_space.png", W, H, 4, cut, W * 4);
+        double share, round, cshare, cround;
+        size_t px, cpx;
+        blob_shape(dry, wet, &share, &round, &px);
+        blob_shape(dry, cut, &cshare, &cround, &cpx);
+        printf("  surface droplet on a border: one blob of %zu px holds %.3f of the change, "
+               "extent ratio %.2f\n  uv-space droplet there: %zu px, share %.3f, ratio %.2f\n",
+               px, share, round, cpx, cshare, cround);
+        CHECK(px > 400);
+        CHECK(share > 0.9);
+        CHECK(round < 1.6);
+    }
+    free(dry);
+    free(wet);
+    free(cut);
+    pelt_atlas_destroy(atlas);
+    pelt_mesh_destroy(sphere);
+}
+
+int main(void)
+{
+    pelt_error err = {0};
+    pelt_headless_desc hd = {W, H, 0, false};
+    if (pelt_headless_create(&hd, &gl, &err) != PELT_OK) {
+        fprintf(stderr, "no OpenGL: %s\n", err.message);
+        return 1;
+    }
+    RUN(droplet_on_patch_border_makes_one_round_clump);
+    pelt_headless_destroy(gl);
+    return check_summary();
+}
