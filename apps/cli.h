@@ -42,6 +42,7 @@ typedef struct cli_session {
     uint8_t *pixels; /* width * height * 4 */
     double atlas_seconds; /* atlas build time, 0 when none was built */
     bool atlas_from_cache;
+    bool settled;         /* past the settling before the first frame */
 } cli_session;
 
 /* Loads the mesh, makes the fur, the context and the renderer. Prints the

@@ -146,8 +146,6 @@ static bool apply_wetness(const char *cmd, const pelt_scene *sc, pelt_fur *fur)
             return false;
         }
     }
-    pelt_fur_set_rain(fur, &w->rain);
-    pelt_fur_set_dry_rate(fur, w->dry_rate);
     return true;
 }
 
@@ -234,6 +232,10 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
     /* Let the fur settle under the forces of time 0 before the first
      * frame, so a still shows it bent by gravity rather than mid-spring. */
     for (int i = 0; i < 90; i++) cli_session_advance(s, sc, 0.0f, 1.0f / 60.0f);
+    /* Rain and drying start with the first frame, not during the settling. */
+    pelt_fur_set_rain(s->fur, &sc->wetness.rain);
+    pelt_fur_set_dry_rate(s->fur, sc->wetness.dry_rate);
+    s->settled = true;
     return true;
 }
 
@@ -253,6 +255,9 @@ void cli_session_advance(cli_session *s, const pelt_scene *sc, float t, float dt
     pelt_fur_set_transform(s->fur, s->view.model, NULL);
     pelt_forces forces = sc->forces;
     pelt_scene_wind_at(sc, t, forces.wind);
+    const pelt_scene_wetness *w = &sc->wetness;
+    bool raining = t >= w->rain_start && (w->rain_stop == 0.0f || t < w->rain_stop);
+    if (s->settled) pelt_fur_set_rain_rate(s->fur, raining ? w->rain.rate : 0.0f);
     pelt_fur_step(s->fur, dt, &forces);
 }
 

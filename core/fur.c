@@ -173,6 +173,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     st = pelt__wetness_create(d.mask_size, d.mask_size, &f->wetness, err);
     if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->surface, err);
     if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->bvh, err);
+    if (st == PELT_OK) st = pelt__fur_rain_init(f, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
@@ -213,6 +214,7 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__wetness_destroy(f->wetness);
     pelt__surface_index_destroy(f->surface);
     pelt__bvh_destroy(f->bvh);
+    free(f->area_cdf);
     free(f);
 }
 
@@ -228,7 +230,7 @@ void pelt_fur_step(pelt_fur *f, float dt, const pelt_forces *forces)
 {
     if (!(dt > 0.0f)) return;
     pelt__strands_step(f->strands, dt, forces, f->time);
-    if (f->rain.rate > 0.0f) pelt__wetness_rain(f->wetness, &f->rain, &f->rain_state, dt);
+    if (f->rain.rate > 0.0f) pelt__fur_rain_step(f, dt);
     if (f->dry_rate > 0.0f) pelt__wetness_dry(f->wetness, f->dry_rate, dt);
     f->time += dt;
     f->tips_version++;
@@ -285,20 +287,16 @@ bool pelt_fur_add_droplet_ray(pelt_fur *f, const float origin[3], const float di
     return pelt_fur_add_droplet_at(f, hit.triangle, hit.bary, radius_world, wetness, NULL) == PELT_OK;
 }
 
-void pelt_fur_add_random_droplets(pelt_fur *f, const pelt_rain *rain, unsigned count)
-{
-    /* Rain of `count` droplets per second for one second. */
-    pelt_rain r = *rain;
-    r.rate = (float)count;
-    pelt__rain_state state;
-    pelt__rain_start(&state, &r);
-    pelt__wetness_rain(f->wetness, &r, &state, 1.0f);
-}
-
 void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain)
 {
     f->rain = *rain;
-    pelt__rain_start(&f->rain_state, rain);
+    f->rain_rng = pelt__rng_seed(rain->seed, 0x7261696eULL);
+    f->rain_carry = 0.0;
+}
+
+void pelt_fur_set_rain_rate(pelt_fur *f, float rate)
+{
+    f->rain.rate = isfinite(rate) && rate > 0.0f ? rate : 0.0f;
 }
 
 void pelt_fur_set_dry_rate(pelt_fur *f, float rate)

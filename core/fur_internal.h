@@ -5,6 +5,7 @@
 #include "pelt/fur.h"
 
 #include "core/raycast.h"
+#include "core/rng.h"
 #include "core/strand.h"
 #include "core/surface_droplet.h"
 #include "core/wetness.h"
@@ -28,9 +29,16 @@ struct pelt_fur {
     pelt__surface_index *surface; /* droplets by distance on the surface */
     pelt__bvh *bvh;          /* droplets by a ray */
     pelt_rain rain;
-    pelt__rain_state rain_state;
+    pelt__rng rain_rng;
+    double rain_carry;       /* fraction of a drop carried to the next step */
+    float *area_cdf;         /* cumulative triangle areas, for random drops */
+    float world_per_uv;      /* mean world length of one mask-uv unit */
     float dry_rate;
 };
+
+/* Rain and random drops (core/fur_rain.c). */
+pelt_status pelt__fur_rain_init(pelt_fur *fur, pelt_error *err);
+void pelt__fur_rain_step(pelt_fur *fur, float dt);
 
 /* Fills the zero fields of `d` with defaults for `mesh`. */
 void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh);

@@ -54,14 +54,19 @@ pelt_status pelt_fur_add_droplet_at(pelt_fur *fur, size_t triangle, const float 
 bool pelt_fur_add_droplet_ray(pelt_fur *fur, const float origin[3], const float direction[3],
                               float radius_world, float wetness);
 
-/* `count` droplets at seeded random places, radii and wetness from the
- * ranges of `rain` (its rate is ignored). */
+/* `count` droplets at seeded random surface points (uniform by area),
+ * radii and wetness from the ranges of `rain` (its rate is ignored); radii
+ * in mask units convert to world units by the mesh's mean uv scale. Each
+ * wets by distance on the surface, across patch borders. */
 void pelt_fur_add_random_droplets(pelt_fur *fur, const pelt_rain *rain, unsigned count);
 
-/* Rain that pelt_fur_step lets fall (rate 0 stops it) and the drying rate:
- * wetness lost per second. */
+/* Rain that pelt_fur_step lets fall (rate 0 stops it): drops fall along
+ * the mesh's -Y axis from above its bounds and wet where they hit (top
+ * surfaces first). And the drying rate: wetness lost per second. */
 void pelt_fur_set_rain(pelt_fur *fur, const pelt_rain *rain);
 void pelt_fur_set_dry_rate(pelt_fur *fur, float rate_per_second);
+/* Changes only the rain's rate (0 stops it), keeping its random sequence. */
+void pelt_fur_set_rain_rate(pelt_fur *fur, float drops_per_second);
 
 /* Paints wetness from an 8-bit greyscale image (Silva Fig. 12c): grey
  * level times `wetness`, cut into clumps. */
