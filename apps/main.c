@@ -14,6 +14,7 @@ static void usage(FILE *f)
             "  render [SCENE.json] [flags]  render a scene (default: the Table 1 torus) to PNG\n"
             "  bench  [SCENE.json] [flags]  time frames: median, min, max ms per frame\n"
             "  info   MESH                  load and validate a mesh, print what was found\n"
+            "  atlas  MESH [-o atlas.png]   build a mesh's atlas, draw patches + direction field\n"
             "\n"
             "Run 'pelt COMMAND --help' for the flags of a command.\n",
             PELT_VERSION_STRING);
@@ -37,6 +38,7 @@ int main(int argc, char **argv)
     if (!strcmp(cmd, "render")) return cmd_render(argc - 2, argv + 2);
     if (!strcmp(cmd, "bench")) return cmd_bench(argc - 2, argv + 2);
     if (!strcmp(cmd, "info")) return cmd_info(argc - 2, argv + 2);
+    if (!strcmp(cmd, "atlas")) return cmd_atlas(argc - 2, argv + 2);
     fprintf(stderr, "pelt: unknown command '%s'\n\n", cmd);
     usage(stderr);
     return 2;
