@@ -83,6 +83,9 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         !(d->wet_darken >= 0.0f && d->wet_darken < 1.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "clump blend must be in [0,1], tightness in (0,1], wet darkening in [0,1)");
+    if (!(d->slant >= 0.0f && d->slant <= 60.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur slant must be 0..60 degrees, got %g",
+                          (double)d->slant);
     if (!(d->color_scale > 0.0f) || !isfinite(d->color_scale))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour scale must be positive");
     if (!isfinite(d->curl_frequency) || !isfinite(d->curl_radius) || d->curl_radius < 0.0f)

@@ -30,6 +30,15 @@ pelt_vec3 pelt__fur_curl(pelt_vec3 u, pelt_vec3 v, float omega, float K, float r
 pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
                             float omega, float K, float rho, float h);
 
+/* Combing (Lengyel et al. §3, hair direction): the shells sheared along
+ * the comb direction u (unit, tangent), slant = tan of the slant angle:
+ * offset h L0 slant u. */
+pelt_vec3 pelt__fur_comb(pelt_vec3 u, float L0, float slant, float h);
+
+/* T(h) of the combed strand: the unit derivative of beta + phi + comb. */
+pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
+                                   float omega, float K, float rho, float slant, float h);
+
 /* The four looks of Silva Fig. 7 by name: "straight", "wavy",
  * "few-large-curls", "many-small-curls".
  * omega in radians over the full length, radius as a fraction of L0

@@ -187,6 +187,7 @@ static const key_def scene_keys[] = {
     FLT("fur.shadow", fur.shadow, 1, BIG, F_ZERO_OK),
     FLT("fur.curl_frequency", fur.curl_frequency, 0, BIG, 0),
     FLT("fur.curl_radius", fur.curl_radius, 0, BIG, 0),
+    FLT("fur.slant", fur.slant, 0, 60, 0),
 
     PATH("texture.image", texture.image),
     ENUM("texture.pattern", texture.pattern, pattern_names),

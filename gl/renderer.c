@@ -9,6 +9,7 @@
 #include "core/vec.h"
 #include "gl/shader.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -20,7 +21,7 @@ typedef struct uniforms {
     GLint color, tip_color, specular, shininess, shadow, eye;
     GLint light_dir, light_color, ambient;
     GLint fur, color_tex, mask;
-    GLint clump_blend, clump_tightness, wet_darken, fur_per_uv, color_scale;
+    GLint clump_blend, clump_tightness, wet_darken, fur_per_uv, color_scale, slant;
 } uniforms;
 
 struct pelt_renderer {
@@ -48,6 +49,7 @@ static void find_uniforms(GLuint p, uniforms *u)
     LOC(mask, "u_mask"); LOC(clump_blend, "u_clump_blend");
     LOC(clump_tightness, "u_clump_tightness"); LOC(wet_darken, "u_wet_darken");
     LOC(fur_per_uv, "u_fur_per_uv"); LOC(color_scale, "u_color_scale");
+    LOC(slant, "u_slant");
 #undef LOC
     glUseProgram(p);
     glUniform1i(u->fur, UNIT_FUR);
@@ -250,6 +252,7 @@ static void set_common(const pelt_renderer *r, const uniforms *u, const pelt_vie
     glUniform1f(u->wet_darken, d->wet_darken);
     glUniform2fv(u->fur_per_uv, 1, r->fur->fur_per_uv);
     glUniform1f(u->color_scale, d->color_scale);
+    glUniform1f(u->slant, tanf(d->slant * 3.14159265f / 180.0f));
 }
 
 void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)

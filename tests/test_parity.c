@@ -81,17 +81,21 @@ static const char shape_main[] =
     "  cell_inputs(floor(gl_FragCoord.xy), n, u, tip, h, s);\n"
     "  vec3 v = cross(n, u);\n"
     "  float L0 = 0.8, omega = 30.0 * s, K = 0.1 + 0.2 * s, rho = fract(s * 7.0);\n"
+    "  float slant = 1.2 * s;\n"
     "  vec3 r = u_which == 0 ? fur_bend(n, L0, tip, h)\n"
     "         : u_which == 1 ? fur_curl(u, v, omega, K, rho, h)\n"
-    "         : fur_tangent(n, L0, tip, u, v, omega, K, rho, h);\n"
+    "         : u_which == 2 ? fur_tangent(n, L0, tip, u, v, omega, K, rho, h)\n"
+    "         : u_which == 3 ? fur_comb(u, L0, slant, h)\n"
+    "         : fur_tangent_combed(n, L0, tip, u, v, omega, K, rho, slant, h);\n"
     "  o = vec4(r, 0.0);\n"
     "}\n";
 
 /* beta(h), phi(h) and T(h) of Silva Eq. 1 and 4 in the vertex shader. */
 static void fur_shape_glsl_matches_c(void)
 {
-    const char *which_names[] = {"fur_bend", "fur_curl", "fur_tangent"};
-    for (int which = 0; which < 3; which++) {
+    const char *which_names[] = {"fur_bend", "fur_curl", "fur_tangent", "fur_comb",
+                                 "fur_tangent_combed"};
+    for (int which = 0; which < 5; which++) {
         char define[64];
         snprintf(define, sizeof define, "#define u_which %d\n", which);
         const char *fs[] = {pelt__shader_fur_shape, inputs_glsl, define, shape_main, NULL};
@@ -105,9 +109,13 @@ static void fur_shape_glsl_matches_c(void)
                 pelt_vec3 v = v3_cross(n, u);
                 float L0 = 0.8f, omega = 30.0f * s, K = 0.1f + 0.2f * s;
                 float rho = s * 7.0f - floorf(s * 7.0f);
+                float slant = 1.2f * s;
                 pelt_vec3 r = which == 0   ? pelt__fur_bend(n, L0, tip, h)
                               : which == 1 ? pelt__fur_curl(u, v, omega, K, rho, h)
-                                           : pelt__fur_tangent(n, L0, tip, u, v, omega, K, rho, h);
+                              : which == 2 ? pelt__fur_tangent(n, L0, tip, u, v, omega, K, rho, h)
+                              : which == 3 ? pelt__fur_comb(u, L0, slant, h)
+                                           : pelt__fur_tangent_combed(n, L0, tip, u, v, omega, K,
+                                                                      rho, slant, h);
                 const float *g = out + 4 * (y * W + x);
                 double err = fmax(fabs(g[0] - r.x), fmax(fabs(g[1] - r.y), fabs(g[2] - r.z)));
                 if (err > worst) worst = err;

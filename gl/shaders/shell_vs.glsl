@@ -13,6 +13,7 @@ uniform float u_layers;
 uniform float u_length;
 uniform float u_curl_frequency;
 uniform float u_curl_radius;
+uniform float u_slant;                  // tan of the comb angle (Lengyel §3)
 uniform sampler2D u_mask;               // wetness mask, rho in alpha
 
 out vec2 v_uv;
@@ -32,8 +33,10 @@ void main()
     vec3 v = cross(n, u) * a_tangent.w;
     float rho = textureLod(u_mask, a_uv, 0.0).a;
     vec3 offset = fur_bend(n, u_length, a_tip, h)
-                + fur_curl(u, v, u_curl_frequency, u_curl_radius, rho, h);
-    vec3 t = fur_tangent(n, u_length, a_tip, u, v, u_curl_frequency, u_curl_radius, rho, h);
+                + fur_curl(u, v, u_curl_frequency, u_curl_radius, rho, h)
+                + fur_comb(u, u_length, u_slant, h);
+    vec3 t = fur_tangent_combed(n, u_length, a_tip, u, v, u_curl_frequency, u_curl_radius, rho,
+                                u_slant, h);
     vec4 world = u_model * vec4(a_position + offset, 1.0);
     v_world = world.xyz;
     v_tangent = mat3(u_model) * t;

@@ -42,6 +42,9 @@ typedef struct pelt_fur_desc {
     float clump_tightness;   /* s in (0,1]: 1 = tips meet at the clump centre, default 0.9 */
     float wet_darken;        /* brightness fully wet fur loses, [0,1), default 0.35 */
     float color_scale;       /* colour texture repeats per uv unit, default 1 */
+    float slant;             /* comb angle in degrees, 0..60, along the fur
+                                texture's u axis (the atlas's direction
+                                field), Lengyel et al. §3; default 0 */
 } pelt_fur_desc;
 
 /* Fills curl_frequency and curl_radius of `d` from one of the curl looks
