@@ -368,7 +368,7 @@ static pelt_status numbers(const ctx *c, const key_def *d, const char *key, cons
     for (const cJSON *e = v->child; e; e = e->next, i++) {
         char sub[KEY_MAX + 16];
         snprintf(sub, sizeof sub, "%s[%d]", key, i);
-        double x;
+        double x = 0.0;
         pelt_status st = number(c, d, sub, e, false, &x);
         if (st != PELT_OK) return st;
         tmp[i] = (float)x;
