@@ -297,6 +297,8 @@ void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain)
     f->rain_carry = 0.0;
 }
 
+void pelt_fur_clear_wetness(pelt_fur *f) { pelt__wetness_clear(f->wetness); }
+
 void pelt_fur_set_rain_rate(pelt_fur *f, float rate)
 {
     f->rain.rate = isfinite(rate) && rate > 0.0f ? rate : 0.0f;

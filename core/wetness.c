@@ -168,10 +168,19 @@ static void prefetch_droplet(const pelt__wetness *m, const pelt_droplet *d)
     if (!texel_range(d->center[0], d->radius, m->width, &x0, &x1) ||
         !texel_range(d->center[1], d->radius, m->height, &y0, &y1))
         return;
+    /* Only the rows and chords blend_droplet will touch. */
+    float r2 = d->radius * d->radius, inv_h = 1.0f / (float)m->height;
     for (unsigned y = y0; y <= y1; y++) {
-        const float *row = m->texels + ((size_t)y * m->width + x0) * 4;
-        const char *end = (const char *)(row + (size_t)(x1 - x0) * 4);
-        for (const char *p = (const char *)row; p <= end; p += 64) __builtin_prefetch(p, 1);
+        float dy = ((float)y + 0.5f) * inv_h - d->center[1];
+        if (dy * dy > r2) continue;
+        float half = sqrtf(r2 - dy * dy);
+        float fa = floorf((d->center[0] - half) * (float)m->width - 0.5f);
+        float fb = ceilf((d->center[0] + half) * (float)m->width - 0.5f);
+        unsigned xa = fa > (float)x0 ? (unsigned)fa : x0;
+        unsigned xb = fb < (float)x1 ? (fb < (float)x0 ? x0 : (unsigned)fb) : x1;
+        const char *p = (const char *)(m->texels + ((size_t)y * m->width + xa) * 4);
+        const char *end = (const char *)(m->texels + ((size_t)y * m->width + xb) * 4);
+        for (; p <= end + 15; p += 64) __builtin_prefetch(p, 1);
     }
 #else
     (void)m;
@@ -246,7 +255,7 @@ pelt_status pelt__wetness_add_droplets(pelt__wetness *m, const pelt_droplet *d, 
     /* Software pipelining: the rows of a droplet a few places ahead are
      * fetched while this one blends, so random droplets overlap their
      * memory latency. */
-    enum { AHEAD = 4 };
+    enum { AHEAD = 8 };
     for (size_t i = 0; i < n && i < AHEAD; i++) prefetch_droplet(m, &d[i]);
     for (size_t i = 0; i < n; i++) {
         if (i + AHEAD < n) prefetch_droplet(m, &d[i + AHEAD]);

@@ -65,6 +65,9 @@ void pelt_fur_add_random_droplets(pelt_fur *fur, const pelt_rain *rain, unsigned
  * surfaces first). And the drying rate: wetness lost per second. */
 void pelt_fur_set_rain(pelt_fur *fur, const pelt_rain *rain);
 void pelt_fur_set_dry_rate(pelt_fur *fur, float rate_per_second);
+/* Dries all the fur at once (a towel). */
+void pelt_fur_clear_wetness(pelt_fur *fur);
+
 /* Changes only the rain's rate (0 stops it), keeping its random sequence. */
 void pelt_fur_set_rain_rate(pelt_fur *fur, float drops_per_second);
 
