@@ -69,6 +69,12 @@ pelt_mesh *pelt_atlas_take_mesh(pelt_atlas *a)
     if (!a) return NULL;
     pelt_mesh *m = a->mesh;
     a->mesh = NULL;
+    /* The comb weights go with the mesh, so the renderer stands the fur up
+     * where the direction field vanishes. */
+    if (m && a->weights && !m->comb_weights) {
+        m->comb_weights = pelt__calloc(m->vertex_count, sizeof(float));
+        if (m->comb_weights) memcpy(m->comb_weights, a->weights, m->vertex_count * sizeof(float));
+    }
     return m;
 }
 const pelt_atlas_stats *pelt_atlas_get_stats(const pelt_atlas *a) { return a ? &a->stats : NULL; }

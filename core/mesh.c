@@ -49,6 +49,7 @@ void pelt_mesh_destroy(pelt_mesh *mesh)
     free(mesh->uvs);
     free(mesh->fur_uvs);
     free(mesh->tangents);
+    free(mesh->comb_weights);
     free(mesh->indices);
     free(mesh);
 }

@@ -57,8 +57,9 @@ static void find_uniforms(GLuint p, uniforms *u)
     glUniform1i(u->mask, UNIT_MASK);
 }
 
-/* Interleaved static vertex data: position, normal, uv, fur uv, tangent. */
-enum { STATIC_FLOATS = 3 + 3 + 2 + 2 + 4 };
+/* Interleaved static vertex data: position, normal, uv, fur uv, tangent,
+ * comb weight. */
+enum { STATIC_FLOATS = 3 + 3 + 2 + 2 + 4 + 1 };
 
 static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
 {
@@ -72,6 +73,7 @@ static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
         memcpy(v + 6, m->uvs + 2 * i, 2 * sizeof(float));
         memcpy(v + 8, r->fur->fur_uvs + 2 * i, 2 * sizeof(float));
         memcpy(v + 10, m->tangents + 4 * i, 4 * sizeof(float));
+        v[14] = m->comb_weights ? m->comb_weights[i] : 1.0f;
     }
     glGenVertexArrays(1, &r->vao);
     glBindVertexArray(r->vao);
@@ -81,12 +83,14 @@ static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
                  data, GL_STATIC_DRAW);
     free(data);
     const GLsizei stride = STATIC_FLOATS * sizeof(float);
-    const int sizes[] = {3, 3, 2, 2, 4};
+    const int sizes[] = {3, 3, 2, 2, 4, 1};
+    const GLuint locations[] = {0, 1, 2, 3, 4, 6};
     size_t offset = 0;
-    for (GLuint a = 0; a < 5; a++) {
+    for (GLuint k = 0; k < 6; k++) {
+        GLuint a = locations[k];
         glEnableVertexAttribArray(a);
-        glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, (const void *)offset);
-        offset += (size_t)sizes[a] * sizeof(float);
+        glVertexAttribPointer(a, sizes[k], GL_FLOAT, GL_FALSE, stride, (const void *)offset);
+        offset += (size_t)sizes[k] * sizeof(float);
     }
     /* Strand tips change every frame: their own buffer, updated in place. */
     glGenBuffers(1, &r->vbo_tips);

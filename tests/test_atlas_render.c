@@ -162,6 +162,35 @@ static void droplet_on_patch_border_makes_one_round_clump(void)
     pelt_mesh_destroy(sphere);
 }
 
+/* The comb weights travel with the atlas mesh to the renderer: where a
+ * downward direction field vanishes (the poles) the fur stands up. */
+static void comb_weights_stand_fur_up_at_the_poles(void)
+{
+    pelt_mesh *sphere = NULL;
+    pelt_atlas *atlas = NULL;
+    CHECK(pelt_mesh_sphere(1.0f, 48, 24, &sphere, NULL) == PELT_OK);
+    pelt_atlas_desc ad = {.mode = PELT_ATLAS_PATCHES};
+    CHECK(sphere && pelt_atlas_create(sphere, &ad, &atlas, NULL) == PELT_OK);
+    pelt_mesh *m = atlas ? pelt_atlas_take_mesh(atlas) : NULL;
+    CHECK(m && m->comb_weights);
+    if (m && m->comb_weights) {
+        double pole = 0.0, equator = 1.0;
+        size_t at_pole = 0, on_equator = 0;
+        for (size_t i = 0; i < m->vertex_count; i++) {
+            float y = m->positions[3 * i + 1], w = m->comb_weights[i];
+            if (fabsf(y) > 0.999f) pole = fmax(pole, w), at_pole++;
+            if (fabsf(y) < 0.05f) equator = fmin(equator, w), on_equator++;
+        }
+        CHECK(at_pole > 0 && on_equator > 0);
+        printf("  largest weight at a pole %.3f, smallest on the equator %.3f\n", pole, equator);
+        CHECK(pole < 0.2);
+        CHECK(equator > 0.8);
+    }
+    pelt_mesh_destroy(m);
+    pelt_atlas_destroy(atlas);
+    pelt_mesh_destroy(sphere);
+}
+
 int main(void)
 {
     pelt_error err = {0};
@@ -171,6 +200,7 @@ int main(void)
         return 1;
     }
     RUN(droplet_on_patch_border_makes_one_round_clump);
+    RUN(comb_weights_stand_fur_up_at_the_poles);
     pelt_headless_destroy(gl);
     return check_summary();
 }
