@@ -22,6 +22,7 @@ typedef struct uniforms {
     GLint light_dir, light_color, ambient;
     GLint fur, color_tex, mask;
     GLint clump_blend, clump_tightness, wet_darken, fur_per_uv, color_scale, slant;
+    GLint first_layer;
 } uniforms;
 
 struct pelt_renderer {
@@ -49,7 +50,7 @@ static void find_uniforms(GLuint p, uniforms *u)
     LOC(mask, "u_mask"); LOC(clump_blend, "u_clump_blend");
     LOC(clump_tightness, "u_clump_tightness"); LOC(wet_darken, "u_wet_darken");
     LOC(fur_per_uv, "u_fur_per_uv"); LOC(color_scale, "u_color_scale");
-    LOC(slant, "u_slant");
+    LOC(slant, "u_slant"); LOC(first_layer, "u_first_layer");
 #undef LOC
     glUseProgram(p);
     glUniform1i(u->fur, UNIT_FUR);
@@ -284,16 +285,20 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)
         glDrawElements(GL_TRIANGLES, r->index_count, GL_UNSIGNED_INT, NULL);
     }
     r->shell_draw_calls = 0;
-    if (!r->desc.no_shells) {
+    unsigned layers = r->fur->desc.layers, first = r->desc.first_layer;
+    unsigned count = first >= layers ? 0 : layers - first;
+    if (r->desc.layer_count && r->desc.layer_count < count) count = r->desc.layer_count;
+    if (!r->desc.no_shells && count > 0) {
         glDepthMask(GL_FALSE);
         glEnable(GL_BLEND);
         /* Alpha accumulates as coverage, so an opaque background stays opaque. */
         glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
         glUseProgram(r->shell_program);
         set_common(r, &r->shell_u, v, view_proj);
+        glUniform1f(r->shell_u.first_layer, (float)first);
         /* Instances are drawn in order, so layers blend inner to outer. */
         glDrawElementsInstanced(GL_TRIANGLES, r->index_count, GL_UNSIGNED_INT, NULL,
-                                (GLsizei)r->fur->desc.layers);
+                                (GLsizei)count);
         r->shell_draw_calls++;
         glDepthMask(GL_TRUE);
         glDisable(GL_BLEND);

@@ -231,6 +231,56 @@ static void dried_fur_matches_dry_render(void)
     free(dried);
 }
 
+static void one_big_clump(pelt_fur *fur, void *user)
+{
+    (void)user;
+    /* One clump over the whole square. */
+    pelt_droplet d = {{0.5f, 0.5f}, 0.75f, 1.0f};
+    pelt_fur_add_droplet(fur, &d, NULL);
+}
+
+/* Distance from the image centre within which 90% of the covered pixels
+ * lie. */
+static double covered_radius90(const uint8_t *px)
+{
+    static double r[W * H];
+    size_t n = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++)
+            if (gl_test_coverage(px + 4 * ((size_t)y * W + (size_t)x), 1))
+                r[n++] = hypot(x + 0.5 - W / 2.0, y + 0.5 - H / 2.0);
+    if (n == 0) return 0.0;
+    qsort(r, n, sizeof r[0], cmp_double);
+    return r[(size_t)(0.9 * (double)(n - 1))];
+}
+
+/* At full wetness a clump narrows from root to tip (Silva Fig. 9, 13):
+ * seen from above one layer at a time, the fur of one clump covering the
+ * whole square gathers into an ever smaller disc around its centre, while
+ * dry fur covers the square at every height. */
+static void clumps_grow_thinner_toward_the_tips(void)
+{
+    const pelt_camera top = {0.0f, 89.0f, 2.4f, 50.0f, {0, 0, 0}};
+    pelt_fur_desc d = {.clump_tightness = 1.0f, .wet_darken = 1e-6f};
+    const unsigned layers[] = {1, 4, 7, 10};
+    double dry_r[4], wet_r[4];
+    for (int k = 0; k < 4; k++) {
+        pelt_renderer_desc one = {.no_skin = true, .first_layer = layers[k], .layer_count = 1};
+        uint8_t *dry = gl_test_render(gl, square, &d, &top, &one, NULL, NULL);
+        uint8_t *wet = gl_test_render(gl, square, &d, &top, &one, one_big_clump, NULL);
+        CHECK(dry && wet);
+        dry_r[k] = dry ? covered_radius90(dry) : 0.0;
+        wet_r[k] = wet ? covered_radius90(wet) : 0.0;
+        printf("  layer %2u of 16: 90%% of the fur within %5.1f px dry, %5.1f px clumped\n",
+               layers[k], dry_r[k], wet_r[k]);
+        free(dry);
+        free(wet);
+    }
+    for (int k = 1; k < 4; k++) CHECK(wet_r[k] < wet_r[k - 1]);
+    CHECK(wet_r[3] < 0.6 * wet_r[0]);
+    CHECK(dry_r[3] > 0.9 * dry_r[0]);
+}
+
 int main(void)
 {
     pelt_error err = {0};
@@ -250,6 +300,7 @@ int main(void)
         RUN(shells_are_one_instanced_draw);
         RUN(wet_clumps_show_skin_and_leave_dry_fur_alone);
         RUN(dried_fur_matches_dry_render);
+        RUN(clumps_grow_thinner_toward_the_tips);
     }
     pelt_mesh_destroy(torus);
     pelt_mesh_destroy(square);

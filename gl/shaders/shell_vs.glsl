@@ -11,6 +11,7 @@ layout(location = 6) in float a_comb;   // 0 where the direction field vanishes
 uniform mat4 u_model;
 uniform mat4 u_view_proj;
 uniform float u_layers;
+uniform float u_first_layer;            // the instance range may start above 0
 uniform float u_length;
 uniform float u_curl_frequency;
 uniform float u_curl_radius;
@@ -27,7 +28,7 @@ flat out float v_layer;
 
 void main()
 {
-    float layer = float(gl_InstanceID);
+    float layer = u_first_layer + float(gl_InstanceID);
     float h = (1.0 + layer) / u_layers;
     vec3 n = normalize(a_normal);
     vec3 u = normalize(a_tangent.xyz);

@@ -43,6 +43,10 @@ void pelt_camera_to_view(const pelt_camera *camera, float aspect, pelt_view *vie
 typedef struct pelt_renderer_desc {
     bool no_skin;   /* skip the opaque skin pass */
     bool no_shells; /* skip the shells (for measuring) */
+    /* Draw only shells first_layer .. first_layer + layer_count - 1
+     * (layer_count 0 = through the outermost): for inspecting one height
+     * of the fur, and for level of detail. Still one instanced draw. */
+    unsigned first_layer, layer_count;
 } pelt_renderer_desc;
 
 /* Compiles the shaders and uploads mesh and fur. The mesh and fur must
