@@ -85,10 +85,10 @@ static void add_third_of_clumps(pelt_fur *fur)
 }
 
 /* 10,000 droplets of radius 4 texels into a dry 2048^2 mask vs one whole
- * upload of that mask (RGBA32F), each the median of 5 runs. */
+ * upload of that mask (RGBA32F), each the median of 9 runs. */
 static int bench_droplets(const pelt_mesh *mesh)
 {
-    enum { MASK = 2048, DROPS = 10000, RUNS = 5 };
+    enum { MASK = 2048, DROPS = 10000, RUNS = 9 };
     pelt_fur *fur = NULL;
     pelt_error err = {0};
     pelt_fur_desc d = {.mask_size = MASK, .texture_size = 8, .layers = 1};
