@@ -77,6 +77,8 @@ expect_ok good_obj $r --mesh "$data/meshes/square_uv.obj"
 expect_ok good_off $r --mesh "$data/meshes/tetra.off"
 expect_ok good_ply $r --mesh "$data/meshes/tetra.ply"
 expect_ok good_stl $r --mesh "$data/meshes/two_facets.stl"
+expect_ok good_gltf $r --mesh "$data/meshes/quad.gltf"
+expect_ok good_glb $r --mesh "$data/meshes/quad.glb"
 expect_ok pattern_spots $r --pattern spots
 expect_ok mask_out $r --drops 5 --mask-out "$out/cli_mask.png"
 
