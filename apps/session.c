@@ -50,6 +50,14 @@ static bool build_atlas(const char *cmd, const pelt_scene *sc, pelt_mesh **mesh,
                        : diag > 0.0f                  ? 5.0f / diag
                                                       : 0.0f;
     memcpy(ad.direction, sc->atlas.direction, sizeof ad.direction);
+    if (sc->atlas.direction_from == PELT_DIRECTION_VERTEX_COLORS) {
+        ad.vertex_directions = pelt_mesh_directions(*mesh);
+        if (!ad.vertex_directions) {
+            cli_error(cmd, "atlas.direction_from is \"vertex-colors\" but '%s' has no vertex colours",
+                      sc->mesh.file);
+            return false;
+        }
+    }
     ad.max_stretch = sc->atlas.max_stretch;
     ad.seed = sc->fur.seed;
     ad.cache_dir = pelt_atlas_default_cache_dir(cache, sizeof cache) ? cache : NULL;

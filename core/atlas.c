@@ -69,11 +69,13 @@ pelt_mesh *pelt_atlas_take_mesh(pelt_atlas *a)
     if (!a) return NULL;
     pelt_mesh *m = a->mesh;
     a->mesh = NULL;
-    /* The comb weights go with the mesh, so the renderer stands the fur up
-     * where the direction field vanishes. */
-    if (m && a->weights && !m->comb_weights) {
-        m->comb_weights = pelt__calloc(m->vertex_count, sizeof(float));
-        if (m->comb_weights) memcpy(m->comb_weights, a->weights, m->vertex_count * sizeof(float));
+    /* The direction field goes with the mesh as the comb direction, scaled
+     * by its weight, so the renderer combs along the field and stands the
+     * fur up where it vanishes. */
+    if (m && a->directions && a->weights && !m->comb) {
+        m->comb = pelt__calloc(m->vertex_count, 3 * sizeof(float));
+        for (size_t i = 0; m->comb && i < m->vertex_count; i++)
+            for (int k = 0; k < 3; k++) m->comb[3 * i + k] = a->directions[3 * i + k] * a->weights[i];
     }
     return m;
 }

@@ -23,7 +23,7 @@ pelt_vec3 pelt__fur_curl(pelt_vec3 u, pelt_vec3 v, float omega, float K, float r
 pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
                             float omega, float K, float rho, float h)
 {
-    return pelt__fur_tangent_combed(n, L0, tip, u, v, omega, K, rho, 0.0f, h);
+    return pelt__fur_tangent_combed(n, L0, tip, u, v, u, omega, K, rho, 0.0f, h);
 }
 
 /* Lengyel et al. §3, hair direction: a shear along the comb direction u. */
@@ -33,7 +33,8 @@ pelt_vec3 pelt__fur_comb(pelt_vec3 u, float L0, float slant, float h)
 }
 
 pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
-                                   float omega, float K, float rho, float slant, float h)
+                                   pelt_vec3 comb, float omega, float K, float rho, float slant,
+                                   float h)
 {
     /* dB/dh = (1 - 2h) L0 n + 2h tip. */
     pelt_vec3 db = v3_add(v3_scale(n, (1.0f - 2.0f * h) * L0), v3_scale(tip, 2.0f * h));
@@ -42,7 +43,7 @@ pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_ve
     float c = cosf(omega * h), s = sinf(omega * h);
     pelt_vec3 dphi = v3_add(v3_scale(u, k * (c - omega * h * s)), v3_scale(v, k * (s + omega * h * c)));
     /* d(comb)/dh = L0 slant u. */
-    pelt_vec3 d = v3_mad(v3_add(db, dphi), u, L0 * slant);
+    pelt_vec3 d = v3_mad(v3_add(db, dphi), comb, L0 * slant);
     float len2 = v3_dot(d, d);
     /* Same threshold as fur_shape.glsl, so the two agree near zero too. */
     return len2 > 1e-30f ? v3_scale(d, 1.0f / sqrtf(len2)) : n;

@@ -31,13 +31,15 @@ pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, p
                             float omega, float K, float rho, float h);
 
 /* Combing (Lengyel et al. §3, hair direction): the shells sheared along
- * the comb direction u (unit, tangent), slant = tan of the slant angle:
- * offset h L0 slant u. */
+ * the comb direction u (tangent; unit, or shorter where the direction
+ * field fades), slant = tan of the slant angle: offset h L0 slant u. */
 pelt_vec3 pelt__fur_comb(pelt_vec3 u, float L0, float slant, float h);
 
-/* T(h) of the combed strand: the unit derivative of beta + phi + comb. */
+/* T(h) of the strand combed along `comb`: the unit derivative of
+ * beta + phi + pelt__fur_comb(comb, ...). */
 pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
-                                   float omega, float K, float rho, float slant, float h);
+                                   pelt_vec3 comb, float omega, float K, float rho, float slant,
+                                   float h);
 
 /* The four looks of Silva Fig. 7 by name: "straight", "wavy",
  * "few-large-curls", "many-small-curls".

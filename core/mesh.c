@@ -49,10 +49,13 @@ void pelt_mesh_destroy(pelt_mesh *mesh)
     free(mesh->uvs);
     free(mesh->fur_uvs);
     free(mesh->tangents);
-    free(mesh->comb_weights);
+    free(mesh->comb);
+    free(mesh->directions);
     free(mesh->indices);
     free(mesh);
 }
+
+const float *pelt_mesh_directions(const pelt_mesh *mesh) { return mesh ? mesh->directions : NULL; }
 
 pelt_mesh_stats pelt_mesh_get_stats(const pelt_mesh *mesh)
 {
@@ -493,11 +496,25 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
         const float *n = data->normals + 3 * i;
         normals_ok = all_finite(n, 3) && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f);
     }
+    if (data->directions) {
+        m->directions = pelt__calloc(m->vertex_count, 3 * sizeof(float));
+        if (!m->directions) {
+            free(keep);
+            free(remap);
+            pelt_mesh_destroy(m);
+            return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex directions");
+        }
+    }
     for (size_t i = 0; i < nv; i++) {
         if (!remap[i]) continue;
         size_t o = remap[i] - 1;
         memcpy(m->positions + 3 * o, data->positions + 3 * i, 3 * sizeof(float));
         if (data->uvs) memcpy(m->uvs + 2 * o, data->uvs + 2 * i, 2 * sizeof(float));
+        if (m->directions) {
+            /* Non-finite hints count as none: the fur stands up there. */
+            const float *d = data->directions + 3 * i;
+            for (int k = 0; k < 3; k++) m->directions[3 * o + k] = isfinite(d[k]) ? d[k] : 0.0f;
+        }
         if (normals_ok) {
             /* Normalised in double: tiny or huge input normals stay finite. */
             const float *n = data->normals + 3 * i;

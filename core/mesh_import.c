@@ -365,9 +365,9 @@ typedef struct merge_state {
     const char *path;
     pelt_error *err;
     size_t vertex_count, triangle_count;
-    int have_normals, have_uvs; /* every instanced mesh has them */
+    int have_normals, have_uvs, have_colors; /* every instanced mesh has them */
     /* Output arrays (second pass only). */
-    float *positions, *normals, *uvs;
+    float *positions, *normals, *uvs, *directions;
     uint32_t *indices;
     size_t v_at, t_at;
 } merge_state;
@@ -426,6 +426,14 @@ static pelt_status append_mesh(merge_state *s, const struct aiMesh *mesh, const 
             s->uvs[2 * (base + v)] = mesh->mTextureCoords[0][v].x;
             s->uvs[2 * (base + v) + 1] = mesh->mTextureCoords[0][v].y;
         }
+        if (s->have_colors) {
+            /* A flow map: rgb in [0,1] encodes a direction 2 rgb - 1, a
+             * vector carried by the node's linear part. */
+            const struct aiColor4D c4 = mesh->mColors[0][v];
+            const float d[3] = {2.0f * c4.r - 1.0f, 2.0f * c4.g - 1.0f, 2.0f * c4.b - 1.0f};
+            float *od = s->directions + 3 * (base + v);
+            for (int k = 0; k < 3; k++) od[k] = x[4 * k] * d[0] + x[4 * k + 1] * d[1] + x[4 * k + 2] * d[2];
+        }
     }
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
         const struct aiFace *face = &mesh->mFaces[f];
@@ -472,6 +480,7 @@ static pelt_status visit(merge_state *s, const struct aiNode *node, const struct
             s->triangle_count += tris;
             if (!mesh->mNormals) s->have_normals = 0;
             if (!mesh->mTextureCoords[0]) s->have_uvs = 0;
+            if (!mesh->mColors[0]) s->have_colors = 0;
         } else {
             pelt_status st = append_mesh(s, mesh, &m);
             if (st) return st;
@@ -487,7 +496,7 @@ static pelt_status visit(merge_state *s, const struct aiNode *node, const struct
 static pelt_status merge_scene(const struct aiScene *scene, const char *path, pelt_mesh **out,
                                pelt_error *err)
 {
-    merge_state s = {scene, path, err, 0, 0, 1, 1, NULL, NULL, NULL, NULL, 0, 0};
+    merge_state s = {scene, path, err, 0, 0, 1, 1, 1, NULL, NULL, NULL, NULL, NULL, 0, 0};
     struct aiMatrix4x4 id = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     pelt_status st = visit(&s, scene->mRootNode, &id, 0);
     if (st) return st;
@@ -496,15 +505,17 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
     s.positions = pelt__calloc(s.vertex_count, 3 * sizeof(float));
     s.normals = s.have_normals ? pelt__calloc(s.vertex_count, 3 * sizeof(float)) : NULL;
     s.uvs = s.have_uvs ? pelt__calloc(s.vertex_count, 2 * sizeof(float)) : NULL;
+    s.directions = s.have_colors ? pelt__calloc(s.vertex_count, 3 * sizeof(float)) : NULL;
     s.indices = pelt__calloc(s.triangle_count, 3 * sizeof(uint32_t));
-    if (!s.positions || !s.indices || (s.have_normals && !s.normals) || (s.have_uvs && !s.uvs)) {
+    if (!s.positions || !s.indices || (s.have_normals && !s.normals) || (s.have_uvs && !s.uvs) ||
+        (s.have_colors && !s.directions)) {
         st = pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: no memory for %zu vertices", path,
                         s.vertex_count);
     } else {
         st = visit(&s, scene->mRootNode, &id, 0);
     }
     if (st == PELT_OK) {
-        pelt_mesh_data data = {s.positions, s.normals, s.uvs, s.v_at, s.indices, s.t_at};
+        pelt_mesh_data data = {s.positions, s.normals, s.uvs, s.v_at, s.indices, s.t_at, s.directions};
         st = pelt_mesh_create(&data, out, err);
         if (st != PELT_OK && err) {
             /* Name the file in front of pelt_mesh_create's detail. */
@@ -516,6 +527,7 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
     free(s.positions);
     free(s.normals);
     free(s.uvs);
+    free(s.directions);
     free(s.indices);
     return st;
 }

@@ -15,9 +15,10 @@ struct pelt_mesh {
                          tiles (patch-local, from the atlas); NULL means
                          uvs * tiling */
     float *tangents;  /* 4 per vertex: unit tangent along +u, w = handedness */
-    float *comb_weights; /* 1 per vertex or NULL (all 1): how much the comb
-                            slant applies; 0 where the direction field
-                            vanishes, so the fur stands up there */
+    float *directions; /* 3 per vertex or NULL: hair directions from the file */
+    float *comb;      /* 3 per vertex or NULL (then the tangent): the comb
+                         direction, the direction field times its weight;
+                         0 where the field vanishes, so the fur stands up */
     uint32_t *indices; /* 3 per triangle */
     float bounds_min[3], bounds_max[3];
     pelt_mesh_stats stats;

@@ -138,6 +138,7 @@ typedef struct key_def {
 static const char *const shape_names[] = {"torus", "sphere", "square", "file", NULL};
 static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
 static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
+static const char *const direction_names[] = {"global", "vertex-colors", NULL};
 /* The curl looks of Silva Fig. 7; the table of values is pelt__curl_preset.
  * The scene format names them as the issue does; the preset table spells two
  * of them differently, so both spellings are accepted (same index). */
@@ -252,6 +253,7 @@ static const key_def scene_keys[] = {
     FLT("atlas.texel_density", atlas.texel_density, 0, BIG, 0),
     VEC("atlas.direction", atlas.direction, 3, -BIG, BIG, 0),
     FLT("atlas.max_stretch", atlas.max_stretch, 1.1, BIG, F_ZERO_OK),
+    ENUM("atlas.direction_from", atlas.direction_from, direction_names),
 };
 
 #undef OFF

@@ -59,8 +59,8 @@ static void find_uniforms(GLuint p, uniforms *u)
 }
 
 /* Interleaved static vertex data: position, normal, uv, fur uv, tangent,
- * comb weight. */
-enum { STATIC_FLOATS = 3 + 3 + 2 + 2 + 4 + 1 };
+ * comb direction. */
+enum { STATIC_FLOATS = 3 + 3 + 2 + 2 + 4 + 3 };
 
 static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
 {
@@ -74,7 +74,8 @@ static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
         memcpy(v + 6, m->uvs + 2 * i, 2 * sizeof(float));
         memcpy(v + 8, r->fur->fur_uvs + 2 * i, 2 * sizeof(float));
         memcpy(v + 10, m->tangents + 4 * i, 4 * sizeof(float));
-        v[14] = m->comb_weights ? m->comb_weights[i] : 1.0f;
+        /* Without a direction field, comb along the fur texture's u axis. */
+        memcpy(v + 14, m->comb ? m->comb + 3 * i : m->tangents + 4 * i, 3 * sizeof(float));
     }
     glGenVertexArrays(1, &r->vao);
     glBindVertexArray(r->vao);
@@ -84,7 +85,7 @@ static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
                  data, GL_STATIC_DRAW);
     free(data);
     const GLsizei stride = STATIC_FLOATS * sizeof(float);
-    const int sizes[] = {3, 3, 2, 2, 4, 1};
+    const int sizes[] = {3, 3, 2, 2, 4, 3};
     const GLuint locations[] = {0, 1, 2, 3, 4, 6};
     size_t offset = 0;
     for (GLuint k = 0; k < 6; k++) {

@@ -162,9 +162,10 @@ static void droplet_on_patch_border_makes_one_round_clump(void)
     pelt_mesh_destroy(sphere);
 }
 
-/* The comb weights travel with the atlas mesh to the renderer: where a
- * downward direction field vanishes (the poles) the fur stands up. */
-static void comb_weights_stand_fur_up_at_the_poles(void)
+/* The direction field travels with the atlas mesh to the renderer as the
+ * comb: where a downward field vanishes (the poles) it fades to nothing,
+ * so the fur stands up; on the equator it points down, at full length. */
+static void comb_stands_fur_up_at_the_poles(void)
 {
     pelt_mesh *sphere = NULL;
     pelt_atlas *atlas = NULL;
@@ -172,23 +173,59 @@ static void comb_weights_stand_fur_up_at_the_poles(void)
     pelt_atlas_desc ad = {.mode = PELT_ATLAS_PATCHES};
     CHECK(sphere && pelt_atlas_create(sphere, &ad, &atlas, NULL) == PELT_OK);
     pelt_mesh *m = atlas ? pelt_atlas_take_mesh(atlas) : NULL;
-    CHECK(m && m->comb_weights);
-    if (m && m->comb_weights) {
+    CHECK(m && m->comb);
+    if (m && m->comb) {
         double pole = 0.0, equator = 1.0;
         size_t at_pole = 0, on_equator = 0;
         for (size_t i = 0; i < m->vertex_count; i++) {
-            float y = m->positions[3 * i + 1], w = m->comb_weights[i];
+            float y = m->positions[3 * i + 1];
+            const float *c = m->comb + 3 * i;
+            float w = sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            if (fabsf(y) < 0.05f) CHECK(c[1] < -0.8f); /* combed down */
             if (fabsf(y) > 0.999f) pole = fmax(pole, w), at_pole++;
             if (fabsf(y) < 0.05f) equator = fmin(equator, w), on_equator++;
         }
         CHECK(at_pole > 0 && on_equator > 0);
-        printf("  largest weight at a pole %.3f, smallest on the equator %.3f\n", pole, equator);
+        printf("  longest comb at a pole %.3f, shortest on the equator %.3f\n", pole, equator);
         CHECK(pole < 0.2);
         CHECK(equator > 0.8);
     }
     pelt_mesh_destroy(m);
     pelt_atlas_destroy(atlas);
     pelt_mesh_destroy(sphere);
+}
+
+/* A mesh file's vertex colours, read as a flow map, comb the fur: here a
+ * whirl around +Y (colour = 0.5 + 0.5 (-z, 0, x) / |(x, z)|). */
+static void vertex_colours_comb_the_fur(void)
+{
+    pelt_mesh *m = NULL;
+    pelt_atlas *atlas = NULL;
+    CHECK(pelt_mesh_load(PELT_TEST_DATA "/meshes/swirl_colors.ply", &m, NULL) == PELT_OK);
+    CHECK(m && pelt_mesh_directions(m));
+    if (!m || !pelt_mesh_directions(m)) {
+        pelt_mesh_destroy(m);
+        return;
+    }
+    pelt_atlas_desc ad = {.mode = PELT_ATLAS_PATCHES, .vertex_directions = pelt_mesh_directions(m)};
+    CHECK(pelt_atlas_create(m, &ad, &atlas, NULL) == PELT_OK);
+    pelt_mesh *split = atlas ? pelt_atlas_take_mesh(atlas) : NULL;
+    CHECK(split && split->comb);
+    size_t checked = 0, along = 0;
+    for (size_t i = 0; split && split->comb && i < split->vertex_count; i++) {
+        const float *p = split->positions + 3 * i, *c = split->comb + 3 * i;
+        float r = hypotf(p[0], p[2]), cl = sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+        if (r < 0.3f || cl < 0.5f) continue; /* away from the whirl's centre */
+        checked++;
+        float cosang = (-p[2] * c[0] + p[0] * c[2]) / (r * cl);
+        if (cosang > 0.95f) along++;
+    }
+    printf("  %zu of %zu combs within 18 degrees of the whirl\n", along, checked);
+    CHECK(checked > 100);
+    CHECK(along > checked * 95 / 100);
+    pelt_mesh_destroy(split);
+    pelt_atlas_destroy(atlas);
+    pelt_mesh_destroy(m);
 }
 
 int main(void)
@@ -200,7 +237,8 @@ int main(void)
         return 1;
     }
     RUN(droplet_on_patch_border_makes_one_round_clump);
-    RUN(comb_weights_stand_fur_up_at_the_poles);
+    RUN(comb_stands_fur_up_at_the_poles);
+    RUN(vertex_colours_comb_the_fur);
     pelt_headless_destroy(gl);
     return check_summary();
 }

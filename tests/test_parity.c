@@ -86,7 +86,7 @@ static const char shape_main[] =
     "         : u_which == 1 ? fur_curl(u, v, omega, K, rho, h)\n"
     "         : u_which == 2 ? fur_tangent(n, L0, tip, u, v, omega, K, rho, h)\n"
     "         : u_which == 3 ? fur_comb(u, L0, slant, h)\n"
-    "         : fur_tangent_combed(n, L0, tip, u, v, omega, K, rho, slant, h);\n"
+    "         : fur_tangent_combed(n, L0, tip, u, v, 0.7 * tip, omega, K, rho, slant, h);\n"
     "  o = vec4(r, 0.0);\n"
     "}\n";
 
@@ -114,8 +114,9 @@ static void fur_shape_glsl_matches_c(void)
                               : which == 1 ? pelt__fur_curl(u, v, omega, K, rho, h)
                               : which == 2 ? pelt__fur_tangent(n, L0, tip, u, v, omega, K, rho, h)
                               : which == 3 ? pelt__fur_comb(u, L0, slant, h)
-                                           : pelt__fur_tangent_combed(n, L0, tip, u, v, omega, K,
-                                                                      rho, slant, h);
+                                           : pelt__fur_tangent_combed(n, L0, tip, u, v,
+                                                                      v3_scale(tip, 0.7f), omega,
+                                                                      K, rho, slant, h);
                 const float *g = out + 4 * (y * W + x);
                 double err = fmax(fabs(g[0] - r.x), fmax(fabs(g[1] - r.y), fabs(g[2] - r.z)));
                 if (err > worst) worst = err;

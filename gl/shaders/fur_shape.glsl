@@ -26,20 +26,21 @@ vec3 fur_comb(vec3 u, float L0, float slant, float h)
     return u * (h * L0 * slant);
 }
 
-// T(h) of the combed strand; mirrors pelt__fur_tangent_combed.
-vec3 fur_tangent_combed(vec3 n, float L0, vec3 tip, vec3 u, vec3 v, float omega, float K,
+// T(h) of the combed strand (comb direction c); mirrors
+// pelt__fur_tangent_combed.
+vec3 fur_tangent_combed(vec3 n, float L0, vec3 tip, vec3 u, vec3 v, vec3 c, float omega, float K,
                         float rho, float slant, float h)
 {
     vec3 db = n * ((1.0 - 2.0 * h) * L0) + tip * (2.0 * h);
     float k = (1.0 - rho) * K;
-    float c = cos(omega * h);
+    float co = cos(omega * h);
     float s = sin(omega * h);
-    vec3 d = db + u * (k * (c - omega * h * s)) + v * (k * (s + omega * h * c)) + u * (L0 * slant);
+    vec3 d = db + u * (k * (co - omega * h * s)) + v * (k * (s + omega * h * co)) + c * (L0 * slant);
     float len2 = dot(d, d);
     return len2 > 1e-30 ? d * inversesqrt(len2) : n;
 }
 
 vec3 fur_tangent(vec3 n, float L0, vec3 tip, vec3 u, vec3 v, float omega, float K, float rho, float h)
 {
-    return fur_tangent_combed(n, L0, tip, u, v, omega, K, rho, 0.0, h);
+    return fur_tangent_combed(n, L0, tip, u, v, u, omega, K, rho, 0.0, h);
 }

@@ -6,7 +6,7 @@ layout(location = 2) in vec2 a_uv;
 layout(location = 3) in vec2 a_fur_uv;
 layout(location = 4) in vec4 a_tangent;
 layout(location = 5) in vec3 a_tip;     // p - p_root, mesh-local
-layout(location = 6) in float a_comb;   // 0 where the direction field vanishes
+layout(location = 6) in vec3 a_comb;    // comb direction x weight (0: stands up)
 
 uniform mat4 u_model;
 uniform mat4 u_view_proj;
@@ -34,12 +34,11 @@ void main()
     vec3 u = normalize(a_tangent.xyz);
     vec3 v = cross(n, u) * a_tangent.w;
     float rho = textureLod(u_mask, a_uv, 0.0).a;
-    float slant = u_slant * a_comb;
     vec3 offset = fur_bend(n, u_length, a_tip, h)
                 + fur_curl(u, v, u_curl_frequency, u_curl_radius, rho, h)
-                + fur_comb(u, u_length, slant, h);
-    vec3 t = fur_tangent_combed(n, u_length, a_tip, u, v, u_curl_frequency, u_curl_radius, rho,
-                                slant, h);
+                + fur_comb(a_comb, u_length, u_slant, h);
+    vec3 t = fur_tangent_combed(n, u_length, a_tip, u, v, a_comb, u_curl_frequency,
+                                u_curl_radius, rho, u_slant, h);
     vec4 world = u_model * vec4(a_position + offset, 1.0);
     v_world = world.xyz;
     v_tangent = mat3(u_model) * t;

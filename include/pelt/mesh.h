@@ -19,6 +19,10 @@ typedef struct pelt_mesh_data {
     size_t vertex_count;
     const uint32_t *indices; /* 3 * triangle_count */
     size_t triangle_count;
+    /* 3 * vertex_count, or NULL: per-vertex hair directions for the atlas's
+     * direction field (pelt_mesh_load fills them from a file's first vertex
+     * colour set, read as a flow map: direction = 2 * rgb - 1). */
+    const float *directions;
 } pelt_mesh_data;
 
 /* What validation did to the input. */
@@ -55,6 +59,10 @@ pelt_status pelt_mesh_square(float size, unsigned subdivisions,
 void pelt_mesh_destroy(pelt_mesh *mesh);
 
 pelt_mesh_stats pelt_mesh_get_stats(const pelt_mesh *mesh);
+/* Per-vertex hair directions from the file (3 floats per vertex), or NULL
+ * when it had none. Owned by the mesh. */
+const float *pelt_mesh_directions(const pelt_mesh *mesh);
+
 /* Axis-aligned bounds of the positions. */
 void pelt_mesh_bounds(const pelt_mesh *mesh, float min[3], float max[3]);
 

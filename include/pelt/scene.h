@@ -130,6 +130,11 @@ typedef struct pelt_scene_wetness {
 } pelt_scene_wetness;
 
 /* How the surface gets its atlas (issue 5); copied into pelt_atlas_desc. */
+typedef enum pelt_direction_source {
+    PELT_DIRECTION_GLOBAL = 0,   /* atlas.direction, projected per vertex */
+    PELT_DIRECTION_VERTEX_COLORS /* the mesh's vertex colours as a flow map */
+} pelt_direction_source;
+
 typedef struct pelt_scene_atlas {
     pelt_atlas_mode mode;  /* default AUTO (see pelt/atlas.h) */
     float texel_density;   /* fur-texture tiles per world unit, default 0 =
@@ -138,6 +143,10 @@ typedef struct pelt_scene_atlas {
                               plane; default (0, -1, 0): combed downwards */
     float max_stretch;     /* patch stretch bound, 0 = builder's default (2.0),
                               else at least 1.1 */
+    /* Where the direction field comes from: the global `direction`
+       (default) or the mesh file's per-vertex directions, read from its
+       first vertex colour set as a flow map (2 rgb - 1). */
+    pelt_direction_source direction_from;
 } pelt_scene_atlas;
 
 /* A whole scene. Plain data: copy it freely, but the two arrays
