@@ -107,12 +107,8 @@ static void compute_fur_uvs(const pelt_mesh *m, float tiling, float *out, float 
         memcpy(out, m->fur_uvs, m->vertex_count * 2 * sizeof(float));
         double fur_area = 0.0, uv_area = 0.0;
         for (size_t t = 0; t < m->triangle_count; t++) {
-            const uint32_t *ix = m->indices + 3 * t;
-            const float *a = m->uvs + 2 * ix[0], *b = m->uvs + 2 * ix[1], *c = m->uvs + 2 * ix[2];
-            const float *fa = m->fur_uvs + 2 * ix[0], *fb = m->fur_uvs + 2 * ix[1],
-                        *fc = m->fur_uvs + 2 * ix[2];
-            uv_area += fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
-            fur_area += fabs((fb[0] - fa[0]) * (fc[1] - fa[1]) - (fc[0] - fa[0]) * (fb[1] - fa[1]));
+            uv_area += pelt__triangle_area_2d(m, m->uvs, t);
+            fur_area += pelt__triangle_area_2d(m, m->fur_uvs, t);
         }
         float k = uv_area > 0.0 ? (float)sqrt(fur_area / uv_area) : tiling;
         fur_per_uv[0] = fur_per_uv[1] = k;

@@ -17,13 +17,8 @@ pelt_status pelt__fur_rain_init(pelt_fur *f, pelt_error *err)
     if (!f->area_cdf) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur");
     double total = 0.0, uv_total = 0.0;
     for (size_t t = 0; t < m->triangle_count; t++) {
-        const uint32_t *ix = m->indices + 3 * t;
-        pelt_vec3 p0 = v3_load(m->positions + 3 * ix[0]);
-        pelt_vec3 e1 = v3_sub(v3_load(m->positions + 3 * ix[1]), p0);
-        pelt_vec3 e2 = v3_sub(v3_load(m->positions + 3 * ix[2]), p0);
-        const float *a = m->uvs + 2 * ix[0], *b = m->uvs + 2 * ix[1], *c = m->uvs + 2 * ix[2];
-        total += 0.5 * v3_len(v3_cross(e1, e2));
-        uv_total += 0.5 * fabs((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+        total += pelt__triangle_area(m, t);
+        uv_total += pelt__triangle_area_2d(m, m->uvs, t);
         f->area_cdf[t] = (float)total;
     }
     /* Mean world length of one mask-uv unit: converts droplet radii given

@@ -16,6 +16,21 @@
 
 static const float gl_test_background[3] = {0.10f, 0.11f, 0.13f};
 
+/* A headless context of w x h (a float target for parity tests), or NULL
+ * with the reason printed; prints the renderer's name. */
+static inline pelt_headless *gl_test_open(unsigned w, unsigned h, bool float_target)
+{
+    pelt_error err = {0};
+    pelt_headless *gl = NULL;
+    pelt_headless_desc hd = {w, h, 0, float_target};
+    if (pelt_headless_create(&hd, &gl, &err) != PELT_OK) {
+        fprintf(stderr, "no OpenGL: %s\n", err.message);
+        return NULL;
+    }
+    printf("%s\n", pelt_headless_renderer_name(gl));
+    return gl;
+}
+
 /* Renders `mesh` with fur `d` at w x h; returns malloc'd RGBA8 (top row
  * first) or NULL (and a printed reason). `tweak` may change the view. */
 static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, const pelt_fur_desc *d,

@@ -230,12 +230,8 @@ static void vertex_colours_comb_the_fur(void)
 
 int main(void)
 {
-    pelt_error err = {0};
-    pelt_headless_desc hd = {W, H, 0, false};
-    if (pelt_headless_create(&hd, &gl, &err) != PELT_OK) {
-        fprintf(stderr, "no OpenGL: %s\n", err.message);
-        return 1;
-    }
+    gl = gl_test_open(W, H, false);
+    if (!gl) return 1;
     RUN(droplet_on_patch_border_makes_one_round_clump);
     RUN(comb_stands_fur_up_at_the_poles);
     RUN(vertex_colours_comb_the_fur);

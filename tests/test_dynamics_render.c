@@ -358,13 +358,8 @@ static void curl_presets_differ(void)
 
 int main(void)
 {
-    pelt_error err = {0};
-    pelt_headless_desc hd = {W, H, 0, false};
-    if (pelt_headless_create(&hd, &gl, &err) != PELT_OK) {
-        fprintf(stderr, "no OpenGL: %s\n", err.message);
-        return 1;
-    }
-    printf("%s\n", pelt_headless_renderer_name(gl));
+    gl = gl_test_open(W, H, false);
+    if (!gl) return 1;
     CHECK(pelt_mesh_torus(1.0f, 0.4f, 78, 60, &torus, NULL) == PELT_OK);
     CHECK(pelt_mesh_square(2.0f, 16, &square, NULL) == PELT_OK);
     if (torus && square) {

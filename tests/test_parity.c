@@ -210,12 +210,8 @@ static void clump_coverage_glsl_matches_c(void)
 
 int main(void)
 {
-    pelt_error err = {0};
-    pelt_headless_desc hd = {W, H, 0, true};
-    if (pelt_headless_create(&hd, &gl, &err) != PELT_OK) {
-        fprintf(stderr, "no OpenGL: %s\n", err.message);
-        return 1;
-    }
+    gl = gl_test_open(W, H, true);
+    if (!gl) return 1;
     RUN(kajiya_kay_glsl_matches_c);
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
