@@ -226,35 +226,6 @@ static bool droplet_in_triangle(const pelt_mesh *mesh, size_t t, pelt_vec3 p, fl
 
 /* ---- Alg. 1 on one texel ------------------------------------------------- */
 
-/* Silva Alg. 1 as docs/wetness.md reads it (the same branches as
- * core/wetness.c; tests compare the two). wd in [-1,1], nonzero. Returns
- * whether the texel changed. */
-static bool alg1_texel(float *t, const float c[2], float r, float wd)
-{
-    float old[4] = {t[0], t[1], t[2], t[3]};
-    float rho = t[3];
-    if (wd < 0.0f) {
-        /* Drying only lowers wetness; it never makes or moves a clump. */
-        if (rho > 0.0f) t[3] = fmaxf(rho + wd, 0.0f);
-    } else if (rho > 0.0f && (t[0] - c[0]) * (t[0] - c[0]) + (t[1] - c[1]) * (t[1] - c[1]) <=
-                                 r * r) {
-        /* Same clump: blend with alpha = rho_drop / rho_total. */
-        float total = clampf(rho + wd, 0.0f, 1.0f);
-        float alpha = clampf(wd / total, 0.0f, 1.0f);
-        t[0] = (1.0f - alpha) * t[0] + alpha * c[0];
-        t[1] = (1.0f - alpha) * t[1] + alpha * c[1];
-        t[2] = (1.0f - alpha) * t[2] + alpha * r;
-        t[3] = total;
-    } else {
-        /* Dry texel, or another clump's: the droplet takes it. */
-        t[0] = c[0];
-        t[1] = c[1];
-        t[2] = r;
-        t[3] = wd;
-    }
-    return memcmp(old, t, sizeof old) != 0;
-}
-
 /* ---- the droplet ---------------------------------------------------------- */
 
 static int64_t to_fixed(float x, unsigned res)
@@ -335,7 +306,7 @@ static void wet_triangle(pelt__wetness *m, const pelt_mesh *mesh, size_t t, pelt
             pelt_vec3 X = v3_add(v3_scale(q[0], w0), v3_add(v3_scale(q[1], w1), v3_scale(q[2], w2)));
             pelt_vec3 d = v3_sub(X, p);
             if (v3_dot(d, d) > radius2) continue;
-            if (!alg1_texel(row + (size_t)px * 4, c, r, wd)) continue;
+            if (!pelt__wetness_blend_texel(row + (size_t)px * 4, c, r, wd)) continue;
             row_changed = true;
             if ((unsigned)px < box->x0) box->x0 = (unsigned)px;
             if ((unsigned)px > box->x1) box->x1 = (unsigned)px;

@@ -117,8 +117,7 @@ static bool texel_range(float c, float r, unsigned n, unsigned *lo, unsigned *hi
 
 /* Alg. 1 for one texel, as pelt reads it (docs/wetness.md). cd = droplet
  * centre, rd = droplet radius, wd = droplet wetness in [-1,1], wd != 0. */
-/* Alg. 1 for one texel; returns whether it changed. */
-static bool blend_texel(float *t, const float cd[2], float rd, float wd)
+bool pelt__wetness_blend_texel(float *t, const float cd[2], float rd, float wd)
 {
     float rho = t[3];
     if (wd < 0.0f) {
@@ -217,7 +216,7 @@ static void blend_droplet(pelt__wetness *m, const pelt_droplet *d)
         for (unsigned x = xa; x <= xb; x++) {
             float dx = ((float)x + 0.5f) * inv_w - d->center[0];
             if (dx * dx + dy * dy > r2) continue;
-            if (!blend_texel(row + (size_t)x * 4, d->center, r, wd)) continue;
+            if (!pelt__wetness_blend_texel(row + (size_t)x * 4, d->center, r, wd)) continue;
             row_changed = true;
             if (x < cx0) cx0 = x;
             if (x > cx1) cx1 = x;

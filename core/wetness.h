@@ -52,6 +52,12 @@ pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
 pelt_status pelt__wetness_add_droplets(pelt__wetness *m, const pelt_droplet *d, size_t n,
                                        pelt_error *err);
 
+/* Silva Alg. 1 for one texel t (RGBA as above) and a droplet with centre
+ * cd, radius rd and clamped non-zero wetness wd, as docs/wetness.md reads
+ * it; returns whether the texel changed. The droplet functions here and in
+ * core/surface_droplet.c share it. */
+bool pelt__wetness_blend_texel(float *t, const float cd[2], float rd, float wd);
+
 /* Lowers every wet texel's rho by rate * dt (clamped at 0), visiting only
  * the wet bounding box, which then shrinks to the texels still wet.
  * Non-positive or non-finite rate * dt does nothing. No allocation. */
