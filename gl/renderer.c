@@ -200,7 +200,8 @@ void pelt_renderer_destroy(pelt_renderer *r)
 }
 
 /* Brings GPU copies up to date with what changed in the fur since the last
- * frame: only the tip buffer in place, and the colour texture when set. */
+ * frame: the tip buffer in place, the colour texture when it was set, and
+ * only the changed rectangle of the wetness mask. */
 void pelt_renderer_upload(pelt_renderer *r)
 {
     pelt_fur *f = r->fur;
