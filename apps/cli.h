@@ -61,9 +61,9 @@ void cli_session_draw(cli_session *s, const pelt_scene *scene);
 bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h);
 
 /* Expands a frame pattern ("out_%04d.png"); false if the pattern is not a
- * single %d / %0Nd conversion (a pattern without one is taken as is). */
+ * single %d / %0Nd conversion (a pattern without one is taken as is) or
+ * the result does not fit. */
 bool cli_frame_path(const char *pattern, unsigned frame, char *out, size_t out_size);
-bool cli_frame_pattern_ok(const char *pattern);
 
 int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);

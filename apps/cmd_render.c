@@ -1,7 +1,6 @@
 /* pelt render: a still or an image sequence, headless. */
 #include "apps/cli.h"
 
-#include <epoxy/gl.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>

@@ -258,12 +258,6 @@ int cli_parse(const char *cmd, int argc, char **argv, cli_options *o)
 
 void cli_options_free(cli_options *o) { pelt_scene_free(&o->scene); }
 
-bool cli_frame_pattern_ok(const char *pattern)
-{
-    char tmp[8];
-    return cli_frame_path(pattern, 0, tmp, sizeof tmp) || strlen(pattern) >= sizeof tmp;
-}
-
 bool cli_frame_path(const char *pattern, unsigned frame, char *out, size_t out_size)
 {
     const char *pc = strchr(pattern, '%');
