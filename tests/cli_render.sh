@@ -1,0 +1,30 @@
+#!/usr/bin/env bash
+# pelt render: the image is exactly the size asked for; an animation writes
+# one PNG per frame and prints no progress when stderr is not a terminal;
+# the frames of a moving scene differ; --mask-out writes the mask.
+set -u
+pelt=$1 data=$2 out=$3
+fails=0 passes=0
+check() { if [ "$2" -eq 0 ]; then echo "ok   $1"; passes=$((passes+1)); else echo "FAIL $1: $3"; fails=$((fails+1)); fi; }
+png_size() { od -An -tu1 -j16 -N8 "$1" | awk '{print $1*16777216+$2*65536+$3*256+$4 "x" $5*16777216+$6*65536+$7*256+$8}'; }
+
+d="$out/cli_render"; rm -rf "$d"; mkdir -p "$d"
+"$pelt" render --size 123x77 -o "$d/still.png" 2>/dev/null; check still_runs $? "non-zero exit"
+[ "$(png_size "$d/still.png")" = "123x77" ]; check still_has_the_size_asked $? "got $(png_size "$d/still.png")"
+
+err=$("$pelt" render --size 64x48 --frames 4 --fps 10 --turntable 180 --wind 20,0,0 -o "$d/f_%03d.png" 2>&1 >/dev/null)
+check animation_runs $? "$err"
+n=$(ls "$d"/f_*.png 2>/dev/null | wc -l); [ "$n" -eq 4 ]; check four_frames_written $? "got $n files"
+[ -z "$err" ]; check no_progress_without_a_terminal $? "stderr: $err"
+[ -f "$d/f_000.png" ] && [ -f "$d/f_003.png" ] && ! cmp -s "$d/f_000.png" "$d/f_003.png"
+check turning_frames_differ $? "first and last frames are identical"
+
+"$pelt" render --size 64x48 --drops 20 --set wetness.mask_size=128 --mask-out "$d/mask.png" -o "$d/wet.png" 2>/dev/null
+check mask_out_runs $? "non-zero exit"
+[ "$(png_size "$d/mask.png")" = "128x128" ]; check mask_has_the_mask_size $? "got $(png_size "$d/mask.png")"
+
+"$pelt" render scenes_missing.json -o "$d/x.png" 2>/dev/null; rc=$?
+[ $rc -ne 0 ]; check missing_scene_fails $? "exit $rc"
+
+echo "$passes passed, $fails failed"
+[ $fails -eq 0 ]
