@@ -26,5 +26,11 @@ check mask_out_runs $? "non-zero exit"
 "$pelt" render scenes_missing.json -o "$d/x.png" 2>/dev/null; rc=$?
 [ $rc -ne 0 ]; check missing_scene_fails $? "exit $rc"
 
+# No EGL driver at all (glvnd pointed at nothing): a clear error that says
+# what is missing, and no image.
+err=$(__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json "$pelt" render --size 64x48 -o "$d/none.png" 2>&1); rc=$?
+[ $rc -ne 0 ] && [ $rc -lt 128 ] && grep -q "EGL" <<<"$err" && [ ! -e "$d/none.png" ]
+check no_egl_driver_is_a_clear_error $? "exit $rc: $err"
+
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]
