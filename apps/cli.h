@@ -13,6 +13,8 @@ void cli_error(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
+#define CLI_MAX_DROPS 64
+
 /* Options shared by render and bench, parsed into a scene. */
 typedef struct cli_options {
     pelt_scene scene;
@@ -20,6 +22,8 @@ typedef struct cli_options {
     const char *mask_out;  /* --mask-out FILE */
     unsigned warmup;       /* bench */
     unsigned repeats;      /* bench: measured frames */
+    float drops[CLI_MAX_DROPS][3];    /* --drop-at: pixel x, pixel y, world radius */
+    int drop_count;
     bool bench_clumps;     /* bench --clumps */
     bool bench_droplets;   /* bench --droplets */
     bool quiet;
@@ -49,6 +53,10 @@ typedef struct cli_session {
  * error and returns false on failure (everything made so far is freed). */
 bool cli_session_open(const char *cmd, const pelt_scene *scene, cli_session *s);
 void cli_session_close(cli_session *s);
+
+/* Drops water where the rays through the --drop-at pixels hit the mesh;
+ * prints a warning for a ray that misses. */
+void cli_session_drop_at(cli_session *s, const cli_options *o);
 
 /* Moves the mesh to where the scene has it at time t and steps the fur by
  * dt under the scene's forces at t. */

@@ -173,6 +173,7 @@ int cmd_bench(int argc, char **argv)
     if (s.atlas_seconds > 0.0)
         printf("atlas build: %.3f s%s\n", s.atlas_seconds, s.atlas_from_cache ? " (from the cache)" : "");
 
+    cli_session_drop_at(&s, &o);
     stats plain[PARTS], wet[PARTS];
     measure(&s, sc, o.warmup, frames, t, plain);
     report(o.bench_clumps ? "as given (dry unless the scene wets it):" : "frame:", plain);

@@ -43,6 +43,7 @@ int cmd_render(int argc, char **argv)
         cli_options_free(&o);
         return 1;
     }
+    cli_session_drop_at(&s, &o);
     bool show_progress = frames > 1 && !o.quiet && isatty(2);
     float fps = sc->animation.fps > 0.0f ? sc->animation.fps : 30.0f;
     rc = 0;

@@ -27,6 +27,7 @@ typedef enum flag_kind {
     FLAG_OUTPUT,  /* -o */
     FLAG_MASK_OUT,
     FLAG_WARMUP,
+    FLAG_DROP_AT,
     FLAG_CLUMPS,
     FLAG_DROPLETS,
     FLAG_QUIET
@@ -70,6 +71,8 @@ static const flag flags[] = {
     {"--dry-rate", NULL, "R", FLAG_KEY, "wetness.dry_rate", "wetness lost per second"},
     {"--mask-image", NULL, "FILE", FLAG_KEY, "wetness.mask_image", "greyscale image painted as water"},
     {"--mask-out", NULL, "FILE", FLAG_MASK_OUT, NULL, "write the wetness mask as a PNG"},
+    {"--drop-at", NULL, "X,Y,R", FLAG_DROP_AT, NULL,
+     "a droplet where the ray through pixel (X, Y) hits, radius R in world units (repeatable)"},
     {"--set", NULL, "KEY=VALUE", FLAG_SET, NULL, "set any scene key (see docs/scene-format.md)"},
     {"--warmup", NULL, "N", FLAG_WARMUP, NULL, "bench: untimed frames first (default 5)"},
     {"--clumps", NULL, NULL, FLAG_CLUMPS, NULL,
@@ -200,6 +203,27 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
             return false;
         }
         return true;
+    case FLAG_DROP_AT: {
+        float v[3];
+        char *end;
+        const char *p = value;
+        for (int i = 0; i < 3; i++) {
+            errno = 0;
+            v[i] = strtof(p, &end);
+            if (end == p || errno || !isfinite(v[i]) || (i < 2 && *end != ',') || (i == 2 && *end)) {
+                cli_error(cmd, "--drop-at '%s': expected X,Y,R (pixel column, row, world radius)", value);
+                return false;
+            }
+            p = end + 1;
+        }
+        if (!(v[2] > 0.0f) || o->drop_count >= CLI_MAX_DROPS) {
+            cli_error(cmd, "--drop-at '%s': the radius must be positive, at most %d drops", value,
+                      CLI_MAX_DROPS);
+            return false;
+        }
+        memcpy(o->drops[o->drop_count++], v, sizeof v);
+        return true;
+    }
     case FLAG_CLUMPS:
         o->bench_clumps = true;
         return true;

@@ -257,6 +257,18 @@ void cli_session_close(cli_session *s)
     memset(s, 0, sizeof *s);
 }
 
+void cli_session_drop_at(cli_session *s, const cli_options *o)
+{
+    for (int i = 0; i < o->drop_count; i++) {
+        float origin[3], dir[3];
+        const float *d = o->drops[i];
+        if (!pelt_view_pixel_ray(&s->view, d[0], d[1], origin, dir) ||
+            !pelt_fur_add_droplet_ray(s->fur, origin, dir, d[2], 1.0f))
+            fprintf(stderr, "pelt: warning: --drop-at %g,%g misses the mesh\n", (double)d[0],
+                    (double)d[1]);
+    }
+}
+
 void cli_session_advance(cli_session *s, const pelt_scene *sc, float t, float dt)
 {
     pelt_scene_model_at(sc, t, s->view.model);

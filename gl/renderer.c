@@ -310,17 +310,3 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)
 }
 
 unsigned pelt_renderer_shell_draw_calls(const pelt_renderer *r) { return r->shell_draw_calls; }
-
-void pelt_camera_to_view(const pelt_camera *c, float aspect, pelt_view *v)
-{
-    const float deg = 3.14159265358979f / 180.0f;
-    float yaw = c->yaw * deg, pitch = c->pitch * deg;
-    pelt_vec3 target = v3_load(c->target);
-    pelt_vec3 dir = v3(cosf(pitch) * sinf(yaw), sinf(pitch), cosf(pitch) * cosf(yaw));
-    pelt_vec3 eye = v3_mad(target, dir, c->distance);
-    pelt__mat4_look_at(v->view, eye, target, v3(0.0f, 1.0f, 0.0f));
-    float znear = c->distance * 0.02f, zfar = c->distance * 10.0f;
-    pelt__mat4_perspective(v->proj, c->fov_y * deg, aspect, znear, zfar);
-    v3_store(v->eye, eye);
-    pelt__mat4_identity(v->model);
-}

@@ -26,6 +26,19 @@ check mask_out_runs $? "non-zero exit"
 "$pelt" render scenes_missing.json -o "$d/x.png" 2>/dev/null; rc=$?
 [ $rc -ne 0 ]; check missing_scene_fails $? "exit $rc"
 
+# A droplet under a pixel: the torus at (20, 25) of a 64x48 image is fur,
+# the corner (0, 0) is background.
+"$pelt" render --size 64x48 -o "$d/dry.png" 2>/dev/null
+err=$("$pelt" render -q --size 64x48 --drop-at 20,25,0.3 -o "$d/hit.png" 2>&1); rc=$?
+[ $rc -eq 0 ] && [ -z "$err" ] && ! cmp -s "$d/dry.png" "$d/hit.png"
+check drop_at_a_pixel_wets_the_fur $? "exit $rc, '$err', or no change"
+err=$("$pelt" render -q --size 64x48 --drop-at 0,0,0.3 -o "$d/miss.png" 2>&1); rc=$?
+[ $rc -eq 0 ] && grep -q "misses" <<<"$err" && cmp -s "$d/dry.png" "$d/miss.png"
+check drop_at_background_misses $? "exit $rc, '$err'"
+err=$("$pelt" render --size 64x48 --drop-at 1,2 -o "$d/x.png" 2>&1); rc=$?
+[ $rc -ne 0 ] && grep -q -- "--drop-at" <<<"$err"
+check drop_at_needs_three_numbers $? "exit $rc, '$err'"
+
 # No EGL driver at all (glvnd pointed at nothing): a clear error that says
 # what is missing, and no image.
 err=$(__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json "$pelt" render --size 64x48 -o "$d/none.png" 2>&1); rc=$?

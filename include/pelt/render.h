@@ -40,6 +40,13 @@ typedef struct pelt_view {
  * model becomes the identity. */
 void pelt_camera_to_view(const pelt_camera *camera, float aspect, pelt_view *view);
 
+/* The ray through the centre of pixel (px, py) (column from the left, row
+ * from the top) in MESH coordinates (view, projection and model undone),
+ * for pelt_fur_add_droplet_ray under the mouse. `view` needs width and
+ * height. False when the matrices are singular. */
+bool pelt_view_pixel_ray(const pelt_view *view, float px, float py, float origin[3],
+                         float direction[3]);
+
 typedef struct pelt_renderer_desc {
     bool no_skin;   /* skip the opaque skin pass */
     bool no_shells; /* skip the shells (for measuring) */
