@@ -4,27 +4,13 @@
 
 #include "core/error.h"
 #include "core/mesh_internal.h"
+#include "core/raster.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define SUB 256 /* fixed-point steps per texel: exact, shared edge functions */
-
-static int64_t to_fixed(float x, unsigned res)
-{
-    /* Far-outside coordinates are clamped (they only matter for "outside"). */
-    double v = (double)x * (double)res;
-    double lim = 4.0 * (double)res + 4.0;
-    if (!(v > -lim)) v = -lim;
-    if (v > lim) v = lim;
-    return (int64_t)llround(v * SUB);
-}
-
-/* A sample exactly on an edge belongs to the triangle for which that edge is
- * "top-left": of the two opposite traversals of a shared edge exactly one
- * qualifies, so neighbours never both claim it. */
-static int top_left(int64_t dx, int64_t dy) { return dy < 0 || (dy == 0 && dx > 0); }
+#define SUB PELT__RASTER_SUB
 
 size_t pelt__raster_overlaps(const float *uvs, const uint32_t *indices, size_t triangle_count,
                              unsigned res, uint8_t *claims, size_t *covered)
@@ -34,8 +20,8 @@ size_t pelt__raster_overlaps(const float *uvs, const uint32_t *indices, size_t t
     for (size_t t = 0; t < triangle_count; t++) {
         int64_t x[3], y[3];
         for (int k = 0; k < 3; k++) {
-            x[k] = to_fixed(uvs[2 * indices[3 * t + k]], res);
-            y[k] = to_fixed(uvs[2 * indices[3 * t + k] + 1], res);
+            x[k] = pelt__raster_fixed(uvs[2 * indices[3 * t + k]], res);
+            y[k] = pelt__raster_fixed(uvs[2 * indices[3 * t + k] + 1], res);
         }
         int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
         if (area == 0) continue;
@@ -61,7 +47,7 @@ size_t pelt__raster_overlaps(const float *uvs, const uint32_t *indices, size_t t
         int tl[3];
         for (int k = 0; k < 3; k++) {
             int j = (k + 1) % 3;
-            tl[k] = top_left(x[j] - x[k], y[j] - y[k]);
+            tl[k] = pelt__raster_top_left(x[j] - x[k], y[j] - y[k]);
         }
         for (int64_t py = py0; py <= py1; py++) {
             int64_t sy = py * SUB + SUB / 2;

@@ -5,13 +5,14 @@
 
 #include "core/error.h"
 #include "core/mesh_internal.h"
+#include "core/raster.h"
 #include "core/vec.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define SUB 256 /* fixed-point steps per texel, as pelt_atlas_check_uvs */
+#define SUB PELT__RASTER_SUB /* as pelt_atlas_check_uvs */
 #define NONE UINT32_MAX
 
 /* ---- building the index -------------------------------------------------- */
@@ -224,21 +225,7 @@ static bool droplet_in_triangle(const pelt_mesh *mesh, size_t t, pelt_vec3 p, fl
     return true;
 }
 
-/* ---- Alg. 1 on one texel ------------------------------------------------- */
-
 /* ---- the droplet ---------------------------------------------------------- */
-
-static int64_t to_fixed(float x, unsigned res)
-{
-    double v = (double)x * (double)res;
-    double lim = 4.0 * (double)res + 4.0;
-    if (!(v > -lim)) v = -lim;
-    if (v > lim) v = lim;
-    return (int64_t)llround(v * SUB);
-}
-
-/* Of the two traversals of a shared edge exactly one is top-left. */
-static bool top_left(int64_t dx, int64_t dy) { return dy < 0 || (dy == 0 && dx > 0); }
 
 typedef struct changed_box {
     unsigned x0, y0, x1, y1; /* inclusive; empty when x0 > x1 */
@@ -254,8 +241,8 @@ static void wet_triangle(pelt__wetness *m, const pelt_mesh *mesh, size_t t, pelt
     int64_t x[3], y[3];
     for (int k = 0; k < 3; k++) {
         vi[k] = mesh->indices[3 * t + k];
-        x[k] = to_fixed(mesh->uvs[(size_t)vi[k] * 2], m->width);
-        y[k] = to_fixed(mesh->uvs[(size_t)vi[k] * 2 + 1], m->height);
+        x[k] = pelt__raster_fixed(mesh->uvs[(size_t)vi[k] * 2], m->width);
+        y[k] = pelt__raster_fixed(mesh->uvs[(size_t)vi[k] * 2 + 1], m->height);
     }
     int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
     if (area == 0) return;
@@ -282,7 +269,7 @@ static void wet_triangle(pelt__wetness *m, const pelt_mesh *mesh, size_t t, pelt
     if (py1 > (int64_t)m->height - 1) py1 = (int64_t)m->height - 1;
     if (px0 > px1 || py0 > py1) return;
     bool tl[3];
-    for (int k = 0; k < 3; k++) tl[k] = top_left(x[(k + 1) % 3] - x[k], y[(k + 1) % 3] - y[k]);
+    for (int k = 0; k < 3; k++) tl[k] = pelt__raster_top_left(x[(k + 1) % 3] - x[k], y[(k + 1) % 3] - y[k]);
     pelt_vec3 q[3];
     for (int k = 0; k < 3; k++) q[k] = v3_load(mesh->positions + (size_t)vi[k] * 3);
     double inv_area = 1.0 / (double)area;
