@@ -5,51 +5,25 @@
 #include "pelt/atlas.h"
 
 #include "check.h"
+#include "corpus.h"
 #include "core/mesh_internal.h"
 
-#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#define CGAL_ARCHIVE "/usr/share/doc/libcgal-dev/data.tar.gz"
 #define CORPUS_DIR PELT_TEST_OUT "/atlas_corpus"
 /* Keeps the run under a minute under ASan (the largest corpus mesh has
  * 88,928 triangles): bigger meshes would be listed as
  * skipped (the 365k-triangle timing is measured separately, in Release). */
 #define MAX_TRIANGLES 100000
 
-static int has_suffix(const char *s, const char *suffix)
-{
-    size_t a = strlen(s), b = strlen(suffix);
-    return a >= b && strcmp(s + a - b, suffix) == 0;
-}
-
-static int by_name(const void *a, const void *b)
-{
-    return strcmp(*(char *const *)a, *(char *const *)b);
-}
-
 static void cgal_meshes_atlas_has_no_flip_and_no_overlap(void)
 {
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "mkdir -p '%s' && tar -xzf '%s' -C '%s' data/meshes", CORPUS_DIR,
-             CGAL_ARCHIVE, CORPUS_DIR);
-    CHECK(system(cmd) == 0);
-    DIR *dir = opendir(CORPUS_DIR "/data/meshes");
-    CHECK(dir != NULL);
-    if (!dir) return;
     char *names[1024];
-    size_t count = 0;
-    struct dirent *ent;
-    while ((ent = readdir(dir)) && count < 1024) {
-        const char *n = ent->d_name;
-        if (has_suffix(n, ".off") || has_suffix(n, ".ply") || has_suffix(n, ".stl") ||
-            has_suffix(n, ".obj"))
-            names[count++] = strdup(n);
-    }
-    closedir(dir);
-    qsort(names, count, sizeof names[0], by_name);
+    long listed = corpus_list(CORPUS_DIR, names, 1024);
+    CHECK(listed >= 0);
+    if (listed < 0) return;
+    size_t count = (size_t)listed;
     size_t built = 0, skipped = 0, failed = 0;
     double worst = 0;
     printf("  %-30s %8s %7s %7s %6s %6s %6s %7s\n", "mesh", "tris", "patches", "mask", "min", "mean",
@@ -108,8 +82,7 @@ static void cgal_meshes_atlas_has_no_flip_and_no_overlap(void)
 
 int main(void)
 {
-    struct stat sb;
-    if (stat(CGAL_ARCHIVE, &sb) != 0) {
+    if (!corpus_available()) {
         printf("skipped: libcgal-demo not installed\n");
         return 0;
     }

@@ -4,22 +4,14 @@
  * triangle-only faces must keep every face (kept + dropped = declared). */
 #define _POSIX_C_SOURCE 200809L /* popen-free: opendir, stat */
 #include "check.h"
+#include "corpus.h"
 
 #include "core/mesh_internal.h"
 
-#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
-#define CGAL_ARCHIVE "/usr/share/doc/libcgal-dev/data.tar.gz"
 #define CORPUS_DIR PELT_TEST_OUT "/cgal_corpus"
-
-static int has_suffix(const char *s, const char *suffix)
-{
-    size_t a = strlen(s), b = strlen(suffix);
-    return a >= b && strcmp(s + a - b, suffix) == 0;
-}
 
 /* Faces of an OFF file whose faces are all triangles, or -1 when it has
  * polygons (assimp's ear clipping may drop slivers of those) or cannot be
@@ -51,23 +43,11 @@ static long long off_declared_triangles(const char *path)
 
 static void cgal_meshes_load_or_fail_cleanly(void)
 {
-    char cmd[1024];
-    snprintf(cmd, sizeof cmd, "mkdir -p '%s' && tar -xzf '%s' -C '%s' data/meshes", CORPUS_DIR,
-             CGAL_ARCHIVE, CORPUS_DIR);
-    CHECK(system(cmd) == 0);
-    DIR *dir = opendir(CORPUS_DIR "/data/meshes");
-    CHECK(dir != NULL);
-    if (!dir) return;
     char *names[1024];
-    size_t count = 0;
-    struct dirent *ent;
-    while ((ent = readdir(dir)) && count < 1024) {
-        const char *n = ent->d_name;
-        if (has_suffix(n, ".off") || has_suffix(n, ".ply") || has_suffix(n, ".stl") ||
-            has_suffix(n, ".obj"))
-            names[count++] = strdup(n);
-    }
-    closedir(dir);
+    long listed = corpus_list(CORPUS_DIR, names, 1024);
+    CHECK(listed >= 0);
+    if (listed < 0) return;
+    size_t count = (size_t)listed;
     size_t loaded = 0, refused = 0, compared = 0;
     for (size_t i = 0; i < count; i++) {
         char path[2048];
@@ -79,7 +59,7 @@ static void cgal_meshes_load_or_fail_cleanly(void)
             pelt_mesh_stats s = pelt_mesh_get_stats(m);
             printf("  %-36s %8zu triangles %6zu dropped\n", names[i], s.triangle_count,
                    s.dropped_degenerate);
-            long long want = has_suffix(names[i], ".off") ? off_declared_triangles(path) : -1;
+            long long want = corpus_has_suffix(names[i], ".off") ? off_declared_triangles(path) : -1;
             if (want >= 0) {
                 compared++;
                 if ((long long)(s.triangle_count + s.dropped_degenerate) != want) {
@@ -108,8 +88,7 @@ static void cgal_meshes_load_or_fail_cleanly(void)
 
 int main(void)
 {
-    struct stat sb;
-    if (stat(CGAL_ARCHIVE, &sb) != 0) {
+    if (!corpus_available()) {
         printf("skipped: libcgal-demo not installed\n");
         return 0;
     }
