@@ -681,17 +681,22 @@ static bool try_pack(const builder *b, double s, unsigned size, stbrp_node *node
 
 /* ---- statistics -------------------------------------------------------- */
 
+/* Twice the signed uv area and twice the world area of triangle t. */
+static void doubled_areas(const pelt_mesh *m, const float *uv, size_t t, double *a, double *w)
+{
+    const uint32_t *tri = m->indices + 3 * t;
+    *a = (uv[2 * tri[1]] - uv[2 * tri[0]]) * (uv[2 * tri[2] + 1] - uv[2 * tri[0] + 1]) -
+         (uv[2 * tri[2]] - uv[2 * tri[0]]) * (uv[2 * tri[1] + 1] - uv[2 * tri[0] + 1]);
+    *w = 2.0 * pelt__triangle_area(m, t);
+}
+
 static void uv_stats(const pelt_mesh *m, const float *uv, pelt_atlas_stats *st)
 {
     double tot_uv = 0, tot_w = 0;
     size_t pos = 0, neg = 0;
     for (size_t t = 0; t < m->triangle_count; t++) {
-        const uint32_t *tri = m->indices + 3 * t;
-        double a = (uv[2 * tri[1]] - uv[2 * tri[0]]) * (uv[2 * tri[2] + 1] - uv[2 * tri[0] + 1]) -
-                   (uv[2 * tri[2]] - uv[2 * tri[0]]) * (uv[2 * tri[1] + 1] - uv[2 * tri[0] + 1]);
-        pelt_vec3 p0 = v3_load(m->positions + 3 * tri[0]);
-        double w = v3_len(v3_cross(v3_sub(v3_load(m->positions + 3 * tri[1]), p0),
-                                   v3_sub(v3_load(m->positions + 3 * tri[2]), p0)));
+        double a, w;
+        doubled_areas(m, uv, t, &a, &w);
         tot_uv += fabs(a);
         tot_w += w;
         pos += a > 0, neg += a < 0;
@@ -700,12 +705,8 @@ static void uv_stats(const pelt_mesh *m, const float *uv, pelt_atlas_stats *st)
     double norm = tot_uv > 0 ? tot_w / tot_uv : 0, sum = 0, lo = INFINITY, hi = 0;
     size_t counted = 0;
     for (size_t t = 0; t < m->triangle_count; t++) {
-        const uint32_t *tri = m->indices + 3 * t;
-        double a = (uv[2 * tri[1]] - uv[2 * tri[0]]) * (uv[2 * tri[2] + 1] - uv[2 * tri[0] + 1]) -
-                   (uv[2 * tri[2]] - uv[2 * tri[0]]) * (uv[2 * tri[1] + 1] - uv[2 * tri[0] + 1]);
-        pelt_vec3 p0 = v3_load(m->positions + 3 * tri[0]);
-        double w = v3_len(v3_cross(v3_sub(v3_load(m->positions + 3 * tri[1]), p0),
-                                   v3_sub(v3_load(m->positions + 3 * tri[2]), p0)));
+        double a, w;
+        doubled_areas(m, uv, t, &a, &w);
         if (!(w > 0)) continue;
         double ratio = fabs(a) * norm / w;
         lo = fmin(lo, ratio), hi = fmax(hi, ratio), sum += ratio;
