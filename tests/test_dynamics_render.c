@@ -17,8 +17,9 @@ static pelt_headless *gl;
 static pelt_mesh *torus, *square;
 static const pelt_camera torus_cam = {30.0f, 25.0f, 4.2f, 40.0f, {0, 0, 0}};
 static const pelt_camera curl_cam = {30.0f, 20.0f, 3.2f, 40.0f, {0, 0, 0}};
-/* Looking at the square's edge-on side from +Z: image right is world +X. */
-static const pelt_camera side_cam = {0.0f, 10.0f, 3.6f, 40.0f, {0, 0, 0}};
+/* Looking down at the square from above, from the +Z side: image right is
+ * world +X, so fur leaning +X spills past the right edge. */
+static const pelt_camera above_cam = {0.0f, 75.0f, 3.6f, 40.0f, {0, 0, 0}};
 
 /* What a tweak does to the fur before it is drawn: `seconds` of steps at
  * 1/60 s under `forces`, spinning the mesh about +Y at `spin` deg/s. */
@@ -102,7 +103,7 @@ static pelt_forces no_gravity(void)
 static void wind_leans_fur_downwind(void)
 {
     pelt_view v;
-    pelt_camera_to_view(&side_cam, (float)W / H, &v);
+    pelt_camera_to_view(&above_cam, (float)W / H, &v);
     CHECK(v.view[0] > 0.9f); /* world +X is image right */
 
     /* dense fur so the silhouette is solid, not a few scattered hairs */
@@ -112,9 +113,9 @@ static void wind_leans_fur_downwind(void)
     motion calm = {no_gravity(), 1.5f, 0.0f}, windy = calm;
     windy.forces.wind[0] = 20.0f;
     windy.forces.gust_strength = 0.3f;
-    uint8_t *skin = gl_test_render(gl, square, &d, &side_cam, &bare, NULL, NULL);
-    uint8_t *a = gl_test_render(gl, square, &d, &side_cam, NULL, run_motion, &calm);
-    uint8_t *b = gl_test_render(gl, square, &d, &side_cam, NULL, run_motion, &windy);
+    uint8_t *skin = gl_test_render(gl, square, &d, &above_cam, &bare, NULL, NULL);
+    uint8_t *a = gl_test_render(gl, square, &d, &above_cam, NULL, run_motion, &calm);
+    uint8_t *b = gl_test_render(gl, square, &d, &above_cam, NULL, run_motion, &windy);
     CHECK(skin && a && b);
     if (skin && a && b) {
         int x0 = W, x1 = -1;
