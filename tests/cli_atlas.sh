@@ -43,6 +43,8 @@ expect_fail() {
 }
 
 expect_atlas tetra "$data/meshes/tetra.off"
+# An OFF file has no uvs: the reason they were not used goes to stderr.
+if grep -q "warning: .*uvs" "$out/atlas_tetra.err"; then pass tetra_warns_about_uvs; else fail "tetra_warns_about_uvs: $(cat "$out/atlas_tetra.err")"; fi
 if grep -q "cache.*hit" <<<"$stdout"; then fail "tetra_first_run_not_from_cache: $stdout"; else pass tetra_first_run_not_from_cache; fi
 expect_atlas tetra_again "$data/meshes/tetra.off"
 if grep -q "cache.*hit" <<<"$stdout"; then pass tetra_second_run_from_cache; else fail "tetra_second_run_from_cache: $stdout"; fi
