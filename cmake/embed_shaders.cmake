@@ -1,8 +1,8 @@
-# Turns every gl/shaders/NAME.glsl into `const char pelt__shader_NAME[]`.
-file(GLOB files ${SRC_DIR}/*.glsl)
-list(SORT files)
+# Turns every listed NAME.glsl (FILES, separated by |) into
+# `const char pelt__shader_NAME[]`.
+string(REPLACE "|" ";" FILES "${FILES}")
 set(out "/* Generated from the gl/shaders .glsl files by cmake/embed_shaders.cmake. */\n")
-foreach(f ${files})
+foreach(f ${FILES})
   get_filename_component(name ${f} NAME_WE)
   file(READ ${f} text HEX)
   string(REGEX REPLACE "([0-9a-f][0-9a-f])" "0x\\1," bytes "${text}")

@@ -3,10 +3,10 @@
  * blended inner to outer, depth tested without depth write. */
 #include "pelt/render.h"
 
-#include "core/error.h"
-#include "core/fur_internal.h"
-#include "core/mesh_internal.h"
-#include "core/vec.h"
+#include "core/base/error.h"
+#include "core/fur/fur_internal.h"
+#include "core/mesh/mesh_internal.h"
+#include "core/base/vec.h"
 #include "gl/shader.h"
 
 #include <math.h>

@@ -1,6 +1,6 @@
 #include "gl/shader.h"
 
-#include "core/error.h"
+#include "core/base/error.h"
 
 #include <stdlib.h>
 

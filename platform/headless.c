@@ -3,7 +3,7 @@
  * display. Renders into an offscreen framebuffer object. */
 #include "pelt/headless.h"
 
-#include "core/error.h"
+#include "core/base/error.h"
 
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>

@@ -1,0 +1,142 @@
+#include "core/atlas/direction_field.h"
+
+#include "core/base/error.h"
+#include "core/base/vec.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct weld_item { float p[3]; uint32_t index; } weld_item;
+
+static int compare_weld(const void *a, const void *b)
+{
+    const weld_item *x = a, *y = b;
+    for (int k = 0; k < 3; k++) {
+        if (x->p[k] < y->p[k]) return -1;
+        if (x->p[k] > y->p[k]) return 1;
+    }
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+bool pelt__weld_positions(const float *positions, size_t vertex_count, uint32_t *canon)
+{
+    weld_item *items = pelt__calloc(vertex_count, sizeof *items);
+    if (!items) return false;
+    for (size_t i = 0; i < vertex_count; i++) {
+        /* + 0.0f turns -0 into +0: the same point must weld. */
+        for (int k = 0; k < 3; k++) items[i].p[k] = positions[3 * i + k] + 0.0f;
+        items[i].index = (uint32_t)i;
+    }
+    qsort(items, vertex_count, sizeof *items, compare_weld);
+    /* Sorted by position then index: the first of each run is the smallest. */
+    for (size_t b = 0; b < vertex_count;) {
+        size_t e = b + 1;
+        while (e < vertex_count && items[e].p[0] == items[b].p[0] && items[e].p[1] == items[b].p[1] &&
+               items[e].p[2] == items[b].p[2])
+            e++;
+        for (size_t i = b; i < e; i++) canon[items[i].index] = items[b].index;
+        b = e;
+    }
+    free(items);
+    return true;
+}
+
+void pelt__any_tangent(const float n[3], float t[3])
+{
+    /* Duff et al. 2017 orthonormal basis: continuous except across n.z = 0. */
+    float s = n[2] >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n[2]);
+    float b = n[0] * n[1] * a;
+    t[0] = 1.0f + s * n[0] * n[0] * a;
+    t[1] = s * b;
+    t[2] = -s * n[0];
+}
+
+static pelt_vec3 project(pelt_vec3 v, pelt_vec3 n) { return v3_sub(v, v3_scale(n, v3_dot(n, v))); }
+
+/* Slant weight from the length of the projected field (relative to the
+ * input): below 0.1 (about 6 degrees from the normal) the fur stands up,
+ * above 0.4 it slants fully; smooth in between so it never spins. */
+static float ramp(float m)
+{
+    float x = clampf((m - 0.1f) / 0.3f, 0.0f, 1.0f);
+    return x * x * (3.0f - 2.0f * x);
+}
+
+bool pelt__direction_field(const float *positions, const float *normals, size_t vertex_count,
+                           const uint32_t *indices, size_t triangle_count, const uint32_t *canon,
+                           const float global[3], const float *per_vertex, unsigned iterations,
+                           float *dir, float *weight)
+{
+    (void)positions;
+    float *field = pelt__calloc(vertex_count, 3 * sizeof(float));
+    float *sum = pelt__calloc(vertex_count, 3 * sizeof(float));
+    if (!field || !sum) {
+        free(field);
+        free(sum);
+        return false;
+    }
+    pelt_vec3 g = v3_norm_or(v3_load(global), v3(0, -1, 0));
+    /* Raw field: unit tangent direction times its slant weight (Lengyel §3:
+     * the tangential part of c_v). Only canonical vertices carry the value. */
+    for (size_t i = 0; i < vertex_count; i++) {
+        if (canon[i] != i) continue;
+        pelt_vec3 n = v3_load(normals + 3 * i);
+        pelt_vec3 t;
+        float strength;
+        if (per_vertex) { /* the caller's tangential part is the slant (Lengyel §3, c_v) */
+            t = project(v3_load(per_vertex + 3 * i), n);
+            strength = clampf(v3_len(t), 0.0f, 1.0f);
+        } else {
+            t = project(g, n);
+            strength = ramp(v3_len(t));
+        }
+        v3_store(field + 3 * i, v3_scale(v3_norm_or(t, v3(0, 0, 0)), strength));
+    }
+    /* Laplacian smoothing over the welded adjacency, re-projected each time:
+     * opposing directions around a singularity cancel, lowering the weight. */
+    float *count = weight; /* scratch until the final loop writes weights */
+    for (size_t i = 0; i < vertex_count; i++) count[i] = 1.0f;
+    for (size_t t = 0; t < triangle_count; t++)
+        for (int k = 0; k < 3; k++) count[canon[indices[3 * t + k]]] += 1.0f;
+    for (unsigned it = 0; it < iterations; it++) {
+        memcpy(sum, field, vertex_count * 3 * sizeof(float));
+        for (size_t t = 0; t < triangle_count; t++) {
+            uint32_t c[3];
+            for (int k = 0; k < 3; k++) c[k] = canon[indices[3 * t + k]];
+            for (int k = 0; k < 3; k++) {
+                float *s = sum + 3 * c[k];
+                for (int j = 1; j < 3; j++) {
+                    const float *f = field + 3 * c[(k + j) % 3];
+                    s[0] += 0.5f * f[0];
+                    s[1] += 0.5f * f[1];
+                    s[2] += 0.5f * f[2];
+                }
+            }
+        }
+        for (size_t i = 0; i < vertex_count; i++) {
+            if (canon[i] != i) continue;
+            pelt_vec3 n = v3_load(normals + 3 * i);
+            pelt_vec3 avg = v3_scale(v3_load(sum + 3 * i), 1.0f / count[i]);
+            pelt_vec3 p = project(avg, n);
+            /* Re-projection keeps the length (weight) of the average. */
+            float la = v3_len(avg), lp = v3_len(p);
+            if (lp > 1e-12f) p = v3_scale(p, la / lp);
+            v3_store(field + 3 * i, p);
+        }
+    }
+    for (size_t i = 0; i < vertex_count; i++) {
+        size_t c = canon[i];
+        pelt_vec3 n = v3_load(normals + 3 * i);
+        pelt_vec3 f = project(v3_load(field + 3 * c), n);
+        float w = clampf(v3_len(v3_load(field + 3 * c)), 0.0f, 1.0f);
+        float fallback[3];
+        pelt__any_tangent(normals + 3 * i, fallback);
+        pelt_vec3 d = v3_len(f) > 1e-6f ? v3_norm_or(f, v3_load(fallback)) : v3_load(fallback);
+        v3_store(dir + 3 * i, d);
+        weight[i] = w > 1e-6f ? w : 0.0f;
+    }
+    free(field);
+    free(sum);
+    return true;
+}

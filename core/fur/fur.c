@@ -1,0 +1,325 @@
+/* pelt_fur: parameters, synthesized fur texture and per-vertex fur state. */
+#include "core/fur/fur_internal.h"
+
+#include "core/base/error.h"
+#include "core/fur/fur_shape.h"
+#include "core/fur/furtex.h"
+#include "core/mesh/mesh_internal.h"
+#include "core/base/vec.h"
+#include "pelt/dynamics.h"
+#include "pelt/wetness.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static float bbox_diagonal(const pelt_mesh *m)
+{
+    return v3_len(v3_sub(v3_load(m->bounds_max), v3_load(m->bounds_min)));
+}
+
+void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
+{
+    float diag = mesh ? bbox_diagonal(mesh) : 1.0f;
+    if (!(diag > 0.0f)) diag = 1.0f;
+    if (d->layers == 0) d->layers = 16;
+    if (d->length == 0.0f) d->length = 0.03f * diag;
+    if (d->texture_size == 0) d->texture_size = 256;
+    if (d->seed == 0) d->seed = 1;
+    if (d->density == 0.0f) d->density = 3000.0f;
+    if (d->strand_radius == 0.0f) d->strand_radius = 1.6f;
+    if (d->taper == 0.0f) d->taper = 0.8f;
+    /* Tiles per world unit: five fur tiles across the bounding diagonal. */
+    if (d->tiling == 0.0f) d->tiling = 5.0f / diag;
+    if (d->color[0] == 0.0f && d->color[1] == 0.0f && d->color[2] == 0.0f) {
+        d->color[0] = 0.55f; d->color[1] = 0.34f; d->color[2] = 0.18f;
+    }
+    if (d->tip_color[0] == 0.0f && d->tip_color[1] == 0.0f && d->tip_color[2] == 0.0f) {
+        d->tip_color[0] = 1.0f; d->tip_color[1] = 0.82f; d->tip_color[2] = 0.58f;
+    }
+    if (d->specular[0] == 0.0f && d->specular[1] == 0.0f && d->specular[2] == 0.0f)
+        d->specular[0] = 0.9f, d->specular[1] = 0.85f, d->specular[2] = 0.8f;
+    if (d->shininess == 0.0f) d->shininess = 20.0f;
+    if (d->shadow == 0.0f) d->shadow = 2.0f;
+    if (d->mass == 0.0f) d->mass = 1.0f;
+    if (d->spring_k == 0.0f) d->spring_k = d->mass * 9.81f / (0.4f * d->length);
+    if (d->damping == 0.0f) d->damping = 0.5f * sqrtf(d->spring_k * d->mass);
+    if (d->mask_size == 0) d->mask_size = 256;
+    if (d->clump_blend == 0.0f) d->clump_blend = 0.5f;
+    if (d->clump_tightness == 0.0f) d->clump_tightness = 0.9f;
+    if (d->wet_darken == 0.0f) d->wet_darken = 0.35f;
+    if (d->color_scale == 0.0f) d->color_scale = 1.0f;
+}
+
+static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
+{
+    if (d->layers < 1 || d->layers > 256)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur layers must be 1..256, got %u", d->layers);
+    if (d->texture_size < 8 || d->texture_size > 4096)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur texture size must be 8..4096, got %u",
+                          d->texture_size);
+    const float positive[] = {d->length, d->density, d->strand_radius, d->tiling, d->shininess};
+    const char *names[] = {"length", "density", "strand radius", "tiling", "shininess"};
+    for (size_t i = 0; i < sizeof positive / sizeof positive[0]; i++)
+        if (!(positive[i] > 0.0f) || !isfinite(positive[i]))
+            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur %s must be a positive number, got %g",
+                              names[i], (double)positive[i]);
+    if (d->density > 1e6f)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur density %g is too high (max 1e6)", (double)d->density);
+    if (d->strand_radius > 64.0f)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur strand radius %g texels is too large (max 64)",
+                          (double)d->strand_radius);
+    if (!(d->taper >= 0.0f && d->taper <= 1.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur taper must be in [0, 1], got %g", (double)d->taper);
+    if (!(d->shadow >= 1.0f) || !isfinite(d->shadow))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur shadow K must be >= 1, got %g", (double)d->shadow);
+    if (!(d->mass > 0.0f) || !(d->spring_k > 0.0f) || !(d->damping >= 0.0f) || !isfinite(d->mass) ||
+        !isfinite(d->spring_k) || !isfinite(d->damping))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "fur mass and spring constant must be positive, damping >= 0");
+    if (d->mask_size > 8192)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness mask size must be 1..8192, got %u", d->mask_size);
+    if (!(d->clump_blend >= 0.0f && d->clump_blend <= 1.0f) ||
+        !(d->clump_tightness > 0.0f && d->clump_tightness <= 1.0f) ||
+        !(d->wet_darken >= 0.0f && d->wet_darken < 1.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "clump blend must be in [0,1], tightness in (0,1], wet darkening in [0,1)");
+    if (!(d->slant >= 0.0f && d->slant <= 60.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur slant must be 0..60 degrees, got %g",
+                          (double)d->slant);
+    if (!(d->color_scale > 0.0f) || !isfinite(d->color_scale))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour scale must be positive");
+    if (!isfinite(d->curl_frequency) || !isfinite(d->curl_radius) || d->curl_radius < 0.0f)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
+    return PELT_OK;
+}
+
+/* Fur-texture coordinates in tiles. With an atlas the mesh carries patch
+ * coordinates already; otherwise the mesh uvs are scaled by the mean
+ * world length of one uv unit along u and along v, so hairs come out round
+ * whatever the uv map's aspect (the torus's uv square is 2.5x longer
+ * around the hole than around the tube). */
+static void compute_fur_uvs(const pelt_mesh *m, float tiling, float *out, float fur_per_uv[2])
+{
+    if (m->fur_uvs) {
+        /* Patch coordinates from an atlas: within a patch fur uvs are a
+         * similarity of the atlas uvs; measure its scale for the clump
+         * displacement (mask space to fur space). */
+        memcpy(out, m->fur_uvs, m->vertex_count * 2 * sizeof(float));
+        double fur_area = 0.0, uv_area = 0.0;
+        for (size_t t = 0; t < m->triangle_count; t++) {
+            uv_area += pelt__triangle_area_2d(m, m->uvs, t);
+            fur_area += pelt__triangle_area_2d(m, m->fur_uvs, t);
+        }
+        float k = uv_area > 0.0 ? (float)sqrt(fur_area / uv_area) : tiling;
+        fur_per_uv[0] = fur_per_uv[1] = k;
+        return;
+    }
+    double su = 0.0, sv = 0.0, wsum = 0.0;
+    for (size_t t = 0; t < m->triangle_count; t++) {
+        const uint32_t *ix = m->indices + 3 * t;
+        pelt_vec3 p0 = v3_load(m->positions + 3 * ix[0]);
+        pelt_vec3 e1 = v3_sub(v3_load(m->positions + 3 * ix[1]), p0);
+        pelt_vec3 e2 = v3_sub(v3_load(m->positions + 3 * ix[2]), p0);
+        const float *a = m->uvs + 2 * ix[0], *b = m->uvs + 2 * ix[1], *c = m->uvs + 2 * ix[2];
+        float du1 = b[0] - a[0], dv1 = b[1] - a[1], du2 = c[0] - a[0], dv2 = c[1] - a[1];
+        float det = du1 * dv2 - du2 * dv1;
+        float area = v3_len(v3_cross(e1, e2));
+        if (fabsf(det) < 1e-12f || area <= 0.0f) continue;
+        /* Columns of the Jacobian dP/du and dP/dv. */
+        pelt_vec3 dpu = v3_scale(v3_sub(v3_scale(e1, dv2), v3_scale(e2, dv1)), 1.0f / det);
+        pelt_vec3 dpv = v3_scale(v3_sub(v3_scale(e2, du1), v3_scale(e1, du2)), 1.0f / det);
+        su += area * v3_len(dpu);
+        sv += area * v3_len(dpv);
+        wsum += area;
+    }
+    float scale_u = wsum > 0.0 ? (float)(su / wsum) : 1.0f;
+    float scale_v = wsum > 0.0 ? (float)(sv / wsum) : 1.0f;
+    fur_per_uv[0] = scale_u * tiling;
+    fur_per_uv[1] = scale_v * tiling;
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        out[2 * i + 0] = m->uvs[2 * i + 0] * scale_u * tiling;
+        out[2 * i + 1] = m->uvs[2 * i + 1] * scale_v * tiling;
+    }
+}
+
+pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pelt_fur **out,
+                            pelt_error *err)
+{
+    if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_create: out is NULL");
+    *out = NULL;
+    if (!mesh) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_create: mesh is NULL");
+    pelt_fur_desc d = desc ? *desc : (pelt_fur_desc){0};
+    pelt__fur_desc_defaults(&d, mesh);
+    pelt_status st = check_desc(&d, err);
+    if (st != PELT_OK) return st;
+
+    pelt_fur *f = calloc(1, sizeof *f);
+    if (!f) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
+    f->desc = d;
+    f->mesh = mesh;
+    f->texture_slices = d.layers + 1;
+    pelt__furtex_desc td = {d.texture_size, d.layers, d.seed, d.density, d.strand_radius, d.taper};
+    size_t bytes = pelt__furtex_bytes(&td);
+    f->texture = bytes ? malloc(bytes) : NULL;
+    f->fur_uvs = pelt__calloc(mesh->vertex_count, 2 * sizeof(float));
+    pelt__strand_params sp = {d.length, d.spring_k, d.mass, d.damping, d.seed};
+    st = pelt__strands_create(mesh, &sp, &f->strands, err);
+    if (st != PELT_OK) {
+        pelt_fur_destroy(f);
+        return st;
+    }
+    f->tips = pelt__strands_tip_offsets(f->strands);
+    st = pelt__wetness_create(d.mask_size, d.mask_size, &f->wetness, err);
+    if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->surface, err);
+    if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->bvh, err);
+    if (st == PELT_OK) st = pelt__fur_rain_init(f, err);
+    if (st != PELT_OK) {
+        pelt_fur_destroy(f);
+        return st;
+    }
+    if (!f->texture || !f->fur_uvs) {
+        pelt_fur_destroy(f);
+        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
+    }
+    pelt__furtex_generate(&td, f->texture);
+    compute_fur_uvs(mesh, d.tiling, f->fur_uvs, f->fur_per_uv);
+    f->tips_version = 1;
+    *out = f;
+    return PELT_OK;
+}
+
+pelt_status pelt_fur_desc_curl_preset(pelt_fur_desc *d, const pelt_mesh *mesh, const char *name,
+                                      pelt_error *err)
+{
+    float omega = 0.0f, radius_fraction = 0.0f;
+    if (!name || !pelt__curl_preset(name, &omega, &radius_fraction))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "unknown curl preset '%s' (straight, wavy, few-large-curls, many-small-curls)",
+                          name ? name : "(null)");
+    pelt_fur_desc resolved = *d;
+    pelt__fur_desc_defaults(&resolved, mesh);
+    if (d->curl_frequency == 0.0f) d->curl_frequency = omega;
+    if (d->curl_radius == 0.0f) d->curl_radius = radius_fraction * resolved.length;
+    return PELT_OK;
+}
+
+void pelt_fur_destroy(pelt_fur *f)
+{
+    if (!f) return;
+    free(f->texture);
+    free(f->fur_uvs);
+    free(f->color_texture);
+    pelt__strands_destroy(f->strands);
+    pelt__wetness_destroy(f->wetness);
+    pelt__surface_index_destroy(f->surface);
+    pelt__bvh_destroy(f->bvh);
+    free(f->area_cdf);
+    free(f);
+}
+
+pelt_status pelt_fur_set_transform(pelt_fur *f, const float model[16], pelt_error *err)
+{
+    if (!pelt__strands_set_transform(f->strands, model))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "fur transform must be finite and invertible");
+    return PELT_OK;
+}
+
+void pelt_fur_step(pelt_fur *f, float dt, const pelt_forces *forces)
+{
+    if (!(dt > 0.0f)) return;
+    pelt__strands_step(f->strands, dt, forces, f->time);
+    if (f->rain.rate > 0.0f) pelt__fur_rain_step(f, dt);
+    if (f->dry_rate > 0.0f) pelt__wetness_dry(f->wetness, f->dry_rate, dt);
+    f->time += dt;
+    f->tips_version++;
+}
+
+void pelt_fur_reset(pelt_fur *f)
+{
+    pelt__strands_reset(f->strands);
+    f->time = 0.0f;
+    f->tips_version++;
+}
+
+pelt_fur_desc pelt_fur_get_desc(const pelt_fur *f) { return f->desc; }
+
+pelt_status pelt_fur_set_color_texture(pelt_fur *f, const uint8_t *rgba, unsigned w, unsigned h,
+                                       pelt_error *err)
+{
+    if (!rgba || w == 0 || h == 0 || w > 16384 || h > 16384)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour texture must be 1..16384 texels a side");
+    uint8_t *copy = pelt__calloc((size_t)w * h, 4);
+    if (!copy) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a %ux%u colour texture", w, h);
+    memcpy(copy, rgba, (size_t)w * h * 4);
+    free(f->color_texture);
+    f->color_texture = copy;
+    f->color_width = w;
+    f->color_height = h;
+    f->color_version++;
+    return PELT_OK;
+}
+
+pelt_status pelt_fur_add_droplet(pelt_fur *f, const pelt_droplet *d, pelt_error *err)
+{
+    return pelt__wetness_add_droplet(f->wetness, d, err);
+}
+
+pelt_status pelt_fur_add_droplets(pelt_fur *f, const pelt_droplet *d, size_t count, pelt_error *err)
+{
+    return pelt__wetness_add_droplets(f->wetness, d, count, err);
+}
+
+pelt_status pelt_fur_add_droplet_at(pelt_fur *f, size_t triangle, const float bary[3],
+                                    float radius_world, float wetness, pelt_error *err)
+{
+    /* By distance on the surface, across patch borders (issue 5). */
+    return pelt__droplet_surface(f->wetness, f->mesh, f->surface, triangle, bary, radius_world,
+                                 wetness, err);
+}
+
+bool pelt_fur_add_droplet_ray(pelt_fur *f, const float origin[3], const float direction[3],
+                              float radius_world, float wetness)
+{
+    pelt__hit hit;
+    if (!pelt__bvh_raycast(f->bvh, origin, direction, INFINITY, &hit)) return false;
+    return pelt_fur_add_droplet_at(f, hit.triangle, hit.bary, radius_world, wetness, NULL) == PELT_OK;
+}
+
+void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain)
+{
+    f->rain = *rain;
+    f->rain_rng = pelt__rng_seed(rain->seed, 0x7261696eULL);
+    f->rain_carry = 0.0;
+}
+
+void pelt_fur_clear_wetness(pelt_fur *f) { pelt__wetness_clear(f->wetness); }
+
+void pelt_fur_set_rain_rate(pelt_fur *f, float rate)
+{
+    f->rain.rate = isfinite(rate) && rate > 0.0f ? rate : 0.0f;
+}
+
+void pelt_fur_set_dry_rate(pelt_fur *f, float rate)
+{
+    f->dry_rate = isfinite(rate) && rate > 0.0f ? rate : 0.0f;
+}
+
+pelt_status pelt_fur_paint_wetness(pelt_fur *f, const uint8_t *grey, unsigned w, unsigned h,
+                                   float wetness, pelt_error *err)
+{
+    if (!grey || w == 0 || h == 0)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness image is empty");
+    /* Scale the grey levels by `wetness` into a copy the painter reads. */
+    uint8_t *scaled = pelt__calloc((size_t)w * h, 1);
+    if (!scaled) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a %ux%u image", w, h);
+    float k = clampf(wetness, 0.0f, 1.0f);
+    for (size_t i = 0; i < (size_t)w * h; i++) scaled[i] = (uint8_t)(grey[i] * k + 0.5f);
+    pelt_status st = pelt__wetness_paint_image(f->wetness, scaled, w, h, NULL, err);
+    free(scaled);
+    return st;
+}
+
+unsigned pelt_fur_mask_size(const pelt_fur *f) { return f->wetness->width; }
+
+void pelt_fur_mask_picture(const pelt_fur *f, uint8_t *rgba) { pelt__wetness_to_rgba8(f->wetness, rgba); }

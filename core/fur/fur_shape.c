@@ -1,0 +1,85 @@
+/* Fur shape references: Silva et al. Eq. 1 (bend) and Eq. 4 (curl), and the
+ * tangent of the displaced curve used by Kajiya-Kay (Eq. 6). */
+#include "core/fur/fur_shape.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Silva Eq. 1, beta(h) with control point n L0 / 2 (DESIGN.md). */
+pelt_vec3 pelt__fur_bend(pelt_vec3 n, float L0, pelt_vec3 tip, float h)
+{
+    float a = 2.0f * h * (1.0f - h) * (0.5f * L0);
+    return v3_add(v3_scale(n, a), v3_scale(tip, h * h));
+}
+
+/* Silva Eq. 4, phi(h) = (1 - rho) K h (cos(omega h) u + sin(omega h) v). */
+pelt_vec3 pelt__fur_curl(pelt_vec3 u, pelt_vec3 v, float omega, float K, float rho, float h)
+{
+    float alpha = (1.0f - rho) * K * h;
+    float c = cosf(omega * h), s = sinf(omega * h);
+    return v3_add(v3_scale(u, alpha * c), v3_scale(v, alpha * s));
+}
+
+pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
+                            float omega, float K, float rho, float h)
+{
+    return pelt__fur_tangent_combed(n, L0, tip, u, v, u, omega, K, rho, 0.0f, h);
+}
+
+/* Lengyel et al. §3, hair direction: a shear along the comb direction u. */
+pelt_vec3 pelt__fur_comb(pelt_vec3 u, float L0, float slant, float h)
+{
+    return v3_scale(u, h * L0 * slant);
+}
+
+pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
+                                   pelt_vec3 comb, float omega, float K, float rho, float slant,
+                                   float h)
+{
+    /* dB/dh = (1 - 2h) L0 n + 2h tip. */
+    pelt_vec3 db = v3_add(v3_scale(n, (1.0f - 2.0f * h) * L0), v3_scale(tip, 2.0f * h));
+    /* dphi/dh = (1-rho) K [(cos - omega h sin) u + (sin + omega h cos) v]. */
+    float k = (1.0f - rho) * K;
+    float c = cosf(omega * h), s = sinf(omega * h);
+    pelt_vec3 dphi = v3_add(v3_scale(u, k * (c - omega * h * s)), v3_scale(v, k * (s + omega * h * c)));
+    /* d(comb)/dh = L0 slant u. */
+    pelt_vec3 d = v3_mad(v3_add(db, dphi), comb, L0 * slant);
+    float len2 = v3_dot(d, d);
+    /* Same threshold as fur_shape.glsl, so the two agree near zero too. */
+    return len2 > 1e-30f ? v3_scale(d, 1.0f / sqrtf(len2)) : n;
+}
+
+/* Silva Fig. 7: (a) straight, (b) wavy, (c) few large curls, (d) many
+ * small curls. Radius K is the curl radius at the tip, relative to L0. */
+static const struct {
+    const char *name;
+    float omega;  /* radians over the length: turns * 2 pi */
+    float radius; /* fraction of L0 */
+} presets[] = {
+    {"straight", 0.0f, 0.0f},
+    {"wavy", 6.2831853f, 0.08f},          /* one slow turn, small sway */
+    {"few-large-curls", 12.566371f, 0.35f},  /* two wide turns */
+    {"many-small-curls", 37.699112f, 0.12f}, /* six tight turns */
+    /* Short spellings the scene file accepts too. */
+    {"large_curls", 12.566371f, 0.35f},
+    {"small_curls", 37.699112f, 0.12f},
+};
+
+bool pelt__curl_preset(const char *name, float *omega, float *radius_fraction)
+{
+    if (!name) return false;
+    for (size_t i = 0; i < sizeof presets / sizeof presets[0]; i++) {
+        if (strcmp(name, presets[i].name) == 0) {
+            if (omega) *omega = presets[i].omega;
+            if (radius_fraction) *radius_fraction = presets[i].radius;
+            return true;
+        }
+    }
+    return false;
+}
+
+const char *pelt__curl_preset_name(unsigned i)
+{
+    /* The first four rows are the canonical names; the rest are aliases. */
+    return i < 4 ? presets[i].name : NULL;
+}

@@ -1,0 +1,55 @@
+/* C references of the fur shape of Silva et al. §3.2 (Eq. 1 and 4), as
+ * DESIGN.md reads them; gl/shaders/fur_shape.glsl holds the same formulas
+ * with the same argument order, and a parity test compares the two.
+ *
+ * h in [0, 1] is the normalised height along the strand (layer n of N sits
+ * at h = (1 + n) / N). The displaced point at height h is
+ *   p(h) = p_root + v_offset(h),  v_offset(h) = beta(h) + phi(h)   (Eq. 1). */
+#ifndef PELT_FUR_SHAPE_H
+#define PELT_FUR_SHAPE_H
+
+#include "core/base/vec.h"
+
+#include <stdbool.h>
+
+/* beta(h), Silva Eq. 1: the quadratic Bezier from the root (0) through the
+ * control point n * L0 / 2 to `tip` (= p - p_root, the strand state):
+ *   B(h) = 2h(1-h) (n L0 / 2) + h^2 tip.
+ * At rest (tip = L0 n) B(h) = h L0 n exactly: evenly spaced layers. */
+pelt_vec3 pelt__fur_bend(pelt_vec3 n, float L0, pelt_vec3 tip, float h);
+
+/* phi(h), Silva Eq. 4: alpha(h) (cos(omega h) u + sin(omega h) v) with
+ * alpha(h) = (1 - rho) K h; u, v the unit tangent frame, omega in radians
+ * over the full length, K the curl radius at the tip (world units), rho the
+ * wetness in [0, 1] (wet fur loses its curl). */
+pelt_vec3 pelt__fur_curl(pelt_vec3 u, pelt_vec3 v, float omega, float K, float rho, float h);
+
+/* Shading tangent T(h): the unit derivative d/dh (beta + phi) of the whole
+ * displaced curve, so highlights follow bends and curls (Silva Fig. 6);
+ * n when that derivative vanishes. */
+pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
+                            float omega, float K, float rho, float h);
+
+/* Combing (Lengyel et al. §3, hair direction): the shells sheared along
+ * the comb direction u (tangent; unit, or shorter where the direction
+ * field fades), slant = tan of the slant angle: offset h L0 slant u. */
+pelt_vec3 pelt__fur_comb(pelt_vec3 u, float L0, float slant, float h);
+
+/* T(h) of the strand combed along `comb`: the unit derivative of
+ * beta + phi + pelt__fur_comb(comb, ...). */
+pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
+                                   pelt_vec3 comb, float omega, float K, float rho, float slant,
+                                   float h);
+
+/* The four looks of Silva Fig. 7 by name: "straight", "wavy",
+ * "few-large-curls", "many-small-curls".
+ * omega in radians over the full length, radius as a fraction of L0
+ * (K = radius_fraction * L0). Returns false, leaving the outputs untouched,
+ * for an unknown or NULL name. */
+bool pelt__curl_preset(const char *name, float *omega, float *radius_fraction);
+
+/* Canonical name of preset i (0..3), NULL past the end: for listing
+ * them ("large_curls" and "small_curls" are accepted aliases). */
+const char *pelt__curl_preset_name(unsigned i);
+
+#endif

@@ -1,0 +1,116 @@
+/* Lengyel et al. 2001 §2.2: shell textures from geometric hair. Each strand
+ * grows from a random root with a random lean, length and shade; each slice
+ * integrates the strands over its slab of height (a tall filter: several
+ * sub-heights per slice) with a soft-edged disc whose radius tapers towards
+ * the tip. Toroidal in x and y so the texture tiles. */
+#include "core/fur/furtex.h"
+
+#include "core/base/rng.h"
+
+#include <math.h>
+#include <string.h>
+
+size_t pelt__furtex_bytes(const pelt__furtex_desc *d)
+{
+    size_t s = d->size, slices = (size_t)d->layers + 1;
+    if (s == 0 || s > 8192 || slices > 1025) return 0;
+    return s * s * slices * 4;
+}
+
+typedef struct strand {
+    float x, y;        /* root, texels */
+    float lean_x, lean_y; /* texels of drift over the full height */
+    float length;      /* fraction of the full height, 0..1 */
+    float shade;       /* 0..1 */
+} strand;
+
+enum { SUBSAMPLES = 4 };
+
+/* Adds a soft-edged disc of radius r at (cx, cy) to a slice, wrapping
+ * toroidally. Coverage is accumulated as a union in the alpha byte; the
+ * strand covering a texel most sets its shade and height along the strand. */
+static void splat(uint8_t *slice, unsigned size, float cx, float cy, float r, float weight,
+                  float shade, float along)
+{
+    int x0 = (int)floorf(cx - r - 1.0f), x1 = (int)ceilf(cx + r + 1.0f);
+    int y0 = (int)floorf(cy - r - 1.0f), y1 = (int)ceilf(cy + r + 1.0f);
+    int n = (int)size;
+    for (int y = y0; y <= y1; y++) {
+        for (int x = x0; x <= x1; x++) {
+            float dx = (float)x + 0.5f - cx, dy = (float)y + 0.5f - cy;
+            float c = r + 0.5f - sqrtf(dx * dx + dy * dy);
+            if (c <= 0.0f) continue;
+            c = (c > 1.0f ? 1.0f : c) * weight;
+            int wx = ((x % n) + n) % n, wy = ((y % n) + n) % n;
+            uint8_t *t = slice + ((size_t)wy * size + (size_t)wx) * 4;
+            float old = t[3] / 255.0f;
+            if (c >= old) {
+                t[0] = (uint8_t)(shade * 255.0f + 0.5f);
+                t[1] = (uint8_t)(along * 255.0f + 0.5f);
+            }
+            t[2] = 255;
+            t[3] = (uint8_t)((old + c * (1.0f - old)) * 255.0f + 0.5f);
+        }
+    }
+}
+
+void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
+{
+    size_t texels = (size_t)d->size * d->size;
+    size_t bytes = pelt__furtex_bytes(d);
+    if (bytes == 0) return;
+    memset(rgba, 0, bytes);
+
+    pelt__rng rng = pelt__rng_seed(d->seed, 0x6675722dULL);
+    float size = (float)d->size;
+    /* Scale the strand count with the texture area so density means the
+     * same thing at every resolution (it is given per 256x256 tile). */
+    size_t count = (size_t)(d->density * (size * size) / (256.0f * 256.0f) + 0.5f);
+
+    /* Skin: opaque, dark roots with a little noise. */
+    for (size_t i = 0; i < texels; i++) {
+        rgba[i * 4 + 0] = (uint8_t)(90 + (pelt__rng_next(&rng) & 31));
+        rgba[i * 4 + 1] = 0;
+        rgba[i * 4 + 2] = 255;
+        rgba[i * 4 + 3] = 255;
+    }
+
+    for (unsigned layer = 0; layer < d->layers; layer++) {
+        uint8_t *slice = rgba + (size_t)(layer + 1) * texels * 4;
+        /* The slab of this shell spans heights (n/N, (n+1)/N]. */
+        float z_lo = (float)layer / (float)d->layers;
+        float z_hi = (float)(layer + 1) / (float)d->layers;
+        /* The same strands for every slice: re-seed per slice. */
+        pelt__rng srng = pelt__rng_seed(d->seed, 0x73747261ULL);
+        for (size_t s = 0; s < count; s++) {
+            strand st;
+            st.x = pelt__rng_float(&srng) * size;
+            st.y = pelt__rng_float(&srng) * size;
+            st.lean_x = pelt__rng_range(&srng, -1.0f, 1.0f) * d->strand_radius * 2.0f;
+            st.lean_y = pelt__rng_range(&srng, -1.0f, 1.0f) * d->strand_radius * 2.0f;
+            st.length = pelt__rng_range(&srng, 0.6f, 1.0f);
+            st.shade = pelt__rng_range(&srng, 0.65f, 1.0f);
+            if (z_lo >= st.length) continue;
+            for (int k = 0; k < SUBSAMPLES; k++) {
+                float z = z_lo + (z_hi - z_lo) * ((float)k + 0.5f) / SUBSAMPLES;
+                if (z > st.length) break;
+                float along = z / st.length;
+                float r = d->strand_radius * (1.0f - d->taper * along);
+                if (r < 0.15f) r = 0.15f;
+                float cx = st.x + st.lean_x * z, cy = st.y + st.lean_y * z;
+                /* Thin discs still cover a fraction of a texel. */
+                float weight = r < 0.5f ? r * 2.0f : 1.0f;
+                /* Sub-samples of the tall filter each add a share. */
+                splat(slice, d->size, cx, cy, r, weight * (2.0f / SUBSAMPLES), st.shade, along);
+            }
+        }
+        /* Premultiply by coverage so mipmaps average colour correctly (a
+         * straight-alpha average would mix in the black of empty texels). */
+        for (size_t i = 0; i < texels; i++) {
+            uint8_t *t = slice + i * 4;
+            t[0] = (uint8_t)((t[0] * t[3] + 127) / 255);
+            t[1] = (uint8_t)((t[1] * t[3] + 127) / 255);
+            t[2] = t[3];
+        }
+    }
+}

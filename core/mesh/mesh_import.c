@@ -1,0 +1,558 @@
+/* Mesh files through assimp's C API, merged into one triangle mesh and then
+ * validated by pelt_mesh_create (Lengyel et al. 2001 §2 takes any triangle
+ * mesh as input). Corrupt files must end in a clean error, so headers that
+ * declare counts are checked against the file size before assimp sees them. */
+#define _POSIX_C_SOURCE 200809L /* fileno, fstat */
+#include "core/mesh/mesh_internal.h"
+
+#include "core/base/error.h"
+
+#include <assimp/cimport.h>
+#include <assimp/postprocess.h>
+#include <assimp/scene.h>
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* How much of the file the header checks look at. */
+#define PELT__HEAD_BYTES 65536u
+/* Node trees deeper than this are treated as corrupt (and would risk the stack). */
+#define PELT__MAX_NODE_DEPTH 256
+
+/* ---- header checks ----------------------------------------------------- */
+
+/* A NUL-terminated copy of (the first bytes of) the file. */
+typedef struct text_reader {
+    const char *s;
+    size_t pos, len;
+} text_reader;
+
+static int ends_with_ci(const char *s, const char *suffix)
+{
+    size_t a = strlen(s), b = strlen(suffix);
+    if (b > a) return 0;
+    for (size_t i = 0; i < b; i++)
+        if (tolower((unsigned char)s[a - b + i]) != tolower((unsigned char)suffix[i])) return 0;
+    return 1;
+}
+
+/* Next whitespace-separated token into tok (truncated to cap - 1 chars);
+ * returns 0 at the end. Stops at a newline when stop_at_newline. */
+static int next_token(text_reader *r, char *tok, size_t cap, int stop_at_newline)
+{
+    while (r->pos < r->len && isspace((unsigned char)r->s[r->pos])) {
+        if (stop_at_newline && r->s[r->pos] == '\n') return 0;
+        r->pos++;
+    }
+    size_t n = 0;
+    while (r->pos < r->len && !isspace((unsigned char)r->s[r->pos])) {
+        if (n + 1 < cap) tok[n++] = r->s[r->pos];
+        r->pos++;
+    }
+    tok[n] = '\0';
+    return n > 0;
+}
+
+static void skip_line(text_reader *r)
+{
+    while (r->pos < r->len && r->s[r->pos] != '\n') r->pos++;
+    if (r->pos < r->len) r->pos++;
+}
+
+/* Parses a decimal count; -1 when tok is not a plain non-negative integer.
+ * Values beyond 2^62 saturate (they fail the size checks all the same). */
+static long long parse_count(const char *tok)
+{
+    if (!isdigit((unsigned char)tok[0])) return -1;
+    long long v = 0;
+    for (const char *p = tok; *p; p++) {
+        if (!isdigit((unsigned char)*p)) return -1;
+        if (v < (1LL << 62) / 10) v = v * 10 + (*p - '0');
+        else v = 1LL << 62;
+    }
+    return v;
+}
+
+/* OFF line reader: skips blank lines and '#' comments, returns 1 with pos
+ * at the start of the next content line (line number in *line). */
+static int off_next_line(text_reader *r, long long *line)
+{
+    while (r->pos < r->len) {
+        size_t p = r->pos;
+        while (p < r->len && r->s[p] != '\n' && isspace((unsigned char)r->s[p])) p++;
+        if (p < r->len && r->s[p] != '\n' && r->s[p] != '#') {
+            (*line)++;
+            return 1;
+        }
+        skip_line(r);
+        (*line)++;
+    }
+    return 0;
+}
+
+/* OFF is checked in full: assimp clamps out-of-range face indices and reads
+ * "-1" as vertex 0, which would turn a corrupt file into a plausible mesh;
+ * and it reserves the declared counts before reading, so a header claiming
+ * two billion vertices must not reach it. */
+static pelt_status check_off(const char *path, text_reader *r, long long size, pelt_error *err)
+{
+    char tok[64];
+    long long line = 0;
+    if (!off_next_line(r, &line) || !next_token(r, tok, sizeof tok, 1) || !ends_with_ci(tok, "OFF"))
+        return PELT_OK; /* not an OFF header: assimp decides */
+    if (strchr(tok, 'n') || strchr(tok, '4')) return PELT_OK; /* dimension variants: assimp refuses */
+    long long counts[3] = {-1, -1, 0};
+    int have = 0;
+    for (int pass = 0; pass < 2 && have < 2; pass++) {
+        if (pass == 1) {
+            skip_line(r);
+            if (!off_next_line(r, &line))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: OFF header ends before its counts", path);
+        }
+        while (have < 3 && next_token(r, tok, sizeof tok, 1)) {
+            if (tok[0] == '#') break;
+            counts[have] = parse_count(tok);
+            if (counts[have] < 0)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: OFF count '%s' is not a count",
+                                  path, line, tok);
+            have++;
+        }
+    }
+    const long long nv = counts[0], nf = counts[1];
+    if (nv > size / 6 || nf > size / 4 || nv * 6 + nf * 4 > size)
+        return pelt__fail(err, PELT_ERR_FORMAT,
+                          "%s: OFF header declares %lld vertices and %lld faces but the file has only "
+                          "%lld bytes",
+                          path, nv, nf, size);
+    skip_line(r);
+    for (long long v = 0; v < nv; v++) {
+        int coords = 0;
+        if (off_next_line(r, &line)) {
+            while (coords < 3 && next_token(r, tok, sizeof tok, 1)) {
+                char *end;
+                strtod(tok, &end);
+                if (*end != '\0') break;
+                coords++;
+            }
+        }
+        if (coords < 3)
+            return pelt__fail(err, PELT_ERR_FORMAT,
+                              "%s: line %lld: vertex %lld of %lld does not have 3 coordinates", path,
+                              line, v, nv);
+        skip_line(r);
+    }
+    for (long long f = 0; f < nf; f++) {
+        if (!off_next_line(r, &line) || !next_token(r, tok, sizeof tok, 1))
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: file ends at face %lld of %lld", path, f, nf);
+        long long n = parse_count(tok);
+        if (n < 0 || n > nv)
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: face %lld has '%s' corners", path,
+                              line, f, tok);
+        for (long long k = 0; k < n; k++) {
+            long long i = next_token(r, tok, sizeof tok, 1) ? parse_count(tok) : -2;
+            if (i == -2)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: face %lld has %lld of %lld corners",
+                                  path, line, f, k, n);
+            if (i < 0 || i >= nv)
+                return pelt__fail(err, PELT_ERR_FORMAT,
+                                  "%s: line %lld: face %lld refers to vertex '%s' but there are %lld "
+                                  "vertices",
+                                  path, line, f, tok, nv);
+        }
+        skip_line(r);
+    }
+    return PELT_OK;
+}
+
+/* Bytes of a binary PLY scalar type (1 for names we do not know). */
+static long long ply_type_size(const char *t)
+{
+    if (!strcmp(t, "short") || !strcmp(t, "ushort") || !strcmp(t, "int16") || !strcmp(t, "uint16"))
+        return 2;
+    if (!strcmp(t, "int") || !strcmp(t, "uint") || !strcmp(t, "float") || !strcmp(t, "int32") ||
+        !strcmp(t, "uint32") || !strcmp(t, "float32"))
+        return 4;
+    if (!strcmp(t, "double") || !strcmp(t, "float64")) return 8;
+    return 1;
+}
+
+/* PLY: the declared elements must fit in the file. Each element needs at
+ * least the bytes of its scalars and list counts (binary), or one token per
+ * property (ASCII). A truncated ASCII body makes assimp leak, so its tokens
+ * are counted. */
+static pelt_status check_ply(const char *path, text_reader *r, long long size, pelt_error *err)
+{
+    char tok[128], name[128];
+    long long need = 0, count = 0, per = 0;
+    int ascii = 0, in_element = 0, ended = 0;
+    skip_line(r); /* "ply" */
+    while (!ended) {
+        if (!next_token(r, tok, sizeof tok, 0))
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header has no end_header", path);
+        ended = !strcmp(tok, "end_header");
+        if (!strcmp(tok, "format")) {
+            next_token(r, tok, sizeof tok, 1);
+            ascii = !strcmp(tok, "ascii");
+        } else if (!strcmp(tok, "element") || ended) {
+            if (in_element) {
+                if (per < 1) per = 1;
+                if (count > (size + 1) / per || need + count * per > size + 1) need = size + 1;
+                else need += count * per;
+            }
+            if (!ended) {
+                if (!next_token(r, name, sizeof name, 1) || !next_token(r, tok, sizeof tok, 1))
+                    return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY element line is incomplete", path);
+                count = parse_count(tok);
+                if (count < 0)
+                    return pelt__fail(err, PELT_ERR_FORMAT,
+                                      "%s: PLY element '%s' has count '%s', not a count", path, name, tok);
+                if (count > size)
+                    return pelt__fail(err, PELT_ERR_FORMAT,
+                                      "%s: PLY header declares %lld '%s' elements but the file has "
+                                      "only %lld bytes",
+                                      path, count, name, size);
+                per = 0;
+                in_element = 1;
+            }
+        } else if (!strcmp(tok, "property")) {
+            if (!next_token(r, tok, sizeof tok, 1))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY property line is incomplete", path);
+            if (!strcmp(tok, "list") && !next_token(r, tok, sizeof tok, 1))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY list property is incomplete", path);
+            per += ascii ? 1 : ply_type_size(tok);
+        }
+        skip_line(r);
+    }
+    long long body = size - (long long)r->pos;
+    if (!ascii && need > body)
+        return pelt__fail(err, PELT_ERR_FORMAT,
+                          "%s: PLY header declares at least %lld bytes of data but the file holds %lld",
+                          path, need, body);
+    if (ascii) {
+        long long tokens = 0;
+        while (tokens < need && next_token(r, tok, sizeof tok, 0)) tokens++;
+        if (tokens < need)
+            return pelt__fail(err, PELT_ERR_FORMAT,
+                              "%s: PLY header declares at least %lld values but the file holds %lld",
+                              path, need, tokens);
+    }
+    return PELT_OK;
+}
+
+/* ASCII STL: every "vertex" has three numbers and the solid is closed
+ * (assimp leaks memory on a truncated one). */
+static pelt_status check_stl_ascii(const char *path, const text_reader *head, pelt_error *err)
+{
+    text_reader r = *head;
+    char tok[64];
+    long long vertices = 0;
+    int closed = 0;
+    while (next_token(&r, tok, sizeof tok, 0)) {
+        if (!strcmp(tok, "endsolid")) closed = 1;
+        if (strcmp(tok, "vertex") != 0) continue;
+        for (int k = 0; k < 3; k++) {
+            char *end = NULL;
+            if (next_token(&r, tok, sizeof tok, 1)) strtod(tok, &end);
+            if (!end || end == tok || *end != '\0')
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: STL vertex %lld lacks coordinate %d", path,
+                                  vertices, k);
+        }
+        vertices++;
+    }
+    if (!closed || vertices % 3 != 0)
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII STL is truncated (%lld vertices%s)", path,
+                          vertices, closed ? "" : ", no endsolid");
+    return PELT_OK;
+}
+
+/* Binary STL: 80-byte header, a triangle count, 50 bytes per triangle. */
+static pelt_status check_stl(const char *path, const text_reader *r, long long size, pelt_error *err)
+{
+    long long n = -1;
+    if (r->len >= 84) {
+        const unsigned char *u = (const unsigned char *)r->s + 80;
+        n = (long long)u[0] | (long long)u[1] << 8 | (long long)u[2] << 16 | (long long)u[3] << 24;
+    }
+    /* Some binary writers start the header with "solid" too. */
+    if (r->len >= 5 && strncmp(r->s, "solid", 5) == 0 && 84 + 50 * n != size)
+        return check_stl_ascii(path, r, err);
+    if (size < 84 || r->len < 84)
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: binary STL shorter than its 84-byte header", path);
+    if (84 + 50 * n > size)
+        return pelt__fail(err, PELT_ERR_FORMAT,
+                          "%s: binary STL declares %lld triangles but the file has only %lld bytes", path,
+                          n, size);
+    return PELT_OK;
+}
+
+typedef enum file_kind { KIND_OTHER, KIND_OFF, KIND_PLY, KIND_STL } file_kind;
+
+/* By content first (assimp also sniffs), then by extension. */
+static file_kind sniff(const char *path, const char *head, size_t len)
+{
+    if (len >= 3 && (strncmp(head, "ply", 3) == 0 || strncmp(head, "PLY", 3) == 0)) return KIND_PLY;
+    text_reader probe = {head, 0, len};
+    char tok[16];
+    long long line = 0;
+    if (off_next_line(&probe, &line) && next_token(&probe, tok, sizeof tok, 1) && strlen(tok) <= 6 &&
+        ends_with_ci(tok, "OFF"))
+        return KIND_OFF;
+    if (ends_with_ci(path, ".off")) return KIND_OFF;
+    if (ends_with_ci(path, ".stl")) return KIND_STL;
+    return KIND_OTHER;
+}
+
+/* Opens and sizes the file and checks what its header declares. OFF, PLY
+ * and STL files are read whole (bounded by the real file size). */
+static pelt_status precheck(const char *path, pelt_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) return pelt__fail(err, PELT_ERR_IO, "cannot open '%s': %s", path, strerror(errno));
+    struct stat sb;
+    if (fstat(fileno(f), &sb) != 0 || S_ISDIR(sb.st_mode)) {
+        int e = S_ISDIR(sb.st_mode) ? EISDIR : errno;
+        fclose(f);
+        return pelt__fail(err, PELT_ERR_IO, "cannot open '%s': %s", path, strerror(e));
+    }
+    const long long size = (long long)sb.st_size;
+    char *buf = pelt__calloc(PELT__HEAD_BYTES + 1, 1);
+    if (!buf) {
+        fclose(f);
+        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    }
+    size_t len = fread(buf, 1, PELT__HEAD_BYTES, f);
+    int failed = ferror(f), e = errno;
+    file_kind kind = failed ? KIND_OTHER : sniff(path, buf, len);
+    if (!failed && kind != KIND_OTHER && len == PELT__HEAD_BYTES &&
+        size > (long long)len && (unsigned long long)size < (size_t)-1) {
+        char *whole = realloc(buf, (size_t)size + 1);
+        if (!whole) {
+            free(buf);
+            fclose(f);
+            return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: no memory to read %lld bytes", path, size);
+        }
+        buf = whole;
+        len += fread(buf + len, 1, (size_t)size - len, f);
+        buf[len] = '\0';
+        failed = ferror(f);
+        e = errno;
+    }
+    fclose(f);
+    pelt_status st = PELT_OK;
+    if (failed) {
+        st = pelt__fail(err, PELT_ERR_IO, "cannot open '%s': %s", path, strerror(e));
+    } else if (len == 0) {
+        st = pelt__fail(err, PELT_ERR_FORMAT, "%s: file is empty", path);
+    } else {
+        text_reader r = {buf, 0, len};
+        if (kind == KIND_OFF) st = check_off(path, &r, size, err);
+        else if (kind == KIND_PLY) st = check_ply(path, &r, size, err);
+        else if (kind == KIND_STL) st = check_stl(path, &r, size, err);
+    }
+    free(buf);
+    return st;
+}
+
+/* ---- merging the scene ------------------------------------------------- */
+
+typedef struct merge_state {
+    const struct aiScene *scene;
+    const char *path;
+    pelt_error *err;
+    size_t vertex_count, triangle_count;
+    int have_normals, have_uvs, have_colors; /* every instanced mesh has them */
+    /* Output arrays (second pass only). */
+    float *positions, *normals, *uvs, *directions;
+    uint32_t *indices;
+    size_t v_at, t_at;
+} merge_state;
+
+static int is_triangle_mesh(const struct aiMesh *mesh)
+{
+    return mesh && (mesh->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) && mesh->mVertices &&
+           mesh->mFaces && mesh->mNumVertices > 0;
+}
+
+static size_t count_triangles(const struct aiMesh *mesh)
+{
+    size_t n = 0;
+    for (unsigned f = 0; f < mesh->mNumFaces; f++)
+        if (mesh->mFaces[f].mNumIndices == 3 && mesh->mFaces[f].mIndices) n++;
+    return n;
+}
+
+static void mat_mul(struct aiMatrix4x4 *out, const struct aiMatrix4x4 *a, const struct aiMatrix4x4 *b)
+{
+    const float *pa = &a->a1, *pb = &b->a1; /* row-major, 16 contiguous floats */
+    float r[16];
+    for (int i = 0; i < 4; i++)
+        for (int j = 0; j < 4; j++) {
+            float s = 0.0f;
+            for (int k = 0; k < 4; k++) s += pa[4 * i + k] * pb[4 * k + j];
+            r[4 * i + j] = s;
+        }
+    memcpy(&out->a1, r, sizeof r);
+}
+
+/* Appends one mesh instance under transform m (row-major, column vectors). */
+static pelt_status append_mesh(merge_state *s, const struct aiMesh *mesh, const struct aiMatrix4x4 *m)
+{
+    const float *x = &m->a1;
+    /* Normals go through the cofactor matrix (det * inverse transpose), signed
+     * so that mirroring transforms keep them pointing outwards. */
+    float c[9] = {
+        x[5] * x[10] - x[6] * x[9], x[6] * x[8] - x[4] * x[10], x[4] * x[9] - x[5] * x[8],
+        x[2] * x[9] - x[1] * x[10], x[0] * x[10] - x[2] * x[8], x[1] * x[8] - x[0] * x[9],
+        x[1] * x[6] - x[2] * x[5], x[2] * x[4] - x[0] * x[6], x[0] * x[5] - x[1] * x[4],
+    };
+    float det = x[0] * c[0] + x[1] * c[1] + x[2] * c[2];
+    float sign = det < 0.0f ? -1.0f : 1.0f;
+    size_t base = s->v_at;
+    for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+        const struct aiVector3D p = mesh->mVertices[v];
+        float *o = s->positions + 3 * (base + v);
+        for (int k = 0; k < 3; k++) o[k] = x[4 * k] * p.x + x[4 * k + 1] * p.y + x[4 * k + 2] * p.z + x[4 * k + 3];
+        if (s->have_normals) {
+            const struct aiVector3D n = mesh->mNormals[v];
+            float *on = s->normals + 3 * (base + v);
+            for (int k = 0; k < 3; k++) on[k] = sign * (c[3 * k] * n.x + c[3 * k + 1] * n.y + c[3 * k + 2] * n.z);
+        }
+        if (s->have_uvs) {
+            s->uvs[2 * (base + v)] = mesh->mTextureCoords[0][v].x;
+            s->uvs[2 * (base + v) + 1] = mesh->mTextureCoords[0][v].y;
+        }
+        if (s->have_colors) {
+            /* A flow map: rgb in [0,1] encodes a direction 2 rgb - 1, a
+             * vector carried by the node's linear part. */
+            const struct aiColor4D c4 = mesh->mColors[0][v];
+            const float d[3] = {2.0f * c4.r - 1.0f, 2.0f * c4.g - 1.0f, 2.0f * c4.b - 1.0f};
+            float *od = s->directions + 3 * (base + v);
+            for (int k = 0; k < 3; k++) od[k] = x[4 * k] * d[0] + x[4 * k + 1] * d[1] + x[4 * k + 2] * d[2];
+        }
+    }
+    for (unsigned f = 0; f < mesh->mNumFaces; f++) {
+        const struct aiFace *face = &mesh->mFaces[f];
+        if (face->mNumIndices != 3 || !face->mIndices) continue;
+        uint32_t *o = s->indices + 3 * s->t_at;
+        for (int k = 0; k < 3; k++) {
+            unsigned i = face->mIndices[det < 0.0f ? 2 - k : k]; /* mirrored: keep CCW */
+            if (i >= mesh->mNumVertices)
+                return pelt__fail(s->err, PELT_ERR_FORMAT,
+                                  "%s: face %u of mesh '%s' refers to vertex %u of %u", s->path, f,
+                                  mesh->mName.data, i, mesh->mNumVertices);
+            o[k] = (uint32_t)(base + i);
+        }
+        s->t_at++;
+    }
+    s->v_at += mesh->mNumVertices;
+    return PELT_OK;
+}
+
+/* Walks the node tree; counts (first pass, positions == NULL) or copies. */
+static pelt_status visit(merge_state *s, const struct aiNode *node, const struct aiMatrix4x4 *parent,
+                         int depth)
+{
+    if (!node) return PELT_OK;
+    if (depth > PELT__MAX_NODE_DEPTH)
+        return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: node tree deeper than %d levels", s->path,
+                          PELT__MAX_NODE_DEPTH);
+    struct aiMatrix4x4 m;
+    mat_mul(&m, parent, &node->mTransformation);
+    for (unsigned k = 0; k < node->mNumMeshes; k++) {
+        unsigned mi = node->mMeshes[k];
+        if (mi >= s->scene->mNumMeshes)
+            return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: node '%s' refers to mesh %u of %u", s->path,
+                              node->mName.data, mi, s->scene->mNumMeshes);
+        const struct aiMesh *mesh = s->scene->mMeshes[mi];
+        if (!is_triangle_mesh(mesh)) continue; /* points and lines carry no fur */
+        size_t tris = count_triangles(mesh);
+        if (tris == 0) continue;
+        if (!s->positions) {
+            if (s->vertex_count > (size_t)UINT32_MAX - mesh->mNumVertices)
+                return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: more than 2^32 vertices in all",
+                                  s->path);
+            s->vertex_count += mesh->mNumVertices;
+            s->triangle_count += tris;
+            if (!mesh->mNormals) s->have_normals = 0;
+            if (!mesh->mTextureCoords[0]) s->have_uvs = 0;
+            if (!mesh->mColors[0]) s->have_colors = 0;
+        } else {
+            pelt_status st = append_mesh(s, mesh, &m);
+            if (st) return st;
+        }
+    }
+    for (unsigned k = 0; k < node->mNumChildren; k++) {
+        pelt_status st = visit(s, node->mChildren[k], &m, depth + 1);
+        if (st) return st;
+    }
+    return PELT_OK;
+}
+
+static pelt_status merge_scene(const struct aiScene *scene, const char *path, pelt_mesh **out,
+                               pelt_error *err)
+{
+    merge_state s = {scene, path, err, 0, 0, 1, 1, 1, NULL, NULL, NULL, NULL, NULL, 0, 0};
+    struct aiMatrix4x4 id = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    pelt_status st = visit(&s, scene->mRootNode, &id, 0);
+    if (st) return st;
+    if (s.triangle_count == 0)
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: the file holds no triangles", path);
+    s.positions = pelt__calloc(s.vertex_count, 3 * sizeof(float));
+    s.normals = s.have_normals ? pelt__calloc(s.vertex_count, 3 * sizeof(float)) : NULL;
+    s.uvs = s.have_uvs ? pelt__calloc(s.vertex_count, 2 * sizeof(float)) : NULL;
+    s.directions = s.have_colors ? pelt__calloc(s.vertex_count, 3 * sizeof(float)) : NULL;
+    s.indices = pelt__calloc(s.triangle_count, 3 * sizeof(uint32_t));
+    if (!s.positions || !s.indices || (s.have_normals && !s.normals) || (s.have_uvs && !s.uvs) ||
+        (s.have_colors && !s.directions)) {
+        st = pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: no memory for %zu vertices", path,
+                        s.vertex_count);
+    } else {
+        st = visit(&s, scene->mRootNode, &id, 0);
+    }
+    if (st == PELT_OK) {
+        pelt_mesh_data data = {s.positions, s.normals, s.uvs, s.v_at, s.indices, s.t_at, s.directions};
+        st = pelt_mesh_create(&data, out, err);
+        if (st != PELT_OK && err) {
+            /* Name the file in front of pelt_mesh_create's detail. */
+            char detail[sizeof err->message];
+            memcpy(detail, err->message, sizeof detail);
+            pelt__fail(err, st, "%s: %s", path, detail);
+        }
+    }
+    free(s.positions);
+    free(s.normals);
+    free(s.uvs);
+    free(s.directions);
+    free(s.indices);
+    return st;
+}
+
+pelt_status pelt_mesh_load(const char *path, pelt_mesh **out, pelt_error *err)
+{
+    if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_mesh_load: out is NULL");
+    *out = NULL;
+    if (!path || !*path)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_mesh_load: no path given");
+    pelt_status st = precheck(path, err);
+    if (st) return st;
+    const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                           aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+    const struct aiScene *scene = aiImportFile(path, flags);
+    if (!scene) {
+        const char *why = aiGetErrorString();
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: %s", path,
+                          why && *why ? why : "assimp could not read it");
+    }
+    if (!scene->mRootNode) {
+        aiReleaseImport(scene);
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: the file holds no scene", path);
+    }
+    st = merge_scene(scene, path, out, err);
+    aiReleaseImport(scene);
+    return st;
+}

@@ -1,0 +1,56 @@
+/* Private layout of pelt_mesh, shared by core/ and gl/ (not installed). */
+#ifndef PELT_MESH_INTERNAL_H
+#define PELT_MESH_INTERNAL_H
+
+#include "pelt/mesh.h"
+
+#include "core/base/vec.h"
+
+struct pelt_mesh {
+    size_t vertex_count;
+    size_t triangle_count;
+    float *positions; /* 3 per vertex */
+    float *normals;   /* 3 per vertex, unit length */
+    float *uvs;       /* 2 per vertex: surface (atlas) coordinates in [0,1],
+                         they address the wetness mask and colour texture */
+    float *fur_uvs;   /* 2 per vertex or NULL: fur-texture coordinates in
+                         tiles (patch-local, from the atlas); NULL means
+                         uvs * tiling */
+    float *tangents;  /* 4 per vertex: unit tangent along +u, w = handedness */
+    float *directions; /* 3 per vertex or NULL: hair directions from the file */
+    float *comb;      /* 3 per vertex or NULL (then the tangent): the comb
+                         direction, the direction field times its weight;
+                         0 where the field vanishes, so the fur stands up */
+    uint32_t *indices; /* 3 per triangle */
+    float bounds_min[3], bounds_max[3];
+    pelt_mesh_stats stats;
+};
+
+/* Area of triangle t in world space. */
+static inline float pelt__triangle_area(const pelt_mesh *m, size_t t)
+{
+    const uint32_t *ix = m->indices + 3 * t;
+    pelt_vec3 p0 = v3_load(m->positions + 3 * ix[0]);
+    pelt_vec3 e1 = v3_sub(v3_load(m->positions + 3 * ix[1]), p0);
+    pelt_vec3 e2 = v3_sub(v3_load(m->positions + 3 * ix[2]), p0);
+    return 0.5f * v3_len(v3_cross(e1, e2));
+}
+
+/* Unsigned area of triangle t in a 2-float-per-vertex coordinate set
+ * (uvs or fur_uvs). */
+static inline float pelt__triangle_area_2d(const pelt_mesh *m, const float *coords, size_t t)
+{
+    const uint32_t *ix = m->indices + 3 * t;
+    const float *a = coords + 2 * ix[0], *b = coords + 2 * ix[1], *c = coords + 2 * ix[2];
+    return 0.5f * fabsf((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+}
+
+/* Allocates an empty mesh with room for the given counts (arrays zeroed).
+ * Returns NULL when out of memory or when the counts overflow. */
+pelt_mesh *pelt__mesh_alloc(size_t vertex_count, size_t triangle_count);
+
+/* Fills normals (when compute_normals), tangents and bounds of a mesh whose
+ * positions, uvs and indices are set. */
+void pelt__mesh_finish(pelt_mesh *mesh, bool compute_normals);
+
+#endif

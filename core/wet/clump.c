@@ -1,0 +1,65 @@
+/* Clump displacement: Silva et al. Eq. 5 and Alg. 2, see DESIGN.md. */
+#include "core/wet/clump.h"
+
+#include "core/base/vec.h"
+
+#include <math.h>
+
+float pelt__clump_profile(float h, float w, float n_layers)
+{
+    if (!(n_layers > 1.0f)) return 1.0f;
+    if (!(h > 0.0f)) return 0.0f;
+    float first = 1.0f / n_layers;
+    /* Linear part rescaled so it, like the log part, is 0 at h = 1/N. */
+    float lin = (h - first) / (1.0f - first);
+    /* Silva Eq. 5 with k = ln N (the printed -ln N reverses the profile). */
+    float lg = 1.0f + logf(h) / logf(n_layers);
+    return clampf((1.0f - w) * lin + w * lg, 0.0f, 1.0f);
+}
+
+static unsigned nearest_index(float uv, unsigned size)
+{
+    float x = floorf(uv * (float)size);
+    /* Clamp in float first: NaN and huge values must not reach the cast. */
+    if (!(x > 0.0f)) return 0;
+    if (x > (float)(size - 1)) return size - 1;
+    return (unsigned)x;
+}
+
+const float *pelt__clump_texel(const float *mask, unsigned width,
+                               unsigned height, const float uv[2])
+{
+    unsigned x = nearest_index(uv[0], width), y = nearest_index(uv[1], height);
+    return mask + ((size_t)y * width + x) * 4;
+}
+
+pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
+                                      unsigned height, const float p[2],
+                                      float h, float w, float n_layers,
+                                      float s, float q[2])
+{
+    q[0] = p[0];
+    q[1] = p[1];
+    const float *t = pelt__clump_texel(mask, width, height, p);
+    float rho = t[3];
+    if (!(rho > 0.0f)) return PELT__CLUMP_KEEP; /* Alg. 2: dry, not in a clump */
+    float ox = p[0] - t[0], oy = p[1] - t[1];
+    if (sqrtf(ox * ox + oy * oy) > t[2]) return PELT__CLUMP_DISCARD; /* another clump */
+    float pull = clampf(s * rho * pelt__clump_profile(h, w, n_layers), 0.0f,
+                        PELT__CLUMP_MAX_PULL);
+    /* Inverse of the strand map root q -> c + (q - c)(1 - pull) (DESIGN.md). */
+    float k = 1.0f / (1.0f - pull);
+    q[0] = t[0] + ox * k;
+    q[1] = t[1] + oy * k;
+    /* The root must lie in this clump: strands from beyond its radius
+     * belong to a neighbour, so the clump narrows towards its tip. */
+    if (sqrtf(ox * ox + oy * oy) * k > t[2]) return PELT__CLUMP_DISCARD;
+    const float *tq = pelt__clump_texel(mask, width, height, q);
+    if (!(tq[3] > 0.0f)) return PELT__CLUMP_DISCARD; /* root lies in dry fur */
+    return PELT__CLUMP_DISPLACED;
+}
+
+float pelt__clump_coverage(float a, float k)
+{
+    return 1.0f - powf(fmaxf(1.0f - a, 0.0f), 1.0f / k);
+}

@@ -1,0 +1,142 @@
+/* The wetness mask (Silva et al. §3.1, Alg. 1 as DESIGN.md reads it):
+ * droplets, drying, rain, painting from an image and a picture of the mask.
+ * No GL here; the renderer uploads the dirty rectangle as RGBA32F. */
+#ifndef PELT_CORE_WETNESS_H
+#define PELT_CORE_WETNESS_H
+
+#include "pelt/wetness.h"
+#include "pelt/mesh.h"
+#include "core/mesh/raycast.h"
+
+/* Default mask resolution (the paper's Table 1 set-up). */
+#define PELT__WETNESS_DEFAULT_SIZE 256u
+
+/* Mask layout: width * height texels, row-major, 4 floats each
+ * (R, G) = clump centre c in mask uv, B = clump radius r in uv units,
+ * A = wetness rho in [0,1]. Texel (i, j) covers uv [i/W,(i+1)/W] x
+ * [j/H,(j+1)/H]; row 0 is v = 0, as glTexImage2D takes it. A texel is
+ * dry when rho == 0 (its c and r are then stale and ignored). */
+typedef struct pelt__wetness {
+    unsigned width, height;
+    float *texels;
+    /* Bounding box of the wet texels, [x0, x1) x [y0, y1); empty when
+     * x0 >= x1. Drying visits only this box. */
+    unsigned wet[4];
+    /* Union of changed texels since the last pelt__wetness_take_dirty. */
+    unsigned dirty[4];
+} pelt__wetness;
+
+/* Makes a dry mask of width x height texels (0 means 256). The caller frees
+ * it with pelt__wetness_destroy. */
+pelt_status pelt__wetness_create(unsigned width, unsigned height,
+                                 pelt__wetness **out, pelt_error *err);
+void pelt__wetness_destroy(pelt__wetness *m);
+
+/* Dries every texel (marks the wet box dirty). */
+void pelt__wetness_clear(pelt__wetness *m);
+
+/* Blends one droplet into the mask (Alg. 1 as pelt reads it, see
+ * docs/wetness.md): every texel whose centre lies within d->radius of
+ * d->center (uv distance) is updated; work is proportional to the
+ * droplet's bounding box, never to the mask size. wetness is clamped to
+ * [-1, 1]; negative droplets only dry. Non-finite fields or a negative
+ * radius give PELT_ERR_INVALID_ARGUMENT and leave the mask unchanged.
+ * No allocation. */
+pelt_status pelt__wetness_add_droplet(pelt__wetness *m, const pelt_droplet *d,
+                                      pelt_error *err);
+
+/* As pelt__wetness_add_droplet for n droplets in order, faster for many:
+ * the memory of later droplets is fetched while earlier ones blend. All are
+ * checked first; a bad one gives PELT_ERR_INVALID_ARGUMENT and changes
+ * nothing. No allocation. */
+pelt_status pelt__wetness_add_droplets(pelt__wetness *m, const pelt_droplet *d, size_t n,
+                                       pelt_error *err);
+
+/* Silva Alg. 1 for one texel t (RGBA as above) and a droplet with centre
+ * cd, radius rd and clamped non-zero wetness wd, as docs/wetness.md reads
+ * it; returns whether the texel changed. The droplet functions here and in
+ * core/surface_droplet.c share it. */
+bool pelt__wetness_blend_texel(float *t, const float cd[2], float rd, float wd);
+
+/* Lowers every wet texel's rho by rate * dt (clamped at 0), visiting only
+ * the wet bounding box, which then shrinks to the texels still wet.
+ * Non-positive or non-finite rate * dt does nothing. No allocation. */
+void pelt__wetness_dry(pelt__wetness *m, float rate, float dt);
+
+/* Takes the rectangle of texels changed since the last call:
+ * rect = {x0, y0, x1, y1} with x1, y1 exclusive. Returns false (rect
+ * untouched) when nothing changed. Resets the dirty rectangle. */
+bool pelt__wetness_take_dirty(pelt__wetness *m, unsigned rect[4]);
+
+/* State of random rain: the generator and the fractional droplet carried
+ * from one step to the next. */
+typedef struct pelt__rain_state {
+    uint64_t rng;
+    double carry;
+} pelt__rain_state;
+
+/* Most droplets one rain step adds; the rest of a huge rate * dt is
+ * dropped so a step stays bounded. */
+#define PELT__RAIN_MAX_PER_STEP 65536u
+
+/* Seeds the rain state from rain->seed. */
+void pelt__rain_start(pelt__rain_state *state, const pelt_rain *rain);
+
+/* The rain with defaults filled in: zero radius range -> [0.015, 0.04] uv,
+ * zero wetness range -> [0.5, 1]; reversed ranges are swapped. */
+pelt_rain pelt__rain_resolve(const pelt_rain *rain);
+
+/* Adds rain->rate * dt droplets (fractions carried in state) at uniform
+ * random positions in [0,1]^2 with radius and wetness uniform in their
+ * ranges. Deterministic for a seed and a sequence of dt. Returns the number
+ * of droplets added. No allocation. */
+size_t pelt__wetness_rain(pelt__wetness *m, const pelt_rain *rain,
+                          pelt__rain_state *state, float dt);
+
+/* How a greyscale image becomes clumps. Zero fields mean the defaults. */
+typedef struct pelt__paint_desc {
+    float clump_size; /* spacing of clump centres in uv units, default 0.03 */
+    float threshold;  /* grey level (0..1) below which a texel is dry,
+                         default 0.1 */
+    uint32_t seed;    /* jitter of the clump grid, default 1 */
+} pelt__paint_desc;
+
+/* Replaces the mask with wetness painted from an 8-bit greyscale image
+ * (grey, w x h, row 0 at the TOP, i.e. at v = 1, as a picture is viewed),
+ * bilinearly resampled onto the mask: rho = grey / 255 where it exceeds the
+ * threshold. Wet texels are split into clumps: a jittered grid of clump
+ * seeds (spacing clump_size) cuts each connected wet region into cells;
+ * each (cell, region) piece becomes one clump centred on its centroid with
+ * the radius that covers it, so a stroke of a word renders as clumps along
+ * the stroke. Allocates temporary memory (freed before return). */
+pelt_status pelt__wetness_paint_image(pelt__wetness *m, const uint8_t *grey,
+                                      unsigned w, unsigned h,
+                                      const pelt__paint_desc *desc,
+                                      pelt_error *err);
+
+/* Writes the mask as an RGBA8 picture like the insets of Silva Fig. 11
+ * into rgba (width * height * 4 bytes, caller-owned), row 0 at the TOP
+ * (v = 1): dry = black, wet = blue with intensity rho, shaded brighter
+ * toward each clump centre so clumps show as blobs. */
+void pelt__wetness_to_rgba8(const pelt__wetness *m, uint8_t *rgba);
+
+/* A droplet at a surface point: triangle `tri` of `mesh` and barycentric
+ * weights bary (of its vertices 0, 1, 2) give the centre in mask uv; the
+ * radius in world units becomes uv units through that triangle's
+ * sqrt(uv area / world area). Fails on a bad triangle index or
+ * non-finite input. */
+pelt_status pelt__droplet_on_surface(const pelt_mesh *mesh, size_t tri,
+                                     const float bary[3], float radius_world,
+                                     float wetness, pelt_droplet *out,
+                                     pelt_error *err);
+
+/* A droplet where a ray (say from the camera through the mouse) first hits
+ * the mesh: pelt__bvh_raycast on bvh (built from this mesh), then
+ * pelt__droplet_on_surface. Returns false on a miss or bad input. The hit
+ * is written to *hit when hit is not NULL. No allocation. */
+bool pelt__droplet_from_ray(const pelt_mesh *mesh, const pelt__bvh *bvh,
+                            const float origin[3], const float dir[3],
+                            float radius_world, float wetness,
+                            pelt_droplet *out, pelt__hit *hit);
+
+#endif

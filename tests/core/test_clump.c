@@ -1,0 +1,213 @@
+/* Clump displacement reference: Silva et al. Eq. 5 profile and Alg. 2 with
+ * the inverse mapping, as DESIGN.md reads them. */
+#include "support/check.h"
+#include "core/wet/clump.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static void clump_profile_is_zero_at_first_layer_and_one_at_tip(void)
+{
+    const float ws[3] = {0.0f, 1.0f, 0.5f};
+    const unsigned ns[4] = {2, 4, 16, 64};
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 4; b++) {
+            float N = (float)ns[b];
+            CHECK_NEAR(pelt__clump_profile(1.0f / N, ws[a], N), 0.0, 1e-6);
+            CHECK_NEAR(pelt__clump_profile(1.0f, ws[a], N), 1.0, 1e-6);
+        }
+}
+
+static void clump_profile_is_monotone_in_height(void)
+{
+    for (int wi = 0; wi <= 4; wi++) {
+        float w = 0.25f * (float)wi, N = 16.0f, prev = -1.0f;
+        for (int n = 0; n < 16; n++) {
+            float f = pelt__clump_profile((1.0f + (float)n) / N, w, N);
+            CHECK(f >= prev);
+            CHECK(f >= 0.0f && f <= 1.0f);
+            prev = f;
+        }
+    }
+}
+
+static void clump_profile_w0_is_rescaled_linear_and_w1_is_log(void)
+{
+    /* N = 4, n = 1: h = 0.5; h' = (0.5 - 0.25) / 0.75 = 1/3;
+     * 1 + ln 0.5 / ln 4 = 1 - 1/2 = 1/2. */
+    CHECK_NEAR(pelt__clump_profile(0.5f, 0.0f, 4.0f), 1.0 / 3.0, 1e-6);
+    CHECK_NEAR(pelt__clump_profile(0.5f, 1.0f, 4.0f), 0.5, 1e-6);
+    CHECK_NEAR(pelt__clump_profile(0.5f, 0.5f, 4.0f), 0.5 / 3.0 + 0.25, 1e-6);
+    /* The log profile rises faster low down: fur bends in toward the clump
+     * along its length (Fig. 9 c, d). */
+    CHECK(pelt__clump_profile(0.25f, 1.0f, 16.0f) > pelt__clump_profile(0.25f, 0.0f, 16.0f));
+}
+
+static void clump_profile_single_layer_is_one_and_bad_h_is_zero(void)
+{
+    CHECK(pelt__clump_profile(1.0f, 0.0f, 1.0f) == 1.0f);
+    CHECK(pelt__clump_profile(1.0f, 1.0f, 1.0f) == 1.0f);
+    CHECK(pelt__clump_profile(0.0f, 1.0f, 16.0f) == 0.0f);
+    CHECK(pelt__clump_profile(-1.0f, 0.0f, 16.0f) == 0.0f);
+}
+
+static void clump_texel_matches_gl_nearest(void)
+{
+    float mask[4 * 4 * 4];
+    for (int i = 0; i < 16; i++) mask[i * 4] = (float)i; /* R = index */
+    struct { float u, v; int x, y; } cases[] = {
+        {0.0f, 0.0f, 0, 0},   {0.2499f, 0.0f, 0, 0}, {0.25f, 0.0f, 1, 0},
+        {0.99f, 0.5f, 3, 2},  {1.0f, 1.0f, 3, 3},    {-0.3f, 7.0f, 0, 3},
+        {1e30f, -1e30f, 3, 0}, {0.5f, 0.74f, 2, 2},
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        float uv[2] = {cases[k].u, cases[k].v};
+        const float *t = pelt__clump_texel(mask, 4, 4, uv);
+        CHECK(t[0] == (float)(cases[k].y * 4 + cases[k].x));
+    }
+}
+
+/* A width x width mask holding one disc-shaped clump (centre c, radius r,
+ * wetness rho) and dry elsewhere. */
+static float *disc_mask(unsigned width, float cx, float cy, float r, float rho)
+{
+    float *m = calloc((size_t)width * width * 4, sizeof(float));
+    for (unsigned y = 0; y < width; y++)
+        for (unsigned x = 0; x < width; x++) {
+            float u = (x + 0.5f) / width, v = (y + 0.5f) / width;
+            if (hypotf(u - cx, v - cy) > r) continue;
+            float *t = m + ((size_t)y * width + x) * 4;
+            t[0] = cx;
+            t[1] = cy;
+            t[2] = r;
+            t[3] = rho;
+        }
+    return m;
+}
+
+static void clump_dry_texel_keeps_p_undisplaced(void)
+{
+    float *m = disc_mask(16, 0.5f, 0.5f, 0.2f, 1.0f);
+    float p[2] = {0.05f, 0.05f}, q[2] = {-1, -1};
+    CHECK(pelt__clump_lookup(m, 16, 16, p, 1.0f, 0.0f, 16.0f, 1.0f, q) == PELT__CLUMP_KEEP);
+    CHECK(q[0] == p[0] && q[1] == p[1]);
+    free(m);
+}
+
+static void clump_displaced_root_is_hand_computed(void)
+{
+    /* Whole mask wet, c = (0.5, 0.5), r = 1. At the tip (f = 1) with
+     * s = 0.5, rho = 1: pull 0.5, q = c + (p - c) / 0.5. */
+    float *m = disc_mask(8, 0.5f, 0.5f, 1.0f, 1.0f);
+    float p[2] = {0.6f, 0.45f}, q[2];
+    CHECK(pelt__clump_lookup(m, 8, 8, p, 1.0f, 0.0f, 16.0f, 0.5f, q) == PELT__CLUMP_DISPLACED);
+    CHECK_NEAR(q[0], 0.7, 1e-6);
+    CHECK_NEAR(q[1], 0.4, 1e-6);
+    /* rho = 0.5 halves the pull: 1 / (1 - 0.25). */
+    float *h = disc_mask(8, 0.5f, 0.5f, 1.0f, 0.5f);
+    CHECK(pelt__clump_lookup(h, 8, 8, p, 1.0f, 0.0f, 16.0f, 0.5f, q) == PELT__CLUMP_DISPLACED);
+    CHECK_NEAR(q[0], 0.5 + 0.1 / 0.75, 1e-6);
+    free(m);
+    free(h);
+}
+
+static void clump_first_layer_is_not_displaced(void)
+{
+    float *m = disc_mask(8, 0.5f, 0.5f, 1.0f, 1.0f);
+    float p[2] = {0.6f, 0.45f}, q[2];
+    CHECK(pelt__clump_lookup(m, 8, 8, p, 1.0f / 16.0f, 1.0f, 16.0f, 1.0f, q) ==
+          PELT__CLUMP_DISPLACED);
+    CHECK_NEAR(q[0], 0.6, 1e-6);
+    CHECK_NEAR(q[1], 0.45, 1e-6);
+    free(m);
+}
+
+static void clump_pull_is_capped_below_one(void)
+{
+    float *m = disc_mask(8, 0.5f, 0.5f, 1.0f, 1.0f);
+    float p[2] = {0.51f, 0.5f}, q[2];
+    CHECK(pelt__clump_lookup(m, 8, 8, p, 1.0f, 0.0f, 16.0f, 1.0f, q) == PELT__CLUMP_DISPLACED);
+    CHECK_NEAR(q[0], 0.5 + 0.01 / (1.0 - PELT__CLUMP_MAX_PULL), 1e-5);
+    /* Negative tightness never pushes roots inward. */
+    CHECK(pelt__clump_lookup(m, 8, 8, p, 1.0f, 0.0f, 16.0f, -3.0f, q) == PELT__CLUMP_DISPLACED);
+    CHECK(q[0] == p[0]);
+    free(m);
+}
+
+static void clump_texel_of_another_clump_is_discarded(void)
+{
+    /* Texel (8,8) says its clump is centred at (0.1, 0.1) with radius 0.05:
+     * the fragment at p is outside that clump. */
+    float *m = disc_mask(16, 0.5f, 0.5f, 0.3f, 1.0f);
+    float *t = m + ((size_t)8 * 16 + 8) * 4;
+    t[0] = 0.1f;
+    t[1] = 0.1f;
+    t[2] = 0.05f;
+    float p[2] = {0.53f, 0.53f}, q[2];
+    CHECK(pelt__clump_lookup(m, 16, 16, p, 0.5f, 0.0f, 16.0f, 1.0f, q) == PELT__CLUMP_DISCARD);
+    free(m);
+}
+
+static void clump_root_in_dry_fur_is_discarded(void)
+{
+    /* Disc r = 0.25; p 0.2 from the centre at the tip with pull 0.5 maps to
+     * a root 0.4 away: dry. */
+    float *m = disc_mask(32, 0.5f, 0.5f, 0.25f, 1.0f);
+    float p[2] = {0.7f, 0.5f}, q[2];
+    CHECK(pelt__clump_lookup(m, 32, 32, p, 1.0f, 0.0f, 16.0f, 0.5f, q) == PELT__CLUMP_DISCARD);
+    CHECK_NEAR(q[0], 0.9, 1e-5);
+    /* Low in the fur the root stays inside the clump. */
+    CHECK(pelt__clump_lookup(m, 32, 32, p, 2.0f / 16.0f, 0.0f, 16.0f, 0.5f, q) ==
+          PELT__CLUMP_DISPLACED);
+    free(m);
+}
+
+static void clump_coverage_thins_toward_the_tips(void)
+{
+    /* Share of a clump's fragments not discarded, per layer: it must fall
+     * from nearly 1 at the root as the clump tightens toward its tip. */
+    const unsigned W = 64;
+    float *m = disc_mask(W, 0.5f, 0.5f, 0.3f, 1.0f);
+    float prev = 2.0f, first = 0.0f, last = 0.0f;
+    for (int n = 0; n < 16; n++) {
+        float h = (1.0f + n) / 16.0f;
+        int kept = 0, inside = 0;
+        for (unsigned y = 0; y < 200; y++)
+            for (unsigned x = 0; x < 200; x++) {
+                float p[2] = {(x + 0.5f) / 200.0f, (y + 0.5f) / 200.0f}, q[2];
+                const float *t = pelt__clump_texel(m, W, W, p);
+                if (t[3] == 0.0f) continue;
+                inside++;
+                if (pelt__clump_lookup(m, W, W, p, h, 0.5f, 16.0f, 0.8f, q) !=
+                    PELT__CLUMP_DISCARD)
+                    kept++;
+            }
+        float share = (float)kept / (float)inside;
+        CHECK(share <= prev);
+        prev = share;
+        if (n == 0) first = share;
+        last = share;
+    }
+    /* Only fragments in rim texels whose centre is inside but which lie
+     * outside r are dropped at the root. */
+    CHECK(first > 0.95f);
+    CHECK(last < 0.5f);
+    free(m);
+}
+
+int main(void)
+{
+    RUN(clump_profile_is_zero_at_first_layer_and_one_at_tip);
+    RUN(clump_profile_is_monotone_in_height);
+    RUN(clump_profile_w0_is_rescaled_linear_and_w1_is_log);
+    RUN(clump_profile_single_layer_is_one_and_bad_h_is_zero);
+    RUN(clump_texel_matches_gl_nearest);
+    RUN(clump_dry_texel_keeps_p_undisplaced);
+    RUN(clump_displaced_root_is_hand_computed);
+    RUN(clump_first_layer_is_not_displaced);
+    RUN(clump_pull_is_capped_below_one);
+    RUN(clump_texel_of_another_clump_is_discarded);
+    RUN(clump_root_in_dry_fur_is_discarded);
+    RUN(clump_coverage_thins_toward_the_tips);
+    return check_summary();
+}

@@ -1,0 +1,221 @@
+/* Shader parity: each GLSL formula evaluated into an RGBA32F target over a
+ * grid of inputs, against its C reference in core/. Inputs are a function
+ * of the pixel, computed the same way on both sides. */
+#include "support/gl_test.h"
+
+#include "core/wet/clump.h"
+#include "core/fur/fur_shape.h"
+#include "core/wet/wetness.h"
+#include "core/fur/shading.h"
+
+enum { W = 64, H = 48 };
+
+static pelt_headless *gl;
+static float out[W * H * 4];
+
+/* Shared input generator: cell (x, y) -> a few values in known ranges. */
+static const char inputs_glsl[] =
+    "vec3 unit_dir(float a, float b) {\n"
+    "  return vec3(cos(a) * sin(b), cos(b), sin(a) * sin(b));\n"
+    "}\n"
+    "void cell_inputs(vec2 c, out vec3 n, out vec3 t, out vec3 tip, out float h, out float s) {\n"
+    "  n = unit_dir(c.x * 0.37, 0.2 + c.y * 0.05);\n"
+    "  t = normalize(cross(n, vec3(0.3, 0.1, 0.95)));\n"
+    "  tip = 0.8 * unit_dir(c.x * 0.11 + 1.0, 0.1 + c.y * 0.03);\n"
+    "  h = fract(c.x * 0.131 + c.y * 0.071);\n"
+    "  s = fract(c.x * 0.017 + c.y * 0.093);\n"
+    "}\n";
+
+static pelt_vec3 unit_dir(float a, float b)
+{
+    return v3(cosf(a) * sinf(b), cosf(b), sinf(a) * sinf(b));
+}
+
+static void cell_inputs(float cx, float cy, pelt_vec3 *n, pelt_vec3 *t, pelt_vec3 *tip, float *h,
+                        float *s)
+{
+    *n = unit_dir(cx * 0.37f, 0.2f + cy * 0.05f);
+    *t = v3_norm_or(v3_cross(*n, v3(0.3f, 0.1f, 0.95f)), v3(1, 0, 0));
+    *tip = v3_scale(unit_dir(cx * 0.11f + 1.0f, 0.1f + cy * 0.03f), 0.8f);
+    float hx = cx * 0.131f + cy * 0.071f, sx = cx * 0.017f + cy * 0.093f;
+    *h = hx - floorf(hx);
+    *s = sx - floorf(sx);
+}
+
+static const char kajiya_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, t, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
+    "  vec3 E = normalize(tip - 0.5 * n);\n"
+    "  vec2 kk = kajiya_kay(t, n, E, 4.0 + 60.0 * s);\n"
+    "  o = vec4(kk, shadow_factor(1.0 + 3.0 * s, h), 0.0);\n"
+    "}\n";
+
+static void kajiya_kay_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_shading, inputs_glsl, kajiya_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, t, tip;
+            float h, s, diff, spec;
+            cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
+            pelt_vec3 e = v3_norm_or(v3_sub(tip, v3_scale(n, 0.5f)), v3(0, 0, 1));
+            pelt__kajiya_kay(t, n, e, 4.0f + 60.0f * s, &diff, &spec);
+            const float *g = out + 4 * (y * W + x);
+            double err = fmax(fabs(g[0] - diff), fmax(fabs(g[1] - spec),
+                              fabs(g[2] - pelt__shadow_factor(1.0f + 3.0f * s, h))));
+            if (err > worst) worst = err;
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-4);
+}
+
+/* u_which comes in as a #define placed before this text. */
+static const char shape_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, u, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, u, tip, h, s);\n"
+    "  vec3 v = cross(n, u);\n"
+    "  float L0 = 0.8, omega = 30.0 * s, K = 0.1 + 0.2 * s, rho = fract(s * 7.0);\n"
+    "  float slant = 1.2 * s;\n"
+    "  vec3 r = u_which == 0 ? fur_bend(n, L0, tip, h)\n"
+    "         : u_which == 1 ? fur_curl(u, v, omega, K, rho, h)\n"
+    "         : u_which == 2 ? fur_tangent(n, L0, tip, u, v, omega, K, rho, h)\n"
+    "         : u_which == 3 ? fur_comb(u, L0, slant, h)\n"
+    "         : fur_tangent_combed(n, L0, tip, u, v, 0.7 * tip, omega, K, rho, slant, h);\n"
+    "  o = vec4(r, 0.0);\n"
+    "}\n";
+
+/* beta(h), phi(h) and T(h) of Silva Eq. 1 and 4 in the vertex shader. */
+static void fur_shape_glsl_matches_c(void)
+{
+    const char *which_names[] = {"fur_bend", "fur_curl", "fur_tangent", "fur_comb",
+                                 "fur_tangent_combed"};
+    for (int which = 0; which < 5; which++) {
+        char define[64];
+        snprintf(define, sizeof define, "#define u_which %d\n", which);
+        const char *fs[] = {pelt__shader_fur_shape, inputs_glsl, define, shape_main, NULL};
+        CHECK(gl_test_eval(gl, fs, W, H, out));
+        double worst = 0.0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                pelt_vec3 n, u, tip;
+                float h, s;
+                cell_inputs((float)x, (float)y, &n, &u, &tip, &h, &s);
+                pelt_vec3 v = v3_cross(n, u);
+                float L0 = 0.8f, omega = 30.0f * s, K = 0.1f + 0.2f * s;
+                float rho = s * 7.0f - floorf(s * 7.0f);
+                float slant = 1.2f * s;
+                pelt_vec3 r = which == 0   ? pelt__fur_bend(n, L0, tip, h)
+                              : which == 1 ? pelt__fur_curl(u, v, omega, K, rho, h)
+                              : which == 2 ? pelt__fur_tangent(n, L0, tip, u, v, omega, K, rho, h)
+                              : which == 3 ? pelt__fur_comb(u, L0, slant, h)
+                                           : pelt__fur_tangent_combed(n, L0, tip, u, v,
+                                                                      v3_scale(tip, 0.7f), omega,
+                                                                      K, rho, slant, h);
+                const float *g = out + 4 * (y * W + x);
+                double err = fmax(fabs(g[0] - r.x), fmax(fabs(g[1] - r.y), fabs(g[2] - r.z)));
+                if (err > worst) worst = err;
+            }
+        printf("  %s: worst |GLSL - C| = %.3g\n", which_names[which], worst);
+        CHECK(worst < 2e-4);
+    }
+}
+
+static const char clump_main[] =
+    "uniform sampler2D u_mask;\n"
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  vec2 p = (c + vec2(0.37, 0.61)) / vec2(64.0, 48.0);\n"
+    "  float h = (1.0 + mod(c.x + c.y, 16.0)) / 16.0;\n"
+    "  float w = mod(c.y, 3.0) * 0.5;\n"
+    "  vec2 q = p;\n"
+    "  int r = clump_lookup(u_mask, p, h, w, 16.0, 0.9, q);\n"
+    "  o = vec4(float(r), q, clump_profile(h, w, 16.0));\n"
+    "}\n";
+
+/* Silva Eq. 5 and Alg. 2 in the shell fragment shader vs core/clump.c, on
+ * a mask with overlapping droplets. */
+static void clump_glsl_matches_c(void)
+{
+    pelt__wetness *m = NULL;
+    CHECK(pelt__wetness_create(64, 64, &m, NULL) == PELT_OK);
+    if (!m) return;
+    const pelt_droplet drops[] = {{{0.3f, 0.4f}, 0.2f, 0.9f}, {{0.45f, 0.5f}, 0.15f, 0.6f},
+                                  {{0.8f, 0.2f}, 0.1f, 1.0f}, {{0.7f, 0.75f}, 0.2f, 0.4f}};
+    for (size_t i = 0; i < 4; i++) pelt__wetness_add_droplet(m, &drops[i], NULL);
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 64, 64, 0, GL_RGBA, GL_FLOAT, m->texels);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    const char *fs[] = {pelt__shader_clump, clump_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    int mismatched = 0, displaced = 0, discarded = 0;
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float p[2] = {((float)x + 0.37f) / 64.0f, ((float)y + 0.61f) / 48.0f};
+            float h = (1.0f + fmodf((float)(x + y), 16.0f)) / 16.0f;
+            float w = fmodf((float)y, 3.0f) * 0.5f;
+            float q[2] = {p[0], p[1]};
+            int r = (int)pelt__clump_lookup(m->texels, 64, 64, p, h, w, 16.0f, 0.9f, q);
+            const float *g = out + 4 * (y * W + x);
+            if ((int)g[0] != r) mismatched++;
+            if (r == PELT__CLUMP_DISPLACED) {
+                displaced++;
+                worst = fmax(worst, fmax(fabs(g[1] - q[0]), fabs(g[2] - q[1])));
+            }
+            if (r == PELT__CLUMP_DISCARD) discarded++;
+            worst = fmax(worst, fabs(g[3] - pelt__clump_profile(h, w, 16.0f)));
+        }
+    printf("  %d displaced, %d discarded, %d results differ, worst |GLSL - C| = %.3g\n", displaced,
+           discarded, mismatched, worst);
+    CHECK(displaced > 100 && discarded > 10);
+    CHECK(mismatched == 0);
+    CHECK(worst < 2e-4);
+    glDeleteTextures(1, &tex);
+    pelt__wetness_destroy(m);
+}
+
+static const char coverage_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  float a = c.x / 63.0, k = 0.05 + 0.95 * c.y / 47.0;\n"
+    "  o = vec4(clump_coverage(a, k), 0.0, 0.0, 0.0);\n"
+    "}\n";
+
+/* The tuft's coverage of squeezed strands, GLSL vs C. */
+static void clump_coverage_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_clump, coverage_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float a = (float)x / 63.0f, k = 0.05f + 0.95f * (float)y / 47.0f;
+            worst = fmax(worst, fabs(out[4 * (y * W + x)] - pelt__clump_coverage(a, k)));
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-4);
+}
+
+int main(void)
+{
+    gl = gl_test_open(W, H, true);
+    if (!gl) return check_skip("no OpenGL context");
+    RUN(kajiya_kay_glsl_matches_c);
+    RUN(fur_shape_glsl_matches_c);
+    RUN(clump_glsl_matches_c);
+    RUN(clump_coverage_glsl_matches_c);
+    pelt_headless_destroy(gl);
+    return check_summary();
+}
