@@ -91,7 +91,7 @@ static int bench_droplets(const pelt_mesh *mesh)
     enum { MASK = 2048, DROPS = 10000, RUNS = 9 };
     pelt_fur *fur = NULL;
     pelt_error err = {0};
-    pelt_fur_desc d = {.mask_size = MASK, .texture_size = 8, .layers = 1};
+    pelt_fur_desc d = {.layers = 1, .look.texture_size = 8, .wet.mask_size = MASK};
     if (pelt_fur_create(mesh, &d, &fur, &err) != PELT_OK) {
         cli_error("bench", "%s", err.message);
         return 1;
@@ -168,7 +168,7 @@ int cmd_bench(int argc, char **argv)
     printf("pelt bench: %s\n", pelt_headless_renderer_name(s.gl));
     printf("scene: %zu triangles, %u layers, %ux%u, fur texture %u, mask %u, %u frames after %u "
            "warm-up\n",
-           ms.triangle_count, fd.layers, sc->output.width, sc->output.height, fd.texture_size,
+           ms.triangle_count, fd.layers, sc->output.width, sc->output.height, fd.look.texture_size,
            pelt_fur_mask_size(s.fur), frames, o.warmup);
     if (s.atlas_seconds > 0.0)
         printf("atlas build: %.3f s%s\n", s.atlas_seconds, s.atlas_from_cache ? " (from the cache)" : "");

@@ -44,7 +44,7 @@ static bool build_atlas(const char *cmd, const pelt_scene *sc, pelt_mesh **mesh,
     ad.mode = (int)sc->atlas.mode;
     /* The atlas is the wetness mask's space: they share one size. The
      * default 256 grows with big meshes (the atlas picks it). */
-    ad.mask_size = sc->wetness.mask_size != 256 ? sc->wetness.mask_size : 0;
+    ad.mask_size = sc->fur.wet.mask_size;
     /* The same fur density as pelt_fur_create's default: 5 tiles per diagonal. */
     ad.texel_density = sc->atlas.texel_density > 0.0f ? sc->atlas.texel_density
                        : diag > 0.0f                  ? 5.0f / diag
@@ -118,8 +118,8 @@ static bool apply_color(const char *cmd, const pelt_scene *sc, pelt_fur *fur)
         }
         return true;
     }
-    if (sc->texture.pattern != PELT_PATTERN_NONE &&
-        pelt_fur_set_color_pattern(fur, (pelt_color_pattern)sc->texture.pattern, sc->fur.seed,
+    if (sc->texture.pattern != PELT_COLOR_PATTERN_NONE &&
+        pelt_fur_set_color_pattern(fur, sc->texture.pattern, sc->fur.seed,
                                    &err) != PELT_OK) {
         cli_error(cmd, "texture.pattern: %s", err.message);
         return false;
@@ -165,7 +165,7 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_error(cmd, "%s", err.message);
         return false;
     }
-    unsigned mask_size = sc->wetness.mask_size;
+    unsigned mask_size = sc->fur.wet.mask_size;
     if (!build_atlas(cmd, sc, &s->mesh, &mask_size, s)) {
         cli_session_close(s);
         return false;
@@ -184,14 +184,7 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_session_close(s);
         return false;
     }
-    fd.mask_size = mask_size;
-    fd.color_scale = sc->texture.scale;
-    fd.clump_blend = sc->wetness.clump_blend;
-    fd.clump_tightness = sc->wetness.clump_tightness;
-    fd.wet_darken = sc->wetness.darken;
-    if (sc->dynamics.spring_k > 0.0f) fd.spring_k = sc->dynamics.spring_k;
-    if (sc->dynamics.mass > 0.0f) fd.mass = sc->dynamics.mass;
-    if (sc->dynamics.damping > 0.0f) fd.damping = sc->dynamics.damping;
+    fd.wet.mask_size = mask_size;
     if (pelt_fur_create(s->mesh, &fd, &s->fur, &err) != PELT_OK) {
         cli_error(cmd, "%s", err.message);
         cli_session_close(s);

@@ -115,7 +115,7 @@ static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
 static void upload_textures(pelt_renderer *r)
 {
     pelt_fur *f = r->fur;
-    GLsizei s = (GLsizei)f->desc.texture_size;
+    GLsizei s = (GLsizei)f->desc.look.texture_size;
     glGenTextures(1, &r->fur_texture);
     glBindTexture(GL_TEXTURE_2D_ARRAY, r->fur_texture);
     glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, (GLsizei)f->texture_slices, 0, GL_RGBA,
@@ -243,23 +243,23 @@ static void set_common(const pelt_renderer *r, const uniforms *u, const pelt_vie
     glUniformMatrix4fv(u->view_proj, 1, GL_FALSE, view_proj);
     glUniform1f(u->layers, (float)d->layers);
     glUniform1f(u->length, d->length);
-    glUniform1f(u->curl_frequency, d->curl_frequency);
-    glUniform1f(u->curl_radius, d->curl_radius);
-    glUniform3fv(u->color, 1, d->color);
-    glUniform3fv(u->tip_color, 1, d->tip_color);
-    glUniform3fv(u->specular, 1, d->specular);
-    glUniform1f(u->shininess, d->shininess);
-    glUniform1f(u->shadow, d->shadow);
+    glUniform1f(u->curl_frequency, d->look.curl_frequency);
+    glUniform1f(u->curl_radius, d->look.curl_radius);
+    glUniform3fv(u->color, 1, d->look.color);
+    glUniform3fv(u->tip_color, 1, d->look.tip_color);
+    glUniform3fv(u->specular, 1, d->look.specular);
+    glUniform1f(u->shininess, d->look.shininess);
+    glUniform1f(u->shadow, d->look.shadow);
     glUniform3fv(u->eye, 1, v->eye);
     glUniform3fv(u->light_dir, 1, v->light.direction);
     glUniform3fv(u->light_color, 1, v->light.color);
     glUniform1f(u->ambient, v->light.ambient);
-    glUniform1f(u->clump_blend, d->clump_blend);
-    glUniform1f(u->clump_tightness, d->clump_tightness);
-    glUniform1f(u->wet_darken, d->wet_darken);
+    glUniform1f(u->clump_blend, d->wet.clump_blend);
+    glUniform1f(u->clump_tightness, d->wet.clump_tightness);
+    glUniform1f(u->wet_darken, d->wet.darken);
     glUniform2fv(u->fur_per_uv, 1, r->fur->fur_per_uv);
-    glUniform1f(u->color_scale, d->color_scale);
-    glUniform1f(u->slant, tanf(d->slant * 3.14159265f / 180.0f));
+    glUniform1f(u->color_scale, d->look.color_scale);
+    glUniform1f(u->slant, tanf(d->comb.slant * 3.14159265f / 180.0f));
 }
 
 void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)

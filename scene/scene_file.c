@@ -17,7 +17,7 @@
 
 /* Enum fields are written through an int. */
 _Static_assert(sizeof(pelt_scene_shape) == sizeof(int), "enum size");
-_Static_assert(sizeof(pelt_scene_pattern) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_color_pattern) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_atlas_mode) == sizeof(int), "enum size");
 
 #define PI_F 3.14159265358979f
@@ -40,11 +40,16 @@ void pelt_scene_defaults(pelt_scene *s)
     s->mesh.subdivisions = 16;
     s->mesh.scale = 1.0f;
 
+    /* The fur desc stays zero (pelt_fur_create's defaults) but for the
+     * Table 1 numbers the scene format documents. */
     s->fur.layers = 16;
-    s->fur.texture_size = 256;
+    s->fur.look.texture_size = 256;
+    s->fur.look.color_scale = 1.0f;
+    s->fur.wet.clump_blend = 0.5f;
+    s->fur.wet.clump_tightness = 0.9f;
+    s->fur.wet.darken = 0.35f;
 
-    s->texture.pattern = PELT_PATTERN_NONE;
-    s->texture.scale = 1.0f;
+    s->texture.pattern = PELT_COLOR_PATTERN_NONE;
 
     s->camera.yaw = 30.0f;
     s->camera.pitch = 25.0f;
@@ -72,7 +77,6 @@ void pelt_scene_defaults(pelt_scene *s)
     s->animation.shake_frequency = 2.0f;
     s->animation.bounce_frequency = 1.0f;
 
-    s->wetness.mask_size = 256;
     s->wetness.drops_seed = 1;
     s->wetness.drops_radius[0] = 0.02f;
     s->wetness.drops_radius[1] = 0.06f;
@@ -83,9 +87,6 @@ void pelt_scene_defaults(pelt_scene *s)
     s->wetness.rain.wetness_min = 0.6f;
     s->wetness.rain.wetness_max = 1.0f;
     s->wetness.rain.seed = 1;
-    s->wetness.clump_blend = 0.5f;
-    s->wetness.clump_tightness = 0.9f;
-    s->wetness.darken = 0.35f;
     s->wetness.mask_image_wetness = 1.0f;
 
     s->atlas.mode = PELT_ATLAS_AUTO;
@@ -175,24 +176,24 @@ static const key_def scene_keys[] = {
     {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, preset_names},
     UINT_("fur.layers", fur.layers, 1, 256, 0),
     FLT("fur.length", fur.length, 0, BIG, 0),
-    UINT_("fur.texture_size", fur.texture_size, 1, 16384, 0),
+    UINT_("fur.texture_size", fur.look.texture_size, 1, 16384, 0),
     SEED("fur.seed", fur.seed),
-    FLT("fur.density", fur.density, 0, BIG, 0),
-    FLT("fur.strand_radius", fur.strand_radius, 0, BIG, 0),
-    FLT("fur.taper", fur.taper, 0, 1, 0),
-    FLT("fur.tiling", fur.tiling, 0, BIG, 0),
-    VEC("fur.color", fur.color, 3, 0, 1, 0),
-    VEC("fur.tip_color", fur.tip_color, 3, 0, 1, 0),
-    VEC("fur.specular", fur.specular, 3, 0, BIG, 0),
-    FLT("fur.shininess", fur.shininess, 0, BIG, 0),
-    FLT("fur.shadow", fur.shadow, 1, BIG, F_ZERO_OK),
-    FLT("fur.curl_frequency", fur.curl_frequency, 0, BIG, 0),
-    FLT("fur.curl_radius", fur.curl_radius, 0, BIG, 0),
-    FLT("fur.slant", fur.slant, 0, 60, 0),
+    FLT("fur.density", fur.look.density, 0, BIG, 0),
+    FLT("fur.strand_radius", fur.look.strand_radius, 0, BIG, 0),
+    FLT("fur.taper", fur.look.taper, 0, 1, 0),
+    FLT("fur.tiling", fur.look.tiling, 0, BIG, 0),
+    VEC("fur.color", fur.look.color, 3, 0, 1, 0),
+    VEC("fur.tip_color", fur.look.tip_color, 3, 0, 1, 0),
+    VEC("fur.specular", fur.look.specular, 3, 0, BIG, 0),
+    FLT("fur.shininess", fur.look.shininess, 0, BIG, 0),
+    FLT("fur.shadow", fur.look.shadow, 1, BIG, F_ZERO_OK),
+    FLT("fur.curl_frequency", fur.look.curl_frequency, 0, BIG, 0),
+    FLT("fur.curl_radius", fur.look.curl_radius, 0, BIG, 0),
+    FLT("fur.slant", fur.comb.slant, 0, 60, 0),
 
     PATH("texture.image", texture.image),
     ENUM("texture.pattern", texture.pattern, pattern_names),
-    FLT("texture.scale", texture.scale, 0, BIG, F_LO_OPEN),
+    FLT("texture.scale", fur.look.color_scale, 0, BIG, F_LO_OPEN),
 
     FLT("camera.yaw", camera.yaw, -BIG, BIG, 0),
     FLT("camera.pitch", camera.pitch, -89, 89, 0),
@@ -215,9 +216,9 @@ static const key_def scene_keys[] = {
     FLT("forces.gust_scale", forces.gust_scale, 0, BIG, F_LO_OPEN),
     FLT("forces.gust_frequency", forces.gust_frequency, 0, BIG, 0),
 
-    FLT("dynamics.spring_k", dynamics.spring_k, 0, BIG, 0),
-    FLT("dynamics.mass", dynamics.mass, 0, BIG, 0),
-    FLT("dynamics.damping", dynamics.damping, 0, BIG, 0),
+    FLT("dynamics.spring_k", fur.dynamics.spring_k, 0, BIG, 0),
+    FLT("dynamics.mass", fur.dynamics.mass, 0, BIG, 0),
+    FLT("dynamics.damping", fur.dynamics.damping, 0, BIG, 0),
 
     UINT_("animation.frames", animation.frames, 1, 1000000, 0),
     FLT("animation.fps", animation.fps, 0, 1000, F_LO_OPEN),
@@ -229,7 +230,7 @@ static const key_def scene_keys[] = {
     {"animation.wind", K_WINDKEYS, OFF(animation.wind_keys), OFF(animation.wind_key_count),
      0, 0, 0, 0, NULL},
 
-    UINT_("wetness.mask_size", wetness.mask_size, 1, 16384, 0),
+    UINT_("wetness.mask_size", fur.wet.mask_size, 1, 8192, 0),
     {"wetness.droplets", K_DROPLETS, OFF(wetness.droplets), OFF(wetness.droplet_count),
      0, 0, 0, 0, NULL},
     UINT_("wetness.drops.count", wetness.drops, 0, PELT_SCENE_MAX_DROPLETS, 0),
@@ -243,9 +244,9 @@ static const key_def scene_keys[] = {
     FLT("wetness.rain.start", wetness.rain_start, 0, BIG, 0),
     FLT("wetness.rain.stop", wetness.rain_stop, 0, BIG, 0),
     FLT("wetness.dry_rate", wetness.dry_rate, 0, BIG, 0),
-    FLT("wetness.clump_blend", wetness.clump_blend, 0, 1, 0),
-    FLT("wetness.clump_tightness", wetness.clump_tightness, 0, 1, 0),
-    FLT("wetness.darken", wetness.darken, 0, 1, 0),
+    FLT("wetness.clump_blend", fur.wet.clump_blend, 0, 1, 0),
+    FLT("wetness.clump_tightness", fur.wet.clump_tightness, 0, 1, 0),
+    FLT("wetness.darken", fur.wet.darken, 0, 1, 0),
     PATH("wetness.mask_image", wetness.mask_image),
     FLT("wetness.mask_image_wetness", wetness.mask_image_wetness, -1, 1, 0),
 
@@ -568,8 +569,8 @@ static void fixup(const key_def *d, pelt_scene *s)
 {
     if (strcmp(d->path, "mesh.file") == 0 && s->mesh.file[0]) s->mesh.shape = PELT_SHAPE_FILE;
     if (strcmp(d->path, "mesh.shape") == 0 && s->mesh.shape != PELT_SHAPE_FILE) s->mesh.file[0] = '\0';
-    if (strcmp(d->path, "texture.image") == 0 && s->texture.image[0]) s->texture.pattern = PELT_PATTERN_NONE;
-    if (strcmp(d->path, "texture.pattern") == 0 && s->texture.pattern != PELT_PATTERN_NONE)
+    if (strcmp(d->path, "texture.image") == 0 && s->texture.image[0]) s->texture.pattern = PELT_COLOR_PATTERN_NONE;
+    if (strcmp(d->path, "texture.pattern") == 0 && s->texture.pattern != PELT_COLOR_PATTERN_NONE)
         s->texture.image[0] = '\0';
 }
 

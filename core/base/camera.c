@@ -1,5 +1,5 @@
 /* The orbit camera and rays through pixels: view math, no GL. */
-#include "pelt/render.h"
+#include "pelt/camera.h"
 
 #include "core/base/vec.h"
 

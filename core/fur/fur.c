@@ -23,72 +23,72 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (!(diag > 0.0f)) diag = 1.0f;
     if (d->layers == 0) d->layers = 16;
     if (d->length == 0.0f) d->length = 0.03f * diag;
-    if (d->texture_size == 0) d->texture_size = 256;
+    if (d->look.texture_size == 0) d->look.texture_size = 256;
     if (d->seed == 0) d->seed = 1;
-    if (d->density == 0.0f) d->density = 3000.0f;
-    if (d->strand_radius == 0.0f) d->strand_radius = 1.6f;
-    if (d->taper == 0.0f) d->taper = 0.8f;
+    if (d->look.density == 0.0f) d->look.density = 3000.0f;
+    if (d->look.strand_radius == 0.0f) d->look.strand_radius = 1.6f;
+    if (d->look.taper == 0.0f) d->look.taper = 0.8f;
     /* Tiles per world unit: five fur tiles across the bounding diagonal. */
-    if (d->tiling == 0.0f) d->tiling = 5.0f / diag;
-    if (d->color[0] == 0.0f && d->color[1] == 0.0f && d->color[2] == 0.0f) {
-        d->color[0] = 0.55f; d->color[1] = 0.34f; d->color[2] = 0.18f;
+    if (d->look.tiling == 0.0f) d->look.tiling = 5.0f / diag;
+    if (d->look.color[0] == 0.0f && d->look.color[1] == 0.0f && d->look.color[2] == 0.0f) {
+        d->look.color[0] = 0.55f; d->look.color[1] = 0.34f; d->look.color[2] = 0.18f;
     }
-    if (d->tip_color[0] == 0.0f && d->tip_color[1] == 0.0f && d->tip_color[2] == 0.0f) {
-        d->tip_color[0] = 1.0f; d->tip_color[1] = 0.82f; d->tip_color[2] = 0.58f;
+    if (d->look.tip_color[0] == 0.0f && d->look.tip_color[1] == 0.0f && d->look.tip_color[2] == 0.0f) {
+        d->look.tip_color[0] = 1.0f; d->look.tip_color[1] = 0.82f; d->look.tip_color[2] = 0.58f;
     }
-    if (d->specular[0] == 0.0f && d->specular[1] == 0.0f && d->specular[2] == 0.0f)
-        d->specular[0] = 0.9f, d->specular[1] = 0.85f, d->specular[2] = 0.8f;
-    if (d->shininess == 0.0f) d->shininess = 20.0f;
-    if (d->shadow == 0.0f) d->shadow = 2.0f;
-    if (d->mass == 0.0f) d->mass = 1.0f;
-    if (d->spring_k == 0.0f) d->spring_k = d->mass * 9.81f / (0.4f * d->length);
-    if (d->damping == 0.0f) d->damping = 0.5f * sqrtf(d->spring_k * d->mass);
-    if (d->mask_size == 0) d->mask_size = 256;
-    if (d->clump_blend == 0.0f) d->clump_blend = 0.5f;
-    if (d->clump_tightness == 0.0f) d->clump_tightness = 0.9f;
-    if (d->wet_darken == 0.0f) d->wet_darken = 0.35f;
-    if (d->color_scale == 0.0f) d->color_scale = 1.0f;
+    if (d->look.specular[0] == 0.0f && d->look.specular[1] == 0.0f && d->look.specular[2] == 0.0f)
+        d->look.specular[0] = 0.9f, d->look.specular[1] = 0.85f, d->look.specular[2] = 0.8f;
+    if (d->look.shininess == 0.0f) d->look.shininess = 20.0f;
+    if (d->look.shadow == 0.0f) d->look.shadow = 2.0f;
+    if (d->dynamics.mass == 0.0f) d->dynamics.mass = 1.0f;
+    if (d->dynamics.spring_k == 0.0f) d->dynamics.spring_k = d->dynamics.mass * 9.81f / (0.4f * d->length);
+    if (d->dynamics.damping == 0.0f) d->dynamics.damping = 0.5f * sqrtf(d->dynamics.spring_k * d->dynamics.mass);
+    if (d->wet.mask_size == 0) d->wet.mask_size = 256;
+    if (d->wet.clump_blend == 0.0f) d->wet.clump_blend = 0.5f;
+    if (d->wet.clump_tightness == 0.0f) d->wet.clump_tightness = 0.9f;
+    if (d->wet.darken == 0.0f) d->wet.darken = 0.35f;
+    if (d->look.color_scale == 0.0f) d->look.color_scale = 1.0f;
 }
 
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
 {
     if (d->layers < 1 || d->layers > 256)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur layers must be 1..256, got %u", d->layers);
-    if (d->texture_size < 8 || d->texture_size > 4096)
+    if (d->look.texture_size < 8 || d->look.texture_size > 4096)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur texture size must be 8..4096, got %u",
-                          d->texture_size);
-    const float positive[] = {d->length, d->density, d->strand_radius, d->tiling, d->shininess};
+                          d->look.texture_size);
+    const float positive[] = {d->length, d->look.density, d->look.strand_radius, d->look.tiling, d->look.shininess};
     const char *names[] = {"length", "density", "strand radius", "tiling", "shininess"};
     for (size_t i = 0; i < sizeof positive / sizeof positive[0]; i++)
         if (!(positive[i] > 0.0f) || !isfinite(positive[i]))
             return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur %s must be a positive number, got %g",
                               names[i], (double)positive[i]);
-    if (d->density > 1e6f)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur density %g is too high (max 1e6)", (double)d->density);
-    if (d->strand_radius > 64.0f)
+    if (d->look.density > 1e6f)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur density %g is too high (max 1e6)", (double)d->look.density);
+    if (d->look.strand_radius > 64.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur strand radius %g texels is too large (max 64)",
-                          (double)d->strand_radius);
-    if (!(d->taper >= 0.0f && d->taper <= 1.0f))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur taper must be in [0, 1], got %g", (double)d->taper);
-    if (!(d->shadow >= 1.0f) || !isfinite(d->shadow))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur shadow K must be >= 1, got %g", (double)d->shadow);
-    if (!(d->mass > 0.0f) || !(d->spring_k > 0.0f) || !(d->damping >= 0.0f) || !isfinite(d->mass) ||
-        !isfinite(d->spring_k) || !isfinite(d->damping))
+                          (double)d->look.strand_radius);
+    if (!(d->look.taper >= 0.0f && d->look.taper <= 1.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur taper must be in [0, 1], got %g", (double)d->look.taper);
+    if (!(d->look.shadow >= 1.0f) || !isfinite(d->look.shadow))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur shadow K must be >= 1, got %g", (double)d->look.shadow);
+    if (!(d->dynamics.mass > 0.0f) || !(d->dynamics.spring_k > 0.0f) || !(d->dynamics.damping >= 0.0f) || !isfinite(d->dynamics.mass) ||
+        !isfinite(d->dynamics.spring_k) || !isfinite(d->dynamics.damping))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "fur mass and spring constant must be positive, damping >= 0");
-    if (d->mask_size > 8192)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness mask size must be 1..8192, got %u", d->mask_size);
-    if (!(d->clump_blend >= 0.0f && d->clump_blend <= 1.0f) ||
-        !(d->clump_tightness > 0.0f && d->clump_tightness <= 1.0f) ||
-        !(d->wet_darken >= 0.0f && d->wet_darken < 1.0f))
+    if (d->wet.mask_size > 8192)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness mask size must be 1..8192, got %u", d->wet.mask_size);
+    if (!(d->wet.clump_blend >= 0.0f && d->wet.clump_blend <= 1.0f) ||
+        !(d->wet.clump_tightness > 0.0f && d->wet.clump_tightness <= 1.0f) ||
+        !(d->wet.darken >= 0.0f && d->wet.darken < 1.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "clump blend must be in [0,1], tightness in (0,1], wet darkening in [0,1)");
-    if (!(d->slant >= 0.0f && d->slant <= 60.0f))
+    if (!(d->comb.slant >= 0.0f && d->comb.slant <= 60.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur slant must be 0..60 degrees, got %g",
-                          (double)d->slant);
-    if (!(d->color_scale > 0.0f) || !isfinite(d->color_scale))
+                          (double)d->comb.slant);
+    if (!(d->look.color_scale > 0.0f) || !isfinite(d->look.color_scale))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour scale must be positive");
-    if (!isfinite(d->curl_frequency) || !isfinite(d->curl_radius) || d->curl_radius < 0.0f)
+    if (!isfinite(d->look.curl_frequency) || !isfinite(d->look.curl_radius) || d->look.curl_radius < 0.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
     return PELT_OK;
 }
@@ -158,18 +158,18 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     f->desc = d;
     f->mesh = mesh;
     f->texture_slices = d.layers + 1;
-    pelt__furtex_desc td = {d.texture_size, d.layers, d.seed, d.density, d.strand_radius, d.taper};
+    pelt__furtex_desc td = {d.look.texture_size, d.layers, d.seed, d.look.density, d.look.strand_radius, d.look.taper};
     size_t bytes = pelt__furtex_bytes(&td);
     f->texture = bytes ? malloc(bytes) : NULL;
     f->fur_uvs = pelt__calloc(mesh->vertex_count, 2 * sizeof(float));
-    pelt__strand_params sp = {d.length, d.spring_k, d.mass, d.damping, d.seed};
+    pelt__strand_params sp = {d.length, d.dynamics.spring_k, d.dynamics.mass, d.dynamics.damping, d.seed};
     st = pelt__strands_create(mesh, &sp, &f->strands, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
     }
     f->tips = pelt__strands_tip_offsets(f->strands);
-    st = pelt__wetness_create(d.mask_size, d.mask_size, &f->wetness, err);
+    st = pelt__wetness_create(d.wet.mask_size, d.wet.mask_size, &f->wetness, err);
     if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->surface, err);
     if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->bvh, err);
     if (st == PELT_OK) st = pelt__fur_rain_init(f, err);
@@ -182,7 +182,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
     }
     pelt__furtex_generate(&td, f->texture);
-    compute_fur_uvs(mesh, d.tiling, f->fur_uvs, f->fur_per_uv);
+    compute_fur_uvs(mesh, d.look.tiling, f->fur_uvs, f->fur_per_uv);
     f->tips_version = 1;
     *out = f;
     return PELT_OK;
@@ -198,8 +198,8 @@ pelt_status pelt_fur_desc_curl_preset(pelt_fur_desc *d, const pelt_mesh *mesh, c
                           name ? name : "(null)");
     pelt_fur_desc resolved = *d;
     pelt__fur_desc_defaults(&resolved, mesh);
-    if (d->curl_frequency == 0.0f) d->curl_frequency = omega;
-    if (d->curl_radius == 0.0f) d->curl_radius = radius_fraction * resolved.length;
+    if (d->look.curl_frequency == 0.0f) d->look.curl_frequency = omega;
+    if (d->look.curl_radius == 0.0f) d->look.curl_radius = radius_fraction * resolved.length;
     return PELT_OK;
 }
 

@@ -57,6 +57,15 @@ void pelt_mesh_destroy(pelt_mesh *mesh)
 
 const float *pelt_mesh_directions(const pelt_mesh *mesh) { return mesh ? mesh->directions : NULL; }
 
+pelt_mesh_data pelt_mesh_get_data(const pelt_mesh *m)
+{
+    pelt_mesh_data d = {m->positions, m->normals, m->uvs, m->vertex_count, m->indices,
+                        m->triangle_count, m->directions, m->fur_uvs, m->comb};
+    return d;
+}
+
+const float *pelt_mesh_tangents(const pelt_mesh *m) { return m->tangents; }
+
 pelt_mesh_stats pelt_mesh_get_stats(const pelt_mesh *mesh)
 {
     pelt_mesh_stats none = {0};
@@ -496,14 +505,25 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
         const float *n = data->normals + 3 * i;
         normals_ok = all_finite(n, 3) && (n[0] != 0.0f || n[1] != 0.0f || n[2] != 0.0f);
     }
-    if (data->directions) {
-        m->directions = pelt__calloc(m->vertex_count, 3 * sizeof(float));
-        if (!m->directions) {
-            free(keep);
-            free(remap);
-            pelt_mesh_destroy(m);
-            return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex directions");
-        }
+    if (data->fur_uvs)
+        for (size_t i = 0; i < nv; i++)
+            if (remap[i] && (!all_finite(data->fur_uvs + 2 * i, 2) ||
+                             !all_bounded(data->fur_uvs + 2 * i, 2))) {
+                free(keep);
+                free(remap);
+                pelt_mesh_destroy(m);
+                return pelt__fail(err, PELT_ERR_FORMAT, "vertex %zu has a non-finite or huge fur uv", i);
+            }
+    /* Optional per-vertex arrays travel with their vertices. */
+    if (data->directions) m->directions = pelt__calloc(m->vertex_count, 3 * sizeof(float));
+    if (data->fur_uvs) m->fur_uvs = pelt__calloc(m->vertex_count, 2 * sizeof(float));
+    if (data->comb) m->comb = pelt__calloc(m->vertex_count, 3 * sizeof(float));
+    if ((data->directions && !m->directions) || (data->fur_uvs && !m->fur_uvs) ||
+        (data->comb && !m->comb)) {
+        free(keep);
+        free(remap);
+        pelt_mesh_destroy(m);
+        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for per-vertex arrays");
     }
     for (size_t i = 0; i < nv; i++) {
         if (!remap[i]) continue;
@@ -514,6 +534,11 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
             /* Non-finite hints count as none: the fur stands up there. */
             const float *d = data->directions + 3 * i;
             for (int k = 0; k < 3; k++) m->directions[3 * o + k] = isfinite(d[k]) ? d[k] : 0.0f;
+        }
+        if (m->fur_uvs) memcpy(m->fur_uvs + 2 * o, data->fur_uvs + 2 * i, 2 * sizeof(float));
+        if (m->comb) {
+            const float *c = data->comb + 3 * i;
+            for (int k = 0; k < 3; k++) m->comb[3 * o + k] = isfinite(c[k]) ? c[k] : 0.0f;
         }
         if (normals_ok) {
             /* Normalised in double: tiny or huge input normals stay finite. */

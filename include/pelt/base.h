@@ -39,6 +39,36 @@ typedef struct pelt_error {
 /* Short fixed description of a status ("malformed input"). */
 const char *pelt_status_text(pelt_status status);
 
+/* Allocation hooks (as cgltf and sokol have them). Zero-initialised means
+ * malloc/free. An object made with hooks keeps them and frees everything it
+ * owns through them, so alloc and free must pair up. alloc returns NULL
+ * when out of memory; free accepts NULL. */
+typedef struct pelt_allocator {
+    void *(*alloc)(size_t size, void *user);
+    void (*free)(void *ptr, void *user);
+    void *user;
+} pelt_allocator;
+
+typedef enum pelt_log_level {
+    PELT_LOG_ERROR = 0,
+    PELT_LOG_WARNING,
+    PELT_LOG_INFO
+} pelt_log_level;
+
+/* Where warnings go (a degenerate triangle dropped, a mesh's uvs not used,
+ * a ray that missed). Zero-initialised means silence: the library never
+ * prints. Errors also come back in pelt_error. */
+typedef struct pelt_logger {
+    void (*func)(pelt_log_level level, const char *message, void *user);
+    void *user;
+} pelt_logger;
+
+/* Both hooks, as the create descs take them. */
+typedef struct pelt_hooks {
+    pelt_allocator allocator;
+    pelt_logger logger;
+} pelt_hooks;
+
 #ifdef __cplusplus
 }
 #endif

@@ -11,44 +11,75 @@ extern "C" {
 
 typedef struct pelt_fur pelt_fur;
 
-/* Fur parameters. A zero field means its documented default; the defaults
- * are the paper's Table 1 set-up (16 layers, 256x256 fur texture). */
-typedef struct pelt_fur_desc {
-    unsigned layers;         /* shells N, default 16, at most 256 */
-    float length;            /* fur length L0 in world units, default 6% of
-                                the mesh's bounding-box diagonal */
+/* Procedural colour patterns, multiplied with the hair colour (0 = none). */
+typedef enum pelt_color_pattern {
+    PELT_COLOR_PATTERN_NONE = 0,
+    PELT_COLOR_PATTERN_SPOTS,
+    PELT_COLOR_PATTERN_STRIPES,
+    PELT_COLOR_PATTERN_NOISE
+} pelt_color_pattern;
+
+/* How the fur looks: the synthesized hair volume (Lengyel et al. 2001
+ * §2.2), its tiling, the colours and Kajiya-Kay shading (Silva et al. Eq. 6)
+ * and curl (Silva Eq. 4). A zero field means its default. */
+typedef struct pelt_fur_look {
     unsigned texture_size;   /* fur texture width = height, default 256 */
-    uint32_t seed;           /* texture and dynamics seed, default 1 */
     float density;           /* strands per texture tile, default 3000 */
     float strand_radius;     /* strand radius at the root in texels, default 1.6 */
     float taper;             /* 0 = cylinder, 1 = tip ends in a point, default 0.8 */
-    float tiling;            /* fur-texture tiles per uv unit, default 6 */
-    float color[3];          /* base hair colour (linear RGB), default warm brown */
-    float tip_color[3];      /* colour at the tips, default lighter brown */
+    float tiling;            /* fur-texture tiles per world unit, default
+                                5 / the mesh's bounding-box diagonal */
+    float color[3];          /* base hair colour (linear RGB), default (0.55, 0.34, 0.18) */
+    float tip_color[3];      /* colour at the tips, default (1, 0.82, 0.58) */
+    float color_scale;       /* colour texture repeats per uv unit, default 1 */
     float specular[3];       /* Kajiya-Kay K_s, default (0.9, 0.85, 0.8) */
     float shininess;         /* Kajiya-Kay exponent p, default 20 */
     float shadow;            /* K_shadow >= 1 of Silva Eq. 6, default 2 */
     float curl_frequency;    /* omega of Silva Eq. 4 (radians over the length), default 0 */
     float curl_radius;       /* K_alpha of Silva Eq. 4 in world units, default 0 */
-    /* Strand dynamics (Silva Eq. 2): tip mass, spring constant and drag.
-     * Defaults scale with the length so gravity sags a strand by 0.4 L0
-     * at every size, with a damping ratio of 0.25. */
+} pelt_fur_look;
+
+/* Strand dynamics (Silva et al. §3.2.1, Eq. 2): tip mass, spring constant
+ * and drag. The defaults scale with the length so gravity sags a strand by
+ * 0.4 L0 at every size, with a damping ratio of 0.25. */
+typedef struct pelt_fur_dynamics {
     float mass;              /* default 1 */
     float spring_k;          /* default mass * 9.81 / (0.4 * length) */
     float damping;           /* default 0.5 * sqrt(spring_k * mass) */
-    /* Wet fur (Silva §3.1, §3.3). */
-    unsigned mask_size;      /* wetness mask width = height, default 256 */
+} pelt_fur_dynamics;
+
+/* Wet fur (Silva et al. §3.1, §3.3; docs/wetness.md). */
+typedef struct pelt_fur_wet {
+    unsigned mask_size;      /* wetness mask width = height, default 256, at most 8192 */
     float clump_blend;       /* w of Silva Eq. 5 in [0,1], default 0.5 */
     float clump_tightness;   /* s in (0,1]: 1 = tips meet at the clump centre, default 0.9 */
-    float wet_darken;        /* brightness fully wet fur loses, [0,1), default 0.35 */
-    float color_scale;       /* colour texture repeats per uv unit, default 1 */
-    float slant;             /* comb angle in degrees, 0..60, along the fur
-                                texture's u axis (the atlas's direction
-                                field), Lengyel et al. §3; default 0 */
+    float darken;            /* brightness fully wet fur loses, [0,1), default 0.35 */
+} pelt_fur_wet;
+
+/* Combing (Lengyel et al. §3). */
+typedef struct pelt_fur_comb {
+    float slant;             /* comb angle in degrees, 0..60, along the mesh's
+                                comb directions (pelt_mesh_data.comb), else
+                                along the fur texture's u axis; default 0 */
+} pelt_fur_comb;
+
+/* Fur parameters, one home each. A zero field means its documented
+ * default; the defaults are the paper's Table 1 set-up (16 layers, 256x256
+ * fur texture and wetness mask). */
+typedef struct pelt_fur_desc {
+    unsigned layers;         /* shells N, default 16, at most 256 */
+    float length;            /* fur length L0 in world units, default 3% of
+                                the mesh's bounding-box diagonal */
+    uint32_t seed;           /* texture and dynamics seed, default 1 */
+    pelt_fur_look look;
+    pelt_fur_dynamics dynamics;
+    pelt_fur_wet wet;
+    pelt_fur_comb comb;
+    pelt_hooks hooks;        /* allocator and logger, kept by the fur */
 } pelt_fur_desc;
 
-/* Fills curl_frequency and curl_radius of `d` from one of the curl looks
- * of Silva et al. Fig. 7: "straight", "wavy", "few-large-curls",
+/* Fills look.curl_frequency and look.curl_radius of `d` from one of the
+ * curl looks of Silva et al. Fig. 7: "straight", "wavy", "few-large-curls",
  * "many-small-curls", unless they are already non-zero. The radius is a
  * fraction of the fur length (d->length, or its default for `mesh`). */
 pelt_status pelt_fur_desc_curl_preset(pelt_fur_desc *d, const pelt_mesh *mesh, const char *name,
@@ -69,14 +100,6 @@ pelt_fur_desc pelt_fur_get_desc(const pelt_fur *fur);
 pelt_status pelt_fur_set_color_texture(pelt_fur *fur, const uint8_t *rgba,
                                        unsigned width, unsigned height,
                                        pelt_error *err);
-
-/* Procedural colour patterns, multiplied with the hair colour. */
-typedef enum pelt_color_pattern {
-    PELT_COLOR_PATTERN_NONE = 0,
-    PELT_COLOR_PATTERN_SPOTS,
-    PELT_COLOR_PATTERN_STRIPES,
-    PELT_COLOR_PATTERN_NOISE
-} pelt_color_pattern;
 
 /* Makes a seeded, tileable 512x512 pattern the colour texture (NONE
  * removes the colour texture). */

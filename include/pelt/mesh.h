@@ -23,6 +23,14 @@ typedef struct pelt_mesh_data {
      * direction field (pelt_mesh_load fills them from a file's first vertex
      * colour set, read as a flow map: direction = 2 * rgb - 1). */
     const float *directions;
+    /* 2 * vertex_count, or NULL: fur-texture coordinates in tiles (a
+     * surface atlas's patch coordinates, pelt_atlas). NULL: the fur tiles
+     * uvs scaled to world size (pelt_fur_look.tiling). */
+    const float *fur_uvs;
+    /* 3 * vertex_count, or NULL: the comb direction per vertex, a tangent
+     * times a weight in [0,1] (0 stands the fur up), as pelt_atlas makes
+     * it. NULL: the fur combs along the fur texture's u axis. */
+    const float *comb;
 } pelt_mesh_data;
 
 /* What validation did to the input. */
@@ -62,6 +70,16 @@ pelt_mesh_stats pelt_mesh_get_stats(const pelt_mesh *mesh);
 /* Per-vertex hair directions from the file (3 floats per vertex), or NULL
  * when it had none. Owned by the mesh. */
 const float *pelt_mesh_directions(const pelt_mesh *mesh);
+
+/* The validated mesh as arrays (owned by the mesh, valid until it is
+ * destroyed): normals are always set (computed when the input had none),
+ * uvs always (fallback map), directions, fur_uvs and comb when given.
+ * pelt_mesh_create(&data) of the result makes an equal mesh. */
+pelt_mesh_data pelt_mesh_get_data(const pelt_mesh *mesh);
+
+/* Unit tangent along +u of the fur-texture coordinates (fur_uvs, else uvs)
+ * and its handedness: 4 floats per vertex, owned by the mesh. */
+const float *pelt_mesh_tangents(const pelt_mesh *mesh);
 
 /* Axis-aligned bounds of the positions. */
 void pelt_mesh_bounds(const pelt_mesh *mesh, float min[3], float max[3]);

@@ -3,6 +3,7 @@
 #define PELT_H
 
 #include "pelt/base.h"
+#include "pelt/camera.h"
 #include "pelt/dynamics.h"
 #include "pelt/fur.h"
 #include "pelt/headless.h"

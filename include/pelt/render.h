@@ -4,6 +4,7 @@
 #define PELT_RENDER_H
 
 #include "pelt/base.h"
+#include "pelt/camera.h"
 #include "pelt/fur.h"
 #include "pelt/mesh.h"
 
@@ -12,40 +13,6 @@ extern "C" {
 #endif
 
 typedef struct pelt_renderer pelt_renderer;
-
-/* An orbit camera around `target`. Angles in degrees. */
-typedef struct pelt_camera {
-    float yaw, pitch;   /* around +Y, then up from the XZ plane */
-    float distance;
-    float fov_y;        /* vertical field of view */
-    float target[3];
-} pelt_camera;
-
-/* One directional light. */
-typedef struct pelt_light {
-    float direction[3]; /* towards the light, need not be unit */
-    float color[3];
-    float ambient;      /* ambient fraction of the hair colour */
-} pelt_light;
-
-typedef struct pelt_view {
-    float view[16], proj[16]; /* column-major */
-    float eye[3];
-    float model[16];          /* mesh placement, column-major */
-    pelt_light light;
-    unsigned width, height;   /* viewport in pixels */
-} pelt_view;
-
-/* Fills view/proj/eye of `view` from an orbit camera and an aspect ratio;
- * model becomes the identity. */
-void pelt_camera_to_view(const pelt_camera *camera, float aspect, pelt_view *view);
-
-/* The ray through the centre of pixel (px, py) (column from the left, row
- * from the top) in MESH coordinates (view, projection and model undone),
- * for pelt_fur_add_droplet_ray under the mouse. `view` needs width and
- * height. False when the matrices are singular. */
-bool pelt_view_pixel_ray(const pelt_view *view, float px, float py, float origin[3],
-                         float direction[3]);
 
 typedef struct pelt_renderer_desc {
     bool no_skin;   /* skip the opaque skin pass */

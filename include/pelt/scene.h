@@ -3,16 +3,17 @@
  * and overridable one key at a time from the command line.
  *
  * The format, key by key, is in docs/scene-format.md. Every key has the
- * same name in JSON as the field path here: the JSON key "fur.layers"
- * (that is, {"fur": {"layers": 32}}) is scene.fur.layers. */
+ * same name in JSON as the field path here (the JSON key "camera.yaw",
+ * that is {"camera": {"yaw": 30}}, is scene.camera.yaw), except the fur's
+ * parameters, which live in the nested pelt_fur_desc (see `fur` below). */
 #ifndef PELT_SCENE_H
 #define PELT_SCENE_H
 
 #include "pelt/atlas.h"
 #include "pelt/base.h"
+#include "pelt/camera.h"
 #include "pelt/dynamics.h"
 #include "pelt/fur.h"
-#include "pelt/render.h"
 #include "pelt/wetness.h"
 
 #ifdef __cplusplus
@@ -32,14 +33,6 @@ typedef enum pelt_scene_shape {
     PELT_SHAPE_SQUARE,    /* pelt_mesh_square */
     PELT_SHAPE_FILE       /* pelt_mesh_load(mesh.file) */
 } pelt_scene_shape;
-
-/* Procedural colour patterns; NONE means the plain fur colours. */
-typedef enum pelt_scene_pattern {
-    PELT_PATTERN_NONE = 0,
-    PELT_PATTERN_SPOTS,
-    PELT_PATTERN_STRIPES,
-    PELT_PATTERN_NOISE
-} pelt_scene_pattern;
 
 typedef struct pelt_scene_mesh {
     pelt_scene_shape shape;         /* default TORUS */
@@ -65,8 +58,8 @@ typedef struct pelt_scene_texture {
     /* Colour texture: an image file (resolved against the scene's directory)
        OR a procedural pattern, never both; "" and NONE mean no texture. */
     char image[PELT_SCENE_PATH_MAX];
-    pelt_scene_pattern pattern;     /* default NONE */
-    float scale;                    /* repeats per uv unit, default 1 */
+    pelt_color_pattern pattern;     /* default NONE */
+    /* The key "texture.scale" (repeats per uv unit) is fur.look.color_scale. */
 } pelt_scene_texture;
 
 typedef struct pelt_scene_output {
@@ -74,13 +67,6 @@ typedef struct pelt_scene_output {
     unsigned msaa;          /* samples, 0 = off (default), at most 16 */
     float background[4];    /* linear RGBA, default (0.10, 0.11, 0.13, 1) */
 } pelt_scene_output;
-
-/* Strand parameters (Silva §3.2.1); 0 means the dynamics module's default. */
-typedef struct pelt_scene_dynamics {
-    float spring_k; /* spring constant, 1/s^2 per unit mass */
-    float mass;     /* mass of the strand tip */
-    float damping;  /* velocity damping, 1/s */
-} pelt_scene_dynamics;
 
 /* Wind at a time; keyframes are linearly interpolated. */
 typedef struct pelt_wind_key {
@@ -103,8 +89,10 @@ typedef struct pelt_scene_animation {
     size_t wind_key_count;
 } pelt_scene_animation;
 
+/* Water on the fur over time. The mask's size and the clump look
+ * (the keys wetness.mask_size, clump_blend, clump_tightness, darken) live
+ * in the fur desc: scene.fur.wet. */
 typedef struct pelt_scene_wetness {
-    unsigned mask_size;     /* wetness mask width = height, default 256 */
     /* Droplets placed at time 0, in mask uv units (pelt_droplet). Owned by
        the scene; pelt_scene_free frees it. */
     pelt_droplet *droplets;
@@ -120,9 +108,6 @@ typedef struct pelt_scene_wetness {
     float rain_start;       /* seconds when the rain begins, default 0 */
     float rain_stop;        /* seconds when it ends, 0 = never (default) */
     float dry_rate;         /* wetness lost per second, default 0 */
-    float clump_blend;      /* w of Silva Eq. 5 (profile blend), default 0.5 */
-    float clump_tightness;  /* s of DESIGN.md's Eq. 5 reading, default 0.9 */
-    float darken;           /* brightness lost by fully wet fur, default 0.35 */
     /* Greyscale image painted as water (Silva Fig. 12c): a texel's wetness
        is its grey level times mask_image_wetness (default 1). "" = none. */
     char mask_image[PELT_SCENE_PATH_MAX];
@@ -154,8 +139,13 @@ typedef struct pelt_scene_atlas {
  * which pelt_scene_free releases. */
 typedef struct pelt_scene {
     pelt_scene_mesh mesh;
-    /* fur.layers defaults to 16 and fur.texture_size to 256 (Table 1); the
-       other fields stay 0 = pelt_fur_create's own defaults. */
+    /* The fur desc, whole: one home per parameter. JSON keys map onto it
+       (docs/scene-format.md): "fur.*" -> layers, length, seed, look.*,
+       comb.slant; "dynamics.*" -> dynamics.*; "wetness.mask_size",
+       "wetness.clump_*", "wetness.darken" -> wet.*; "texture.scale" ->
+       look.color_scale. Defaults: layers 16, look.texture_size 256 (Table
+       1), look.color_scale 1, wet as pelt_fur_create's; the rest 0 =
+       pelt_fur_create's defaults. */
     pelt_fur_desc fur;
     /* One of the curl looks of Silva Fig. 7: "straight", "wavy",
        "few-large-curls", "many-small-curls" (also spelt "large_curls",
@@ -170,7 +160,6 @@ typedef struct pelt_scene {
     pelt_light light;      /* default direction (0.5, 1, 0.8), colour 1, ambient 0.25 */
     pelt_scene_output output;
     pelt_forces forces;    /* default pelt_forces_default() */
-    pelt_scene_dynamics dynamics;
     pelt_scene_animation animation;
     pelt_scene_wetness wetness;
     pelt_scene_atlas atlas;

@@ -129,7 +129,7 @@ static void droplet_on_patch_border_makes_one_round_clump(void)
     cam.distance = 1.4f;
     memcpy(cam.target, p, sizeof cam.target);
     cam.fov_y = 40.0f;
-    pelt_fur_desc d = {.length = 0.08f, .mask_size = 512};
+    pelt_fur_desc d = {.length = 0.08f, .wet.mask_size = 512};
     drop_at surface = {best_t, {0, 0, 0}, 0.15f, NULL, 0};
     surface.bary[best_c] = 1.0f;
     uint8_t *dry = gl_test_render(gl, m, &d, &cam, NULL, NULL, NULL);

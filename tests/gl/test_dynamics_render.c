@@ -107,8 +107,8 @@ static void wind_leans_fur_downwind(void)
     CHECK(v.view[0] > 0.9f); /* world +X is image right */
 
     /* dense fur so the silhouette is solid, not a few scattered hairs */
-    pelt_fur_desc d = {.length = 0.2f, .layers = 24, .texture_size = 128, .density = 4000.0f,
-                       .strand_radius = 2.5f};
+    pelt_fur_desc d = {.length = 0.2f, .layers = 24, .look.texture_size = 128, .look.density = 4000.0f,
+                       .look.strand_radius = 2.5f};
     pelt_renderer_desc bare = {.no_shells = true};
     motion calm = {no_gravity(), 1.5f, 0.0f}, windy = calm;
     windy.forces.wind[0] = 20.0f;
@@ -168,7 +168,7 @@ static size_t background_inside_skin(const uint8_t *skin, const uint8_t *shells,
 /* Nearly opaque fur: every shell covers its triangle, so a background
  * pixel inside the skin can only be a crack between triangles. */
 static const pelt_fur_desc opaque_fur = {
-    .texture_size = 128, .density = 15000.0f, .strand_radius = 4.0f, .taper = 1e-6f};
+    .look.texture_size = 128, .look.density = 15000.0f, .look.strand_radius = 4.0f, .look.taper = 1e-6f};
 
 static size_t crack_pixels(const pelt_mesh *mesh, const pelt_fur_desc *d, const pelt_camera *cam,
                            motion *mo, const char *what)
@@ -339,7 +339,7 @@ static void curl_presets_differ(void)
         pelt_fur_desc d = {.layers = 32, .length = 0.15f};
         pelt_error err = {0};
         CHECK(pelt_fur_desc_curl_preset(&d, torus, names[i], &err) == PELT_OK);
-        printf("  %-16s omega %.3f K %.4f\n", names[i], (double)d.curl_frequency, (double)d.curl_radius);
+        printf("  %-16s omega %.3f K %.4f\n", names[i], (double)d.look.curl_frequency, (double)d.look.curl_radius);
         img[i] = gl_test_render(gl, torus, &d, &curl_cam, NULL, NULL, NULL);
         CHECK(img[i] != NULL);
     }

@@ -175,7 +175,7 @@ static void wet_clumps_show_skin_and_leave_dry_fur_alone(void)
 {
     /* Looking along -Z at the square, u along x. */
     const pelt_camera cam = {0.0f, 35.0f, 2.6f, 45.0f, {0, 0, 0}};
-    pelt_fur_desc d = {.wet_darken = 1e-6f};
+    pelt_fur_desc d = {.wet.darken = 1e-6f};
     uint8_t *dry = gl_test_render(gl, square, &d, &cam, NULL, NULL, NULL);
     uint8_t *wet = gl_test_render(gl, square, &d, &cam, NULL, wet_left_half, NULL);
     CHECK(dry && wet);
@@ -215,7 +215,7 @@ static void wet_then_dry(pelt_fur *fur, void *user)
 static void dried_fur_matches_dry_render(void)
 {
     const pelt_camera cam = {0.0f, 35.0f, 2.6f, 45.0f, {0, 0, 0}};
-    pelt_fur_desc d = {.curl_frequency = 12.0f, .curl_radius = 0.02f};
+    pelt_fur_desc d = {.look.curl_frequency = 12.0f, .look.curl_radius = 0.02f};
     uint8_t *dry = gl_test_render(gl, square, &d, &cam, NULL, NULL, NULL);
     uint8_t *wet = gl_test_render(gl, square, &d, &cam, NULL, wet_left_half, NULL);
     uint8_t *dried = gl_test_render(gl, square, &d, &cam, NULL, wet_then_dry, NULL);
@@ -261,7 +261,7 @@ static double covered_radius90(const uint8_t *px)
 static void clumps_grow_thinner_toward_the_tips(void)
 {
     const pelt_camera top = {0.0f, 89.0f, 2.4f, 50.0f, {0, 0, 0}};
-    pelt_fur_desc d = {.clump_tightness = 1.0f, .wet_darken = 1e-6f};
+    pelt_fur_desc d = {.wet.clump_tightness = 1.0f, .wet.darken = 1e-6f};
     const unsigned layers[] = {1, 4, 7, 10};
     double dry_r[4], wet_r[4];
     for (int k = 0; k < 4; k++) {

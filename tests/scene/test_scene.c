@@ -43,16 +43,16 @@ static void defaults_equal_table1(void)
     CHECK_NEAR(s.mesh.minor_radius, 0.4, 1e-7);
     CHECK_NEAR(s.mesh.scale, 1.0, 0);
     CHECK(s.fur.layers == 16);
-    CHECK(s.fur.texture_size == 256);
+    CHECK(s.fur.look.texture_size == 256);
     CHECK(s.output.width == 800 && s.output.height == 600);
     CHECK(s.output.msaa == 0);
-    CHECK(s.wetness.mask_size == 256);
+    CHECK(s.fur.wet.mask_size == 0); /* 0: the atlas picks, else 256 */
     CHECK(s.wetness.droplets == NULL && s.wetness.droplet_count == 0);
     CHECK(s.animation.wind_keys == NULL && s.animation.wind_key_count == 0);
     CHECK(s.animation.frames == 1);
     CHECK_NEAR(s.animation.fps, 30, 0);
     CHECK(s.fur_preset[0] == '\0');
-    CHECK(s.texture.pattern == PELT_PATTERN_NONE && s.texture.image[0] == '\0');
+    CHECK(s.texture.pattern == PELT_COLOR_PATTERN_NONE && s.texture.image[0] == '\0');
     CHECK(s.atlas.mode == PELT_ATLAS_AUTO);
 }
 
@@ -75,9 +75,9 @@ static void defaults_camera_light_forces(void)
     CHECK_NEAR(s.forces.gust_strength, 0.5, 0);
     CHECK_NEAR(s.forces.gust_scale, 0.5, 0);
     CHECK_NEAR(s.forces.gust_frequency, 1.5, 0);
-    CHECK_NEAR(s.wetness.clump_blend, 0.5, 0);
-    CHECK_NEAR(s.wetness.clump_tightness, 0.9, 1e-7);
-    CHECK_NEAR(s.wetness.darken, 0.35, 1e-7);
+    CHECK_NEAR(s.fur.wet.clump_blend, 0.5, 0);
+    CHECK_NEAR(s.fur.wet.clump_tightness, 0.9, 1e-7);
+    CHECK_NEAR(s.fur.wet.darken, 0.35, 1e-7);
 }
 
 static void empty_object_gives_defaults(void)
@@ -115,23 +115,23 @@ static void full_scene_sets_every_field(void)
     CHECK(strcmp(s.fur_preset, "many-small-curls") == 0 || strcmp(s.fur_preset, "small_curls") == 0);
     CHECK(s.fur.layers == 32);
     CHECK_NEAR(s.fur.length, 0.05, 1e-7);
-    CHECK(s.fur.texture_size == 128);
+    CHECK(s.fur.look.texture_size == 128);
     CHECK(s.fur.seed == 4000000000u);
-    CHECK_NEAR(s.fur.density, 2000, 0);
-    CHECK_NEAR(s.fur.strand_radius, 1.2, 1e-6);
-    CHECK_NEAR(s.fur.taper, 0.5, 0);
-    CHECK_NEAR(s.fur.tiling, 4, 0);
-    CHECK_NEAR(s.fur.color[0], 0.3, 1e-7);
-    CHECK_NEAR(s.fur.tip_color[2], 0.4, 1e-7);
-    CHECK_NEAR(s.fur.specular[1], 0.2, 1e-7);
-    CHECK_NEAR(s.fur.shininess, 60, 0);
-    CHECK_NEAR(s.fur.shadow, 3, 0);
-    CHECK_NEAR(s.fur.curl_frequency, 12.5, 0);
-    CHECK_NEAR(s.fur.curl_radius, 0.01, 1e-8);
+    CHECK_NEAR(s.fur.look.density, 2000, 0);
+    CHECK_NEAR(s.fur.look.strand_radius, 1.2, 1e-6);
+    CHECK_NEAR(s.fur.look.taper, 0.5, 0);
+    CHECK_NEAR(s.fur.look.tiling, 4, 0);
+    CHECK_NEAR(s.fur.look.color[0], 0.3, 1e-7);
+    CHECK_NEAR(s.fur.look.tip_color[2], 0.4, 1e-7);
+    CHECK_NEAR(s.fur.look.specular[1], 0.2, 1e-7);
+    CHECK_NEAR(s.fur.look.shininess, 60, 0);
+    CHECK_NEAR(s.fur.look.shadow, 3, 0);
+    CHECK_NEAR(s.fur.look.curl_frequency, 12.5, 0);
+    CHECK_NEAR(s.fur.look.curl_radius, 0.01, 1e-8);
 
-    CHECK(s.texture.pattern == PELT_PATTERN_STRIPES);
+    CHECK(s.texture.pattern == PELT_COLOR_PATTERN_STRIPES);
     CHECK(s.texture.image[0] == '\0');
-    CHECK_NEAR(s.texture.scale, 3, 0);
+    CHECK_NEAR(s.fur.look.color_scale, 3, 0);
 
     CHECK_NEAR(s.camera.yaw, -45, 0);
     CHECK_NEAR(s.camera.pitch, 10, 0);
@@ -152,9 +152,9 @@ static void full_scene_sets_every_field(void)
     CHECK_NEAR(s.forces.gust_strength, 0.2, 1e-7);
     CHECK_NEAR(s.forces.gust_scale, 1.5, 0);
     CHECK_NEAR(s.forces.gust_frequency, 3, 0);
-    CHECK_NEAR(s.dynamics.spring_k, 200, 0);
-    CHECK_NEAR(s.dynamics.mass, 0.5, 0);
-    CHECK_NEAR(s.dynamics.damping, 4, 0);
+    CHECK_NEAR(s.fur.dynamics.spring_k, 200, 0);
+    CHECK_NEAR(s.fur.dynamics.mass, 0.5, 0);
+    CHECK_NEAR(s.fur.dynamics.damping, 4, 0);
 
     CHECK(s.animation.frames == 90);
     CHECK_NEAR(s.animation.fps, 24, 0);
@@ -169,7 +169,7 @@ static void full_scene_sets_every_field(void)
         CHECK_NEAR(s.animation.wind_keys[2].wind[1], 2, 0);
     }
 
-    CHECK(s.wetness.mask_size == 512);
+    CHECK(s.fur.wet.mask_size == 512);
     CHECK(s.wetness.droplet_count == 3);
     if (s.wetness.droplet_count == 3) {
         CHECK_NEAR(s.wetness.droplets[0].center[0], 0.25, 0);
@@ -193,9 +193,9 @@ static void full_scene_sets_every_field(void)
     CHECK_NEAR(s.wetness.rain_start, 1, 0);
     CHECK_NEAR(s.wetness.rain_stop, 4, 0);
     CHECK_NEAR(s.wetness.dry_rate, 0.1, 1e-7);
-    CHECK_NEAR(s.wetness.clump_blend, 0.25, 0);
-    CHECK_NEAR(s.wetness.clump_tightness, 0.75, 0);
-    CHECK_NEAR(s.wetness.darken, 0.5, 0);
+    CHECK_NEAR(s.fur.wet.clump_blend, 0.25, 0);
+    CHECK_NEAR(s.fur.wet.clump_tightness, 0.75, 0);
+    CHECK_NEAR(s.fur.wet.darken, 0.5, 0);
     CHECK(strcmp(s.wetness.mask_image, SCENES "word.png") == 0);
     CHECK_NEAR(s.wetness.mask_image_wetness, 0.8, 1e-7);
 
@@ -462,7 +462,7 @@ static void set_overrides_and_validates(void)
 
     CHECK(pelt_scene_set(&s, "texture.image", "a.png", &err) == PELT_OK);
     CHECK(pelt_scene_set(&s, "texture.pattern", "spots", &err) == PELT_OK);
-    CHECK(s.texture.pattern == PELT_PATTERN_SPOTS && s.texture.image[0] == '\0');
+    CHECK(s.texture.pattern == PELT_COLOR_PATTERN_SPOTS && s.texture.image[0] == '\0');
 
     CHECK(pelt_scene_set(&s, "forces.wind", "[1, 0, -2]", &err) == PELT_OK);
     CHECK_NEAR(s.forces.wind[0], 1, 0);
