@@ -36,21 +36,20 @@ typedef struct cli_options {
 int cli_parse(const char *cmd, int argc, char **argv, cli_options *o);
 void cli_options_free(cli_options *o);
 
-/* Loaded state for rendering a scene headless. */
+/* A scene instance (the library's scene runner) drawn into a headless
+ * context: what render and bench share. */
 typedef struct cli_session {
-    pelt_mesh *mesh;
-    pelt_fur *fur;
+    const char *cmd;               /* "render", "bench": starts messages */
+    pelt_scene_instance *instance;
     pelt_headless *gl;
     pelt_renderer *renderer;
-    pelt_view view;
-    uint8_t *pixels; /* width * height * 4 */
-    double atlas_seconds; /* atlas build time, 0 when none was built */
-    bool atlas_from_cache;
-    bool settled;         /* past the settling before the first frame */
+    float background[4];
+    uint8_t *pixels;               /* width * height * 4 */
 } cli_session;
 
-/* Loads the mesh, makes the fur, the context and the renderer. Prints the
- * error and returns false on failure (everything made so far is freed). */
+/* Instantiates the scene, makes the context and the renderer. Prints the
+ * error and returns false on failure (everything made so far is freed).
+ * Warnings print as "pelt CMD: warning: ...". */
 bool cli_session_open(const char *cmd, const pelt_scene *scene, cli_session *s);
 void cli_session_close(cli_session *s);
 
@@ -58,12 +57,8 @@ void cli_session_close(cli_session *s);
  * prints a warning for a ray that misses. */
 void cli_session_drop_at(cli_session *s, const cli_options *o);
 
-/* Moves the mesh to where the scene has it at time t and steps the fur by
- * dt under the scene's forces at t. */
-void cli_session_advance(cli_session *s, const pelt_scene *scene, float t, float dt);
-
-/* Clears and draws the current state. */
-void cli_session_draw(cli_session *s, const pelt_scene *scene);
+/* Clears and draws the instance's current state. */
+void cli_session_draw(cli_session *s);
 
 /* Writes RGBA8 rows (top first) as PNG; prints the error on failure. */
 bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h);

@@ -45,18 +45,18 @@ static void measure(cli_session *s, const pelt_scene *sc, unsigned warmup, unsig
 {
     float fps = sc->animation.fps > 0.0f ? sc->animation.fps : 30.0f;
     for (unsigned i = 0; i < warmup; i++) {
-        cli_session_advance(s, sc, (float)i / fps, 1.0f / fps);
-        cli_session_draw(s, sc);
+        pelt_scene_instance_advance(s->instance, 1.0f / fps);
+        cli_session_draw(s);
         glFinish();
     }
     for (unsigned i = 0; i < frames; i++) {
         double t0 = now_ms();
-        cli_session_advance(s, sc, (float)(warmup + i) / fps, 1.0f / fps);
+        pelt_scene_instance_advance(s->instance, 1.0f / fps);
         double t1 = now_ms();
         pelt_renderer_upload(s->renderer);
         glFinish();
         double t2 = now_ms();
-        cli_session_draw(s, sc);
+        cli_session_draw(s);
         glFinish();
         double t3 = now_ms();
         t[PART_STEP * frames + i] = t1 - t0;
@@ -163,15 +163,18 @@ int cmd_bench(int argc, char **argv)
         cli_options_free(&o);
         return 1;
     }
-    pelt_mesh_stats ms = pelt_mesh_get_stats(s.mesh);
-    pelt_fur_desc fd = pelt_fur_get_desc(s.fur);
+    const pelt_mesh *mesh = pelt_scene_instance_mesh(s.instance);
+    pelt_fur *fur = pelt_scene_instance_fur(s.instance);
+    pelt_scene_instance_stats is = pelt_scene_instance_get_stats(s.instance);
+    pelt_mesh_stats ms = pelt_mesh_get_stats(mesh);
+    pelt_fur_desc fd = pelt_fur_get_desc(fur);
     printf("pelt bench: %s\n", pelt_headless_renderer_name(s.gl));
     printf("scene: %zu triangles, %u layers, %ux%u, fur texture %u, mask %u, %u frames after %u "
            "warm-up\n",
            ms.triangle_count, fd.layers, sc->output.width, sc->output.height, fd.look.texture_size,
-           pelt_fur_mask_size(s.fur), frames, o.warmup);
-    if (s.atlas_seconds > 0.0)
-        printf("atlas build: %.3f s%s\n", s.atlas_seconds, s.atlas_from_cache ? " (from the cache)" : "");
+           pelt_fur_mask_size(fur), frames, o.warmup);
+    if (is.atlas_seconds > 0.0)
+        printf("atlas build: %.3f s%s\n", is.atlas_seconds, is.atlas_from_cache ? " (from the cache)" : "");
 
     cli_session_drop_at(&s, &o);
     stats plain[PARTS], wet[PARTS];
@@ -179,14 +182,14 @@ int cmd_bench(int argc, char **argv)
     report(o.bench_clumps ? "as given (dry unless the scene wets it):" : "frame:", plain);
     printf("shell draw calls per frame: %u\n", pelt_renderer_shell_draw_calls(s.renderer));
     if (o.bench_clumps) {
-        add_third_of_clumps(s.fur);
+        add_third_of_clumps(fur);
         measure(&s, sc, o.warmup, frames, t, wet);
         report("with 50 clumps over a third of the surface:", wet);
         printf("clumps cost %+.1f%% per frame (draw %+.1f%%)\n",
                100.0 * (wet[PART_FRAME].median / plain[PART_FRAME].median - 1.0),
                100.0 * (wet[PART_DRAW].median / plain[PART_DRAW].median - 1.0));
     }
-    if (o.bench_droplets) rc = bench_droplets(s.mesh);
+    if (o.bench_droplets) rc = bench_droplets(mesh);
     free(t);
     cli_session_close(&s);
     cli_options_free(&o);

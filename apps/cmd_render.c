@@ -48,22 +48,21 @@ int cmd_render(int argc, char **argv)
     float fps = sc->animation.fps > 0.0f ? sc->animation.fps : 30.0f;
     rc = 0;
     for (unsigned i = 0; i < frames && rc == 0; i++) {
-        float t = (float)i / fps;
-        if (i > 0) cli_session_advance(&s, sc, t, 1.0f / fps);
-        cli_session_draw(&s, sc);
+        if (i > 0) pelt_scene_instance_advance(s.instance, 1.0f / fps);
+        cli_session_draw(&s);
         pelt_headless_read_rgba8(s.gl, s.pixels);
         cli_frame_path(o.output, i, path, sizeof path);
         if (!cli_write_png("render", path, s.pixels, sc->output.width, sc->output.height)) rc = 1;
         if (show_progress) progress(i + 1, frames);
     }
     if (rc == 0 && o.mask_out) {
-        unsigned m = pelt_fur_mask_size(s.fur);
+        unsigned m = pelt_fur_mask_size(pelt_scene_instance_fur(s.instance));
         uint8_t *mask = malloc((size_t)m * m * 4);
         if (!mask) {
             cli_error("render", "out of memory for the mask picture");
             rc = 1;
         } else {
-            pelt_fur_mask_picture(s.fur, mask);
+            pelt_fur_mask_picture(pelt_scene_instance_fur(s.instance), mask);
             if (!cli_write_png("render", o.mask_out, mask, m, m)) rc = 1;
             free(mask);
         }

@@ -10,6 +10,7 @@
 #include "pelt/mesh.h"
 #include "pelt/render.h"
 #include "pelt/scene.h"
+#include "pelt/scene_instance.h"
 #include "pelt/wetness.h"
 
 #define PELT_VERSION_STRING "0.1.0"

@@ -1,0 +1,29 @@
+/* The allocator and logger hooks of pelt_hooks (include/pelt/base.h): what
+ * an object calls to allocate, free and warn, so a caller's hooks reach
+ * every allocation the object owns. Zero hooks mean malloc/free and
+ * silence. */
+#ifndef PELT_BASE_HOOKS_H
+#define PELT_BASE_HOOKS_H
+
+#include "pelt/base.h"
+
+/* size bytes through the allocator (malloc when it has no alloc), or NULL. */
+void *pelt__alloc(const pelt_allocator *a, size_t size);
+/* count * size zeroed bytes, NULL when out of memory or when the product
+ * overflows. */
+void *pelt__alloc_zero(const pelt_allocator *a, size_t count, size_t size);
+/* Frees what pelt__alloc / pelt__alloc_zero returned; NULL is allowed. */
+void pelt__free(const pelt_allocator *a, void *ptr);
+
+/* Formats one message and hands it to the logger; nothing without one. */
+void pelt__log(const pelt_logger *l, pelt_log_level level, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* A caller's hooks are used only when both allocator functions are set;
+ * one without the other would pair a foreign alloc with free(). */
+pelt_hooks pelt__hooks_resolve(const pelt_hooks *h);
+
+#endif

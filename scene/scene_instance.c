@@ -1,0 +1,335 @@
+/* A scene made real: mesh, atlas, fur, colour, water, camera and clock
+ * (pelt/scene_instance.h). The one path from a scene file to fur. */
+#include "pelt/scene_instance.h"
+
+#include "pelt/atlas.h"
+#include "pelt/dynamics.h"
+#include "pelt/wetness.h"
+
+#include "core/base/error.h"
+#include "core/base/hooks.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stb_image.h>
+#include <stdio.h>
+#include <string.h>
+
+struct pelt_scene_instance {
+    pelt_hooks hooks;
+    pelt_scene scene;       /* a copy; owns its wind keys, never droplets */
+    pelt_mesh *mesh;
+    pelt_fur *fur;
+    pelt_camera camera;     /* the scene's, framed on a mesh file */
+    pelt_view view;
+    float time;
+    bool armed;             /* past the settling: the rain schedule runs */
+    pelt_scene_instance_stats stats;
+};
+
+static pelt_status load_mesh(const pelt_scene_mesh *m, pelt_mesh **mesh, pelt_error *err)
+{
+    switch (m->shape) {
+    case PELT_SHAPE_TORUS:
+        return pelt_mesh_torus(m->major_radius, m->minor_radius, m->major_segments,
+                               m->minor_segments, mesh, err);
+    case PELT_SHAPE_SPHERE:
+        return pelt_mesh_sphere(m->radius, m->slices, m->stacks, mesh, err);
+    case PELT_SHAPE_SQUARE:
+        return pelt_mesh_square(m->size, m->subdivisions, mesh, err);
+    case PELT_SHAPE_FILE:
+        return pelt_mesh_load(m->file, mesh, err);
+    }
+    return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "mesh.shape: unknown shape %d", (int)m->shape);
+}
+
+static float mesh_diagonal(const pelt_mesh *mesh)
+{
+    float lo[3], hi[3];
+    pelt_mesh_bounds(mesh, lo, hi);
+    float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    return sqrtf(dx * dx + dy * dy + dz * dz);
+}
+
+/* Gives a mesh file an atlas (Lengyel §2.1): its own uvs when they are a
+ * valid injective map, else patches; procedural shapes keep their uvs
+ * unless the scene asks for patches. Replaces inst->mesh with the atlas
+ * mesh and sets *mask_size to the atlas's (the mask is the atlas's space). */
+static pelt_status build_atlas(pelt_scene_instance *inst, const char *cache_dir,
+                               unsigned *mask_size, pelt_error *err)
+{
+    const pelt_scene *sc = &inst->scene;
+    if (sc->mesh.shape != PELT_SHAPE_FILE && sc->atlas.mode != PELT_ATLAS_PATCHES)
+        return PELT_OK;
+    char cache[1024];
+    pelt_atlas_desc ad = {0};
+    ad.mode = (int)sc->atlas.mode;
+    ad.mask_size = sc->fur.wet.mask_size; /* 0: the atlas picks, growing with the mesh */
+    /* The same fur density as pelt_fur_create's default: 5 tiles per diagonal. */
+    float diag = mesh_diagonal(inst->mesh);
+    ad.texel_density = sc->atlas.texel_density > 0.0f ? sc->atlas.texel_density
+                       : diag > 0.0f                  ? 5.0f / diag
+                                                      : 0.0f;
+    memcpy(ad.direction, sc->atlas.direction, sizeof ad.direction);
+    if (sc->atlas.direction_from == PELT_DIRECTION_VERTEX_COLORS) {
+        ad.vertex_directions = pelt_mesh_directions(inst->mesh);
+        if (!ad.vertex_directions)
+            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                              "atlas.direction_from is \"vertex-colors\" but '%s' has no vertex colours",
+                              sc->mesh.file);
+    }
+    ad.max_stretch = sc->atlas.max_stretch;
+    ad.seed = sc->fur.seed;
+    if (!cache_dir) cache_dir = pelt_atlas_default_cache_dir(cache, sizeof cache) ? cache : NULL;
+    ad.cache_dir = cache_dir;
+    pelt_atlas *atlas = NULL;
+    pelt_error aerr = {0};
+    if (pelt_atlas_create(inst->mesh, &ad, &atlas, &aerr) != PELT_OK)
+        return pelt__fail(err, aerr.status, "atlas: %s", aerr.message);
+    const pelt_atlas_stats *st = pelt_atlas_get_stats(atlas);
+    if (st->uv_warning[0])
+        pelt__log(&inst->hooks.logger, PELT_LOG_WARNING,
+                  "not using the mesh's uvs: %s; grew %zu patches", st->uv_warning,
+                  st->patch_count);
+    *mask_size = st->mask_size;
+    inst->stats.atlas_seconds = st->build_seconds;
+    inst->stats.atlas_from_cache = st->from_cache;
+    inst->stats.atlas_patches = st->mode_used == PELT_ATLAS_PATCHES ? st->patch_count : 0;
+    pelt_mesh *split = pelt_atlas_take_mesh(atlas);
+    pelt_atlas_destroy(atlas);
+    if (!split) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "atlas: out of memory");
+    pelt_mesh_destroy(inst->mesh);
+    inst->mesh = split;
+    return PELT_OK;
+}
+
+/* Loads an image with stb_image; errors name the scene key and the file,
+ * with the system's reason when the file cannot be opened. */
+static uint8_t *load_image(const char *key, const char *path, int channels, int *w, int *h,
+                           pelt_error *err)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        pelt__fail(err, PELT_ERR_IO, "%s: cannot open '%s': %s", key, path, strerror(errno));
+        return NULL;
+    }
+    int n;
+    uint8_t *px = stbi_load_from_file(f, w, h, &n, channels);
+    fclose(f);
+    if (!px)
+        pelt__fail(err, PELT_ERR_FORMAT, "%s: '%s' is not a readable image (%s)", key, path,
+                   stbi_failure_reason());
+    return px;
+}
+
+/* The colour texture: an image file or a procedural pattern. */
+static pelt_status apply_color(pelt_scene_instance *inst, pelt_error *err)
+{
+    const pelt_scene *sc = &inst->scene;
+    pelt_error e = {0};
+    if (sc->texture.image[0]) {
+        int w, h;
+        uint8_t *rgba = load_image("texture.image", sc->texture.image, 4, &w, &h, err);
+        if (!rgba) return err ? err->status : PELT_ERR_IO;
+        pelt_status st = pelt_fur_set_color_texture(inst->fur, rgba, (unsigned)w, (unsigned)h, &e);
+        stbi_image_free(rgba);
+        if (st != PELT_OK)
+            return pelt__fail(err, st, "texture.image '%s': %s", sc->texture.image, e.message);
+        return PELT_OK;
+    }
+    if (sc->texture.pattern != PELT_COLOR_PATTERN_NONE) {
+        pelt_status st = pelt_fur_set_color_pattern(inst->fur, sc->texture.pattern, sc->fur.seed, &e);
+        if (st != PELT_OK) return pelt__fail(err, st, "texture.pattern: %s", e.message);
+    }
+    return PELT_OK;
+}
+
+/* Droplets, random drops and a painted image at time 0. */
+static pelt_status apply_water(pelt_scene_instance *inst, const pelt_scene *sc, pelt_error *err)
+{
+    const pelt_scene_wetness *w = &sc->wetness;
+    pelt_error e = {0};
+    for (size_t i = 0; i < w->droplet_count; i++)
+        if (pelt_fur_add_droplet(inst->fur, &w->droplets[i], &e) != PELT_OK)
+            return pelt__fail(err, e.status, "wetness.droplets[%zu]: %s", i, e.message);
+    if (w->drops) {
+        pelt_rain r = {0.0f, w->drops_radius[0], w->drops_radius[1], w->drops_wetness[0],
+                       w->drops_wetness[1], w->drops_seed};
+        pelt_fur_add_random_droplets(inst->fur, &r, w->drops);
+    }
+    if (w->mask_image[0]) {
+        int iw, ih;
+        uint8_t *grey = load_image("wetness.mask_image", w->mask_image, 1, &iw, &ih, err);
+        if (!grey) return err ? err->status : PELT_ERR_IO;
+        pelt_status st = pelt_fur_paint_wetness(inst->fur, grey, (unsigned)iw, (unsigned)ih,
+                                                w->mask_image_wetness, &e);
+        stbi_image_free(grey);
+        if (st != PELT_OK)
+            return pelt__fail(err, st, "wetness.mask_image '%s': %s", w->mask_image, e.message);
+    }
+    return PELT_OK;
+}
+
+/* A mesh file seen through the default camera is framed: the camera aims
+ * at the middle of its bounds from a distance that fits it. */
+static void frame_camera(pelt_scene_instance *inst)
+{
+    const pelt_scene *sc = &inst->scene;
+    inst->camera = sc->camera;
+    pelt_scene defaults;
+    pelt_scene_defaults(&defaults);
+    bool default_camera = !memcmp(&sc->camera, &defaults.camera, sizeof sc->camera);
+    pelt_scene_free(&defaults);
+    if (sc->mesh.shape != PELT_SHAPE_FILE || !default_camera) return;
+    float lo[3], hi[3];
+    pelt_mesh_bounds(inst->mesh, lo, hi);
+    float radius = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        inst->camera.target[k] = 0.5f * (lo[k] + hi[k]);
+        radius += 0.25f * (hi[k] - lo[k]) * (hi[k] - lo[k]);
+    }
+    radius = sqrtf(radius);
+    inst->camera.distance =
+        0.8f * radius / sinf(inst->camera.fov_y * 0.5f * 3.14159265f / 180.0f);
+}
+
+/* Places the mesh and steps the fur by dt under the forces of time t. */
+static void step_at(pelt_scene_instance *inst, float t, float dt)
+{
+    const pelt_scene *sc = &inst->scene;
+    pelt_scene_model_at(sc, t, inst->view.model);
+    pelt_fur_set_transform(inst->fur, inst->view.model, NULL);
+    pelt_forces forces = sc->forces;
+    pelt_scene_wind_at(sc, t, forces.wind);
+    const pelt_scene_wetness *w = &sc->wetness;
+    bool raining = t >= w->rain_start && (w->rain_stop == 0.0f || t < w->rain_stop);
+    if (inst->armed) pelt_fur_set_rain_rate(inst->fur, raining ? w->rain.rate : 0.0f);
+    pelt_fur_step(inst->fur, dt, &forces);
+}
+
+/* The copy keeps the wind keys (advance reads them) and drops the
+ * droplets (used once, at instantiation, from the caller's scene). */
+static pelt_status copy_scene(pelt_scene_instance *inst, const pelt_scene *sc, pelt_error *err)
+{
+    inst->scene = *sc;
+    inst->scene.wetness.droplets = NULL;
+    inst->scene.wetness.droplet_count = 0;
+    inst->scene.animation.wind_keys = NULL;
+    inst->scene.animation.wind_key_count = 0;
+    size_t n = sc->animation.wind_key_count;
+    if (n && sc->animation.wind_keys) {
+        pelt_wind_key *keys = pelt__alloc_zero(&inst->hooks.allocator, n, sizeof *keys);
+        if (!keys) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu wind keys", n);
+        memcpy(keys, sc->animation.wind_keys, n * sizeof *keys);
+        inst->scene.animation.wind_keys = keys;
+        inst->scene.animation.wind_key_count = n;
+    }
+    return PELT_OK;
+}
+
+static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
+                               const pelt_scene_instance_desc *desc, pelt_error *err)
+{
+    pelt_status st = copy_scene(inst, sc, err);
+    if (st == PELT_OK) st = load_mesh(&sc->mesh, &inst->mesh, err);
+    unsigned mask_size = sc->fur.wet.mask_size;
+    if (st == PELT_OK) st = build_atlas(inst, desc->cache_dir, &mask_size, err);
+    if (st != PELT_OK) return st;
+    pelt_mesh_stats ms = pelt_mesh_get_stats(inst->mesh);
+    if (ms.dropped_degenerate)
+        pelt__log(&inst->hooks.logger, PELT_LOG_WARNING, "%zu degenerate triangle(s) dropped",
+                  ms.dropped_degenerate);
+    if (ms.fallback_uvs)
+        pelt__log(&inst->hooks.logger, PELT_LOG_WARNING,
+                  "the mesh has no uvs; using a spherical fallback mapping (expect stretched fur "
+                  "near the poles)");
+
+    pelt_fur_desc fd = sc->fur;
+    fd.wet.mask_size = mask_size;
+    if (!fd.hooks.allocator.alloc && !fd.hooks.logger.func) fd.hooks = inst->hooks;
+    if (sc->fur_preset[0]) {
+        st = pelt_fur_desc_curl_preset(&fd, inst->mesh, sc->fur_preset, err);
+        if (st != PELT_OK) return st;
+    }
+    st = pelt_fur_create(inst->mesh, &fd, &inst->fur, err);
+    if (st == PELT_OK) st = apply_color(inst, err);
+    if (st == PELT_OK) st = apply_water(inst, sc, err);
+    if (st != PELT_OK) return st;
+
+    frame_camera(inst);
+    const pelt_scene_output *o = &sc->output;
+    pelt_camera_to_view(&inst->camera, (float)o->width / (float)o->height, &inst->view);
+    inst->view.light = sc->light;
+    inst->view.width = o->width;
+    inst->view.height = o->height;
+
+    /* Settle under the forces of time 0, so a still shows the fur bent by
+     * gravity rather than mid-spring; rain and drying start afterwards. */
+    float settle = desc->settle_seconds == 0.0f ? 1.5f : desc->settle_seconds;
+    int settle_steps = settle > 0.0f ? (int)lroundf(settle * 60.0f) : 0;
+    for (int i = 0; i < settle_steps; i++) step_at(inst, 0.0f, 1.0f / 60.0f);
+    pelt_fur_set_rain(inst->fur, &sc->wetness.rain);
+    pelt_fur_set_dry_rate(inst->fur, sc->wetness.dry_rate);
+    inst->armed = true;
+    return PELT_OK;
+}
+
+pelt_status pelt_scene_instantiate(const pelt_scene *sc, const pelt_scene_instance_desc *desc,
+                                   pelt_scene_instance **out, pelt_error *err)
+{
+    if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_scene_instantiate: out is NULL");
+    *out = NULL;
+    if (!sc) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_scene_instantiate: scene is NULL");
+    if (sc->output.width == 0 || sc->output.height == 0)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "output size must not be 0");
+    pelt_scene_instance_desc d = desc ? *desc : (pelt_scene_instance_desc){0};
+    pelt_hooks hooks = pelt__hooks_resolve(&d.hooks);
+    pelt_scene_instance *inst = pelt__alloc_zero(&hooks.allocator, 1, sizeof *inst);
+    if (!inst) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
+    inst->hooks = hooks;
+    pelt_status st = instantiate(inst, sc, &d, err);
+    if (st != PELT_OK) {
+        pelt_scene_instance_destroy(inst);
+        return st;
+    }
+    *out = inst;
+    return PELT_OK;
+}
+
+void pelt_scene_instance_destroy(pelt_scene_instance *inst)
+{
+    if (!inst) return;
+    pelt_fur_destroy(inst->fur);
+    pelt_mesh_destroy(inst->mesh);
+    pelt__free(&inst->hooks.allocator, inst->scene.animation.wind_keys);
+    pelt_allocator a = inst->hooks.allocator;
+    pelt__free(&a, inst);
+}
+
+void pelt_scene_instance_advance(pelt_scene_instance *inst, float dt)
+{
+    if (!(dt > 0.0f) || !isfinite(dt)) return;
+    inst->time += dt;
+    step_at(inst, inst->time, dt);
+}
+
+float pelt_scene_instance_time(const pelt_scene_instance *inst) { return inst->time; }
+
+const pelt_mesh *pelt_scene_instance_mesh(const pelt_scene_instance *inst) { return inst->mesh; }
+
+pelt_fur *pelt_scene_instance_fur(pelt_scene_instance *inst) { return inst->fur; }
+
+pelt_view pelt_scene_instance_view(const pelt_scene_instance *inst) { return inst->view; }
+
+bool pelt_scene_instance_drop_at_pixel(pelt_scene_instance *inst, float px, float py, float radius,
+                                       float wetness)
+{
+    float origin[3], dir[3];
+    return pelt_view_pixel_ray(&inst->view, px, py, origin, dir) &&
+           pelt_fur_add_droplet_ray(inst->fur, origin, dir, radius, wetness);
+}
+
+pelt_scene_instance_stats pelt_scene_instance_get_stats(const pelt_scene_instance *inst)
+{
+    return inst->stats;
+}
