@@ -3,7 +3,6 @@
 #include "pelt/scene.h"
 
 #include "core/base/error.h"
-#include "core/fur/fur_shape.h"
 #include "core/base/vec.h"
 
 #include <cjson/cJSON.h>
@@ -140,7 +139,7 @@ static const char *const shape_names[] = {"torus", "sphere", "square", "file", N
 static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
 static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
-/* The curl looks of Silva Fig. 7; the table of values is pelt__curl_preset.
+/* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
  * The scene format names them as the issue does; the preset table spells two
  * of them differently, so both spellings are accepted (same index). */
 static const char *const preset_names[] = {"straight", "wavy", "few-large-curls",
@@ -512,11 +511,11 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
             break;
         }
         /* Store the spelling the preset table knows, so the renderer can
-           hand fur_preset straight to pelt__curl_preset. */
+           hand fur_preset straight to pelt_fur_curl_look. */
         float omega, radius;
         const char *stored = NULL;
-        if (pelt__curl_preset(preset_names[index], &omega, &radius)) stored = preset_names[index];
-        else if (pelt__curl_preset(preset_aliases[index], &omega, &radius))
+        if (pelt_fur_curl_look(preset_names[index], &omega, &radius)) stored = preset_names[index];
+        else if (pelt_fur_curl_look(preset_aliases[index], &omega, &radius))
             stored = preset_aliases[index];
         if (!stored)
             return pelt__fail(c->err, PELT_ERR_FORMAT, "%s: %s: \"%s\" is missing from the "

@@ -2,6 +2,8 @@
  * tangent of the displaced curve used by Kajiya-Kay (Eq. 6). */
 #include "core/fur/fur_shape.h"
 
+#include "pelt/fur.h"
+
 #include <math.h>
 #include <string.h>
 
@@ -82,4 +84,9 @@ const char *pelt__curl_preset_name(unsigned i)
 {
     /* The first four rows are the canonical names; the rest are aliases. */
     return i < 4 ? presets[i].name : NULL;
+}
+
+bool pelt_fur_curl_look(const char *name, float *omega, float *radius_fraction)
+{
+    return name && pelt__curl_preset(name, omega, radius_fraction);
 }

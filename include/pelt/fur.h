@@ -78,6 +78,12 @@ typedef struct pelt_fur_desc {
     pelt_hooks hooks;        /* allocator and logger, kept by the fur */
 } pelt_fur_desc;
 
+/* One of the curl looks of Silva et al. Fig. 7 by name ("straight",
+ * "wavy", "few-large-curls", "many-small-curls"; also spelt "large_curls",
+ * "small_curls"): its omega (radians over the length) and radius as a
+ * fraction of the fur length. False for an unknown name. */
+bool pelt_fur_curl_look(const char *name, float *omega, float *radius_fraction);
+
 /* Fills look.curl_frequency and look.curl_radius of `d` from one of the
  * curl looks of Silva et al. Fig. 7: "straight", "wavy", "few-large-curls",
  * "many-small-curls", unless they are already non-zero. The radius is a

@@ -149,11 +149,10 @@ typedef struct pelt_scene {
     pelt_fur_desc fur;
     /* One of the curl looks of Silva Fig. 7: "straight", "wavy",
        "few-large-curls", "many-small-curls" (also spelt "large_curls",
-       "small_curls"), or "" (none, default). Stored in the spelling that
-       pelt__curl_preset() accepts, so the renderer passes it on as is and
-       takes omega and K_alpha = radius_fraction * length from it; an
-       explicit non-zero fur.curl_frequency / fur.curl_radius wins over the
-       preset's value. */
+       "small_curls"), or "" (none, default); pelt_fur_desc_curl_preset
+       turns it into omega and K_alpha = radius_fraction * length when the
+       scene is instantiated. An explicit non-zero fur.look.curl_frequency /
+       curl_radius wins over the preset's value. */
     char fur_preset[PELT_SCENE_NAME_MAX];
     pelt_scene_texture texture;
     pelt_camera camera;    /* default yaw 30, pitch 25, distance 4.2, fov_y 40, target 0 */
