@@ -1,0 +1,241 @@
+#!/usr/bin/env bash
+# Renders every picture under docs/images/ into OUTDIR with the commands the
+# docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/atlas.md;
+# README.md only shows pictures of gallery.md), so that the result can be
+# compared with the committed pictures by scripts/docs-images-compare.sh.
+#
+#   scripts/docs-images.sh OUTDIR [PELT_BINARY]
+#
+# PELT_BINARY defaults to build/pelt of this checkout (a Release build, as the
+# docs say: scripts/demo.sh). Environment:
+#   PELT_SOURCE_DIR  tree whose scenes/ and tests/data/ the commands read
+#                    (default: the checkout this script is in)
+#   CGAL_ARCHIVE     Debian libcgal-demo's mesh archive
+#                    (default /usr/share/doc/libcgal-dev/data.tar.gz, as tests/corpus.h)
+#   DOCS_IMAGES      space-separated subset of picture groups to render (default all):
+#                    default bunny_dry elephant bunny_combed elephant_combed
+#                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water
+#                    wind_square turntable curl
+#
+# Each command runs in its own fresh working directory (symlinks to the source
+# tree's top-level entries, an empty docs/images/) with its own empty
+# XDG_CACHE_HOME, so the relative paths of the docs work, nothing is written
+# into the source tree and no atlas cache is shared between commands; pelt atlas
+# gets --no-cache as in docs/atlas.md. Each command's output goes to
+# OUTDIR/log/GROUP.log; OUTDIR must not hold PNGs already. Pictures that need
+# the CGAL meshes are skipped, with a message, when the archive is absent.
+# Exits non-zero if any command failed.
+#
+# The docs' commands below are copied verbatim: unquoted $M, $COMMON and [..] values.
+# shellcheck disable=SC2086,SC2102
+set -euo pipefail
+
+if [ $# -lt 1 ] || [ $# -gt 2 ] || [ "${1:-}" = -h ] || [ "${1:-}" = --help ]; then
+  echo "usage: $0 OUTDIR [PELT_BINARY]" >&2
+  exit 2
+fi
+
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ROOT="$(cd "${PELT_SOURCE_DIR:-$here}" && pwd)"
+mkdir -p "$1"
+OUT="$(cd "$1" && pwd)"
+if [ -n "$(find "$OUT" -maxdepth 1 -name '*.png' -print -quit)" ]; then
+  echo "docs-images: $OUT already holds PNGs; give a new or empty OUTDIR so no stale picture is compared" >&2
+  exit 2
+fi
+PELT="${2:-$ROOT/build/pelt}"
+case "$PELT" in /*) ;; *) PELT="$PWD/$PELT" ;; esac
+CGAL_ARCHIVE="${CGAL_ARCHIVE:-/usr/share/doc/libcgal-dev/data.tar.gz}"
+
+if [ ! -f "$ROOT/scenes/word-in-water.json" ]; then
+  echo "docs-images: $ROOT has no scenes/word-in-water.json; set PELT_SOURCE_DIR to the pelt source tree" >&2
+  exit 2
+fi
+if [ ! -x "$PELT" ]; then
+  echo "docs-images: no pelt binary at $PELT (build it: cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build)" >&2
+  exit 2
+fi
+
+TMP="$(mktemp -d "${TMPDIR:-/tmp}/docs-images.XXXXXX")"
+trap 'rm -rf "$TMP"' EXIT
+mkdir -p "$OUT/log"
+
+# The docs write `pelt` for the binary.
+pelt() { "$PELT" "$@"; }
+
+# Meshes from Debian's libcgal-demo, extracted as docs/gallery.md does.
+have_cgal=0
+if [ -f "$CGAL_ARCHIVE" ]; then
+  mkdir -p "$TMP/cgal"
+  tar xzf "$CGAL_ARCHIVE" -C "$TMP/cgal" data/meshes/bunny00.off data/meshes/elephant.off
+  have_cgal=1
+fi
+M="$TMP/cgal/data/meshes"
+
+# A fresh working directory and atlas cache for one command; prints its path.
+fresh() {
+  local w
+  w="$(mktemp -d "$TMP/work.XXXXXX")"
+  local e
+  for e in "$ROOT"/*; do
+    [ "$(basename "$e")" = docs ] || ln -s "$e" "$w/"
+  done
+  mkdir -p "$w/docs/images" "$w/.cache"
+  echo "$w"
+}
+
+# collect FILE NAME: the command's output FILE becomes OUTDIR/NAME.
+collect() {
+  if [ ! -f "$1" ]; then
+    echo "docs-images: the command did not write $1" >&2
+    return 1
+  fi
+  cp "$1" "$OUT/$2"
+}
+
+# ---- The pictures. Commands are copied from the docs; only `collect` is added.
+
+# docs/gallery.md, "The default scene"; also README.md.
+img_default() {
+  pelt render -o docs/images/default.png
+  collect docs/images/default.png default.png
+}
+
+# docs/gallery.md, "Real meshes without uvs" (no -o: pelt writes pelt.png).
+img_bunny_dry() {
+  pelt render --mesh $M/bunny00.off --size 640x480
+  collect pelt.png bunny_dry.png
+}
+img_elephant() {
+  pelt render --mesh $M/elephant.off --size 640x480
+  collect pelt.png elephant.png
+}
+
+# docs/gallery.md, "Combed along the direction field"; also README.md.
+img_bunny_combed() {
+  pelt render --mesh $M/bunny00.off --size 640x480 --set fur.slant=40
+  collect pelt.png bunny_combed.png
+}
+img_elephant_combed() {
+  pelt render --mesh $M/elephant.off --size 640x480 --set fur.slant=40
+  collect pelt.png elephant_combed.png
+}
+
+# docs/atlas.md, "pelt atlas" gallery (docs/gallery.md shows the same picture
+# with `pelt atlas $M/elephant.off --size 768`, which differs only by the cache).
+img_atlas_elephant() {
+  pelt atlas $M/elephant.off -o docs/images/atlas_elephant.png --size 768 --no-cache
+  collect docs/images/atlas_elephant.png atlas_elephant.png
+}
+img_atlas_bunny() {
+  pelt atlas $M/bunny00.off  -o docs/images/atlas_bunny.png    --size 768 --no-cache
+  collect docs/images/atlas_bunny.png atlas_bunny.png
+}
+
+# docs/gallery.md, the whirl (no -o: pelt.png).
+img_whirl() {
+  pelt render --mesh tests/data/meshes/swirl_colors.ply --set atlas.direction_from=vertex-colors \
+      --set fur.slant=50 --set atlas.mode=patches --pitch 70 --yaw 0 --size 480x360
+  collect pelt.png whirl.png
+}
+
+# docs/gallery.md, "Wet fur"; also README.md.
+img_bunny_wet() {
+  pelt render --mesh $M/bunny00.off --size 640x480 --set wetness.drops.count=300 \
+      --set 'wetness.drops.radius=[0.012,0.02]' -o bunny_wet.png --mask-out bunny_wet_mask.png
+  collect bunny_wet.png bunny_wet.png
+  collect bunny_wet_mask.png bunny_wet_mask.png
+}
+img_bunny_rain() {
+  pelt render --mesh $M/bunny00.off --size 640x480 --rain 300 --frames 2 --fps 1 \
+      --set 'wetness.rain.radius=[0.012,0.02]' -o rain_%d.png    # rain_1.png
+  collect rain_1.png bunny_rain.png
+}
+img_word_in_water() {
+  pelt render scenes/word-in-water.json --size 640x480 -o word.png --mask-out word_mask.png
+  collect word.png word_in_water.png
+  collect word_mask.png word_in_water_mask.png
+}
+
+# docs/gallery-dynamics.md, "Wind".
+img_wind_square() {
+  COMMON="scenes/wind-square.json --frames 1 --set fur.density=800 --set fur.strand_radius=2.5 \
+    --set fur.length=0.3 --set fur.layers=32 --pitch 12 --distance 2.6 --light 0.3,0.8,1 \
+    --set light.color=[2.2,2.1,2] --set light.ambient=0.4 --size 480x360"
+  pelt render $COMMON --wind 0,0,0 -o wind_square_calm.png
+  pelt render $COMMON --wind 20,0,0 -o wind_square.png
+  collect wind_square_calm.png wind_square_calm.png
+  collect wind_square.png wind_square.png
+}
+
+# docs/gallery-dynamics.md, "Inertia: a fast turntable".
+img_turntable() {
+  pelt render scenes/turntable.json --frames 13 --turntable 540 --set fur.length=0.2 \
+    --set light.color=[1.8,1.75,1.7] --size 480x360 -o turn_%02d.png
+  # turntable_0/1/2.png = turn_00/06/12.png
+  collect turn_00.png turntable_0.png
+  collect turn_06.png turntable_1.png
+  collect turn_12.png turntable_2.png
+}
+
+# docs/gallery-dynamics.md, "The curl looks of Silva et al. Fig. 7".
+img_curl() {
+  for NAME in straight wavy few-large-curls many-small-curls; do
+    pelt render --mesh square --set fur.preset=$NAME --set fur.density=500 \
+      --set fur.strand_radius=2.5 --set fur.length=0.3 --set fur.layers=48 --set fur.taper=0.3 \
+      --gravity 0,0,0 --yaw 0 --pitch 12 --distance 2.2 --light 0.3,0.8,1 \
+      --set light.color=[2.2,2.1,2] --set light.ambient=0.4 --size 480x360 -o curl_$NAME.png
+  done
+  for NAME in straight wavy few-large-curls many-small-curls; do
+    collect curl_$NAME.png curl_$NAME.png
+  done
+}
+
+# ---- Running them.
+
+all="default bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny whirl
+     bunny_wet bunny_rain word_in_water wind_square turntable curl"
+needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain "
+groups="${DOCS_IMAGES:-$all}"
+
+now() { date +%s.%N; }
+elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.2f", b - a }'; }
+echo "docs-images: $PELT -> $OUT (sources: $ROOT)"
+failed=()
+skipped=()
+start="$(now)"
+for g in $groups; do
+  if ! declare -F "img_$g" >/dev/null; then
+    echo "docs-images: unknown picture group '$g' (known: $(tr -s ' \n' ' ' <<<"$all"))" >&2
+    exit 2
+  fi
+  if [ "$have_cgal" = 0 ] && [[ "$needs_cgal" == *" $g "* ]]; then
+    echo "  skip $g: needs Debian's libcgal-demo mesh archive $CGAL_ARCHIVE (scripts/setup.sh --tests installs it)"
+    skipped+=("$g")
+    continue
+  fi
+  t0="$(now)"
+  w="$(fresh)"
+  # A background subshell keeps `set -e` working inside it; `wait` gives its status.
+  # set -f: the docs' unquoted [..] values (light.color=[2.2,2.1,2]) stay literal.
+  ( set -f; cd "$w"; export XDG_CACHE_HOME="$w/.cache"; "img_$g" ) >"$OUT/log/$g.log" 2>&1 &
+  rc=0
+  wait $! || rc=$?
+  rm -rf "$w"
+  t1="$(now)"
+  if [ "$rc" = 0 ]; then
+    printf '  %-16s %7.2f s\n' "$g" "$(elapsed "$t0" "$t1")"
+  else
+    printf '  %-16s FAILED (exit %s), see %s\n' "$g" "$rc" "$OUT/log/$g.log"
+    tail -n 5 "$OUT/log/$g.log" | sed 's/^/      /'
+    failed+=("$g")
+  fi
+done
+end="$(now)"
+printf 'docs-images: %d PNGs in %s, %.1f s' "$(find "$OUT" -maxdepth 1 -name '*.png' | wc -l)" "$OUT" "$(elapsed "$start" "$end")"
+[ ${#skipped[@]} -eq 0 ] || printf ', skipped: %s' "${skipped[*]}"
+echo
+if [ ${#failed[@]} -ne 0 ]; then
+  echo "docs-images: FAILED: ${failed[*]}" >&2
+  exit 1
+fi
