@@ -468,3 +468,13 @@ pelt_status pelt__droplet_surface(pelt__wetness *m, const pelt_mesh *mesh,
     if (wd > 0.0f) grow_rect(m->wet, &box);
     return PELT_OK;
 }
+
+bool pelt__droplet_ray(pelt__wetness *m, const pelt_mesh *mesh, pelt__surface_index *index,
+                       const pelt__bvh *bvh, const float origin[3], const float dir[3],
+                       float radius_world, float wetness)
+{
+    pelt__hit hit;
+    if (!bvh || !pelt__bvh_raycast(bvh, origin, dir, INFINITY, &hit)) return false;
+    return pelt__droplet_surface(m, mesh, index, hit.triangle, hit.bary, radius_world, wetness,
+                                 NULL) == PELT_OK;
+}
