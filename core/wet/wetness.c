@@ -3,7 +3,6 @@
 #include "core/wet/wetness.h"
 
 #include "core/base/error.h"
-#include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
 
 #include <math.h>
@@ -307,9 +306,7 @@ bool pelt__wetness_take_dirty(pelt__wetness *m, unsigned rect[4])
     return true;
 }
 
-/* ---- rain ---------------------------------------------------------------- */
-
-/* splitmix64: small, seedable, good enough for droplet placement. */
+/* splitmix64: small and seedable; hashes the clump grid of a painting. */
 static uint64_t rng_next(uint64_t *s)
 {
     uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
@@ -320,63 +317,6 @@ static uint64_t rng_next(uint64_t *s)
 
 /* Uniform in [0, 1). */
 static float rng_unit(uint64_t *s) { return (float)(rng_next(s) >> 40) * (1.0f / 16777216.0f); }
-
-void pelt__rain_start(pelt__rain_state *state, const pelt_rain *rain)
-{
-    state->rng = ((uint64_t)rain->seed << 32) ^ 0x5eed0fa11ull;
-    state->carry = 0.0;
-}
-
-pelt_rain pelt__rain_resolve(const pelt_rain *rain)
-{
-    pelt_rain r = *rain;
-    if (r.radius_min == 0.0f && r.radius_max == 0.0f) {
-        r.radius_min = 0.015f;
-        r.radius_max = 0.04f;
-    }
-    if (r.wetness_min == 0.0f && r.wetness_max == 0.0f) {
-        r.wetness_min = 0.5f;
-        r.wetness_max = 1.0f;
-    }
-    if (r.radius_min > r.radius_max) {
-        float t = r.radius_min;
-        r.radius_min = r.radius_max;
-        r.radius_max = t;
-    }
-    if (r.wetness_min > r.wetness_max) {
-        float t = r.wetness_min;
-        r.wetness_min = r.wetness_max;
-        r.wetness_max = t;
-    }
-    return r;
-}
-
-size_t pelt__wetness_rain(pelt__wetness *m, const pelt_rain *rain,
-                          pelt__rain_state *state, float dt)
-{
-    pelt_rain r = pelt__rain_resolve(rain);
-    double want = (double)r.rate * dt;
-    if (!(want > 0.0) || !isfinite(want)) return 0;
-    state->carry += want;
-    double whole = floor(state->carry);
-    size_t n;
-    if (whole > (double)PELT__RAIN_MAX_PER_STEP) {
-        n = PELT__RAIN_MAX_PER_STEP;
-        state->carry = 0.0;
-    } else {
-        n = (size_t)whole;
-        state->carry -= whole;
-    }
-    for (size_t i = 0; i < n; i++) {
-        pelt_droplet d;
-        d.center[0] = rng_unit(&state->rng);
-        d.center[1] = rng_unit(&state->rng);
-        d.radius = r.radius_min + (r.radius_max - r.radius_min) * rng_unit(&state->rng);
-        d.wetness = r.wetness_min + (r.wetness_max - r.wetness_min) * rng_unit(&state->rng);
-        pelt__wetness_add_droplet(m, &d, NULL); /* bad ranges just add nothing */
-    }
-    return n;
-}
 
 /* ---- painting from a greyscale image ------------------------------------ */
 
@@ -575,61 +515,4 @@ void pelt__wetness_to_rgba8(const pelt__wetness *m, uint8_t *rgba)
             o[2] = (uint8_t)lroundf(255.0f * clampf(t[3], 0.0f, 1.0f) * shade);
         }
     }
-}
-
-/* ---- droplets at surface points ----------------------------------------- */
-
-pelt_status pelt__droplet_on_surface(const pelt_mesh *mesh, size_t tri,
-                                     const float bary[3], float radius_world,
-                                     float wetness, pelt_droplet *out,
-                                     pelt_error *err)
-{
-    if (!mesh || !bary || !out)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "surface droplet: NULL argument");
-    if (tri >= mesh->triangle_count)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "surface droplet: triangle %zu out of range (mesh has %zu)",
-                          tri, mesh->triangle_count);
-    if (!mesh->uvs)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "surface droplet: mesh has no uvs");
-    if (!isfinite(bary[0]) || !isfinite(bary[1]) || !isfinite(bary[2]) ||
-        !isfinite(radius_world) || radius_world < 0.0f || !isfinite(wetness))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "surface droplet: barycentrics (%g, %g, %g), radius %g, "
-                          "wetness %g must be finite with radius >= 0",
-                          (double)bary[0], (double)bary[1], (double)bary[2],
-                          (double)radius_world, (double)wetness);
-    const uint32_t *ix = mesh->indices + tri * 3;
-    pelt_vec3 p0 = v3_load(mesh->positions + (size_t)ix[0] * 3);
-    pelt_vec3 p1 = v3_load(mesh->positions + (size_t)ix[1] * 3);
-    pelt_vec3 p2 = v3_load(mesh->positions + (size_t)ix[2] * 3);
-    const float *t0 = mesh->uvs + (size_t)ix[0] * 2;
-    const float *t1 = mesh->uvs + (size_t)ix[1] * 2;
-    const float *t2 = mesh->uvs + (size_t)ix[2] * 2;
-    float world_area = 0.5f * v3_len(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)));
-    float uv_area = 0.5f * fabsf((t1[0] - t0[0]) * (t2[1] - t0[1]) -
-                                 (t2[0] - t0[0]) * (t1[1] - t0[1]));
-    if (!(world_area > 0.0f))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "surface droplet: triangle %zu has zero area", tri);
-    out->center[0] = bary[0] * t0[0] + bary[1] * t1[0] + bary[2] * t2[0];
-    out->center[1] = bary[0] * t0[1] + bary[1] * t1[1] + bary[2] * t2[1];
-    /* uv length per world length on this triangle, from the area ratio. */
-    out->radius = radius_world * sqrtf(uv_area / world_area);
-    out->wetness = wetness;
-    return PELT_OK;
-}
-
-bool pelt__droplet_from_ray(const pelt_mesh *mesh, const pelt__bvh *bvh,
-                            const float origin[3], const float dir[3],
-                            float radius_world, float wetness,
-                            pelt_droplet *out, pelt__hit *hit)
-{
-    pelt__hit h;
-    if (!mesh || !bvh || !out || !pelt__bvh_raycast(bvh, origin, dir, INFINITY, &h)) return false;
-    if (pelt__droplet_on_surface(mesh, h.triangle, h.bary, radius_world, wetness, out, NULL) !=
-        PELT_OK)
-        return false;
-    if (hit) *hit = h;
-    return true;
 }

@@ -1,12 +1,10 @@
 /* The wetness mask (Silva et al. §3.1, Alg. 1 as DESIGN.md reads it):
- * droplets, drying, rain, painting from an image and a picture of the mask.
+ * droplets, drying, painting from an image and a picture of the mask.
  * No GL here; the renderer uploads the dirty rectangle as RGBA32F. */
 #ifndef PELT_CORE_WETNESS_H
 #define PELT_CORE_WETNESS_H
 
 #include "pelt/wetness.h"
-#include "pelt/mesh.h"
-#include "core/mesh/raycast.h"
 
 /* Default mask resolution (the paper's Table 1 set-up). */
 #define PELT__WETNESS_DEFAULT_SIZE 256u
@@ -68,31 +66,6 @@ void pelt__wetness_dry(pelt__wetness *m, float rate, float dt);
  * untouched) when nothing changed. Resets the dirty rectangle. */
 bool pelt__wetness_take_dirty(pelt__wetness *m, unsigned rect[4]);
 
-/* State of random rain: the generator and the fractional droplet carried
- * from one step to the next. */
-typedef struct pelt__rain_state {
-    uint64_t rng;
-    double carry;
-} pelt__rain_state;
-
-/* Most droplets one rain step adds; the rest of a huge rate * dt is
- * dropped so a step stays bounded. */
-#define PELT__RAIN_MAX_PER_STEP 65536u
-
-/* Seeds the rain state from rain->seed. */
-void pelt__rain_start(pelt__rain_state *state, const pelt_rain *rain);
-
-/* The rain with defaults filled in: zero radius range -> [0.015, 0.04] uv,
- * zero wetness range -> [0.5, 1]; reversed ranges are swapped. */
-pelt_rain pelt__rain_resolve(const pelt_rain *rain);
-
-/* Adds rain->rate * dt droplets (fractions carried in state) at uniform
- * random positions in [0,1]^2 with radius and wetness uniform in their
- * ranges. Deterministic for a seed and a sequence of dt. Returns the number
- * of droplets added. No allocation. */
-size_t pelt__wetness_rain(pelt__wetness *m, const pelt_rain *rain,
-                          pelt__rain_state *state, float dt);
-
 /* How a greyscale image becomes clumps. Zero fields mean the defaults. */
 typedef struct pelt__paint_desc {
     float clump_size; /* spacing of clump centres in uv units, default 0.03 */
@@ -119,24 +92,5 @@ pelt_status pelt__wetness_paint_image(pelt__wetness *m, const uint8_t *grey,
  * (v = 1): dry = black, wet = blue with intensity rho, shaded brighter
  * toward each clump centre so clumps show as blobs. */
 void pelt__wetness_to_rgba8(const pelt__wetness *m, uint8_t *rgba);
-
-/* A droplet at a surface point: triangle `tri` of `mesh` and barycentric
- * weights bary (of its vertices 0, 1, 2) give the centre in mask uv; the
- * radius in world units becomes uv units through that triangle's
- * sqrt(uv area / world area). Fails on a bad triangle index or
- * non-finite input. */
-pelt_status pelt__droplet_on_surface(const pelt_mesh *mesh, size_t tri,
-                                     const float bary[3], float radius_world,
-                                     float wetness, pelt_droplet *out,
-                                     pelt_error *err);
-
-/* A droplet where a ray (say from the camera through the mouse) first hits
- * the mesh: pelt__bvh_raycast on bvh (built from this mesh), then
- * pelt__droplet_on_surface. Returns false on a miss or bad input. The hit
- * is written to *hit when hit is not NULL. No allocation. */
-bool pelt__droplet_from_ray(const pelt_mesh *mesh, const pelt__bvh *bvh,
-                            const float origin[3], const float dir[3],
-                            float radius_world, float wetness,
-                            pelt_droplet *out, pelt__hit *hit);
 
 #endif
