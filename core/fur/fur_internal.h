@@ -6,9 +6,9 @@
 
 #include "core/mesh/raycast.h"
 #include "core/fur/strand.h"
+#include "core/wet/mask.h"
 #include "core/wet/rain.h"
 #include "core/wet/surface_droplet.h"
-#include "core/wet/wetness.h"
 
 struct pelt_fur {
     pelt_fur_desc desc;      /* every default filled in */

@@ -7,7 +7,7 @@
 #define PELT_CORE_SURFACE_DROPLET_H
 
 #include "core/mesh/raycast.h"
-#include "core/wet/wetness.h"
+#include "core/wet/mask.h"
 
 #include <stdint.h>
 

@@ -3,7 +3,7 @@
  * ray -> droplet path are in test_rain.c, droplets at surface points in
  * test_surface_droplet.c. */
 #include "support/check.h"
-#include "core/wet/wetness.h"
+#include "core/wet/mask.h"
 
 #include <stdlib.h>
 #include <string.h>

@@ -5,7 +5,7 @@
 
 #include "core/wet/clump.h"
 #include "core/fur/fur_shape.h"
-#include "core/wet/wetness.h"
+#include "core/wet/mask.h"
 #include "core/fur/shading.h"
 
 enum { W = 64, H = 48 };

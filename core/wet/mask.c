@@ -1,6 +1,6 @@
 /* Wetness mask: Silva et al. §3.1 and Alg. 1 as DESIGN.md reads them. */
 #define _DEFAULT_SOURCE /* madvise(MADV_HUGEPAGE) */
-#include "core/wet/wetness.h"
+#include "core/wet/mask.h"
 
 #include "core/base/error.h"
 #include "core/base/vec.h"

@@ -1,8 +1,8 @@
 /* The wetness mask (Silva et al. §3.1, Alg. 1 as DESIGN.md reads it):
  * droplets, drying, painting from an image and a picture of the mask.
  * No GL here; the renderer uploads the dirty rectangle as RGBA32F. */
-#ifndef PELT_CORE_WETNESS_H
-#define PELT_CORE_WETNESS_H
+#ifndef PELT_CORE_WET_MASK_H
+#define PELT_CORE_WET_MASK_H
 
 #include "pelt/wetness.h"
 
