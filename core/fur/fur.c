@@ -6,6 +6,8 @@
 #include "core/fur/furtex.h"
 #include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
+#include "core/wet/paint.h"
+#include "core/wet/picture.h"
 #include "pelt/dynamics.h"
 #include "pelt/wetness.h"
 

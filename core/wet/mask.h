@@ -1,10 +1,13 @@
-/* The wetness mask (Silva et al. §3.1, Alg. 1 as DESIGN.md reads it):
- * droplets, drying, painting from an image and a picture of the mask.
- * No GL here; the renderer uploads the dirty rectangle as RGBA32F. */
+/* Wetness mask: texels, droplets blended by Silva et al. Alg. 1 (§3.1), drying, dirty rect. */
+/* Alg. 1 as DESIGN.md reads it. Painting from an image is core/wet/paint.h, the
+ * picture of the mask core/wet/picture.h, rain core/wet/rain.h. No GL here; the
+ * renderer uploads the dirty rectangle as RGBA32F. */
 #ifndef PELT_CORE_WET_MASK_H
 #define PELT_CORE_WET_MASK_H
 
 #include "pelt/wetness.h"
+
+#include <string.h>
 
 /* Default mask resolution (the paper's Table 1 set-up). */
 #define PELT__WETNESS_DEFAULT_SIZE 256u
@@ -23,6 +26,32 @@ typedef struct pelt__wetness {
     /* Union of changed texels since the last pelt__wetness_take_dirty. */
     unsigned dirty[4];
 } pelt__wetness;
+
+/* Rectangles of texels {x0, y0, x1, y1}, x1 and y1 exclusive, empty when
+ * x0 >= x1 or y0 >= y1: the wet box and the dirty rectangle of a mask. */
+static inline void pelt__rect_clear(unsigned r[4]) { r[0] = r[1] = r[2] = r[3] = 0; }
+static inline bool pelt__rect_empty(const unsigned r[4]) { return r[0] >= r[2] || r[1] >= r[3]; }
+
+/* r grows to hold add. */
+static inline void pelt__rect_union(unsigned r[4], const unsigned add[4])
+{
+    if (pelt__rect_empty(add)) return;
+    if (pelt__rect_empty(r)) {
+        memcpy(r, add, 4 * sizeof r[0]);
+        return;
+    }
+    if (add[0] < r[0]) r[0] = add[0];
+    if (add[1] < r[1]) r[1] = add[1];
+    if (add[2] > r[2]) r[2] = add[2];
+    if (add[3] > r[3]) r[3] = add[3];
+}
+
+/* r grows to hold texel (x, y). */
+static inline void pelt__rect_add_texel(unsigned r[4], unsigned x, unsigned y)
+{
+    unsigned one[4] = {x, y, x + 1, y + 1};
+    pelt__rect_union(r, one);
+}
 
 /* Makes a dry mask of width x height texels (0 means 256). The caller frees
  * it with pelt__wetness_destroy. */
@@ -53,7 +82,7 @@ pelt_status pelt__wetness_add_droplets(pelt__wetness *m, const pelt_droplet *d, 
 /* Silva Alg. 1 for one texel t (RGBA as above) and a droplet with centre
  * cd, radius rd and clamped non-zero wetness wd, as docs/wetness.md reads
  * it; returns whether the texel changed. The droplet functions here and in
- * core/surface_droplet.c share it. */
+ * core/wet/surface_droplet.c share it. */
 bool pelt__wetness_blend_texel(float *t, const float cd[2], float rd, float wd);
 
 /* Lowers every wet texel's rho by rate * dt (clamped at 0), visiting only
@@ -65,32 +94,5 @@ void pelt__wetness_dry(pelt__wetness *m, float rate, float dt);
  * rect = {x0, y0, x1, y1} with x1, y1 exclusive. Returns false (rect
  * untouched) when nothing changed. Resets the dirty rectangle. */
 bool pelt__wetness_take_dirty(pelt__wetness *m, unsigned rect[4]);
-
-/* How a greyscale image becomes clumps. Zero fields mean the defaults. */
-typedef struct pelt__paint_desc {
-    float clump_size; /* spacing of clump centres in uv units, default 0.03 */
-    float threshold;  /* grey level (0..1) below which a texel is dry,
-                         default 0.1 */
-    uint32_t seed;    /* jitter of the clump grid, default 1 */
-} pelt__paint_desc;
-
-/* Replaces the mask with wetness painted from an 8-bit greyscale image
- * (grey, w x h, row 0 at the TOP, i.e. at v = 1, as a picture is viewed),
- * bilinearly resampled onto the mask: rho = grey / 255 where it exceeds the
- * threshold. Wet texels are split into clumps: a jittered grid of clump
- * seeds (spacing clump_size) cuts each connected wet region into cells;
- * each (cell, region) piece becomes one clump centred on its centroid with
- * the radius that covers it, so a stroke of a word renders as clumps along
- * the stroke. Allocates temporary memory (freed before return). */
-pelt_status pelt__wetness_paint_image(pelt__wetness *m, const uint8_t *grey,
-                                      unsigned w, unsigned h,
-                                      const pelt__paint_desc *desc,
-                                      pelt_error *err);
-
-/* Writes the mask as an RGBA8 picture like the insets of Silva Fig. 11
- * into rgba (width * height * 4 bytes, caller-owned), row 0 at the TOP
- * (v = 1): dry = black, wet = blue with intensity rho, shaded brighter
- * toward each clump centre so clumps show as blobs. */
-void pelt__wetness_to_rgba8(const pelt__wetness *m, uint8_t *rgba);
 
 #endif

@@ -1,6 +1,6 @@
-/* Rain and random drops on a mesh's surface (Silva et al. §3.1 droplets, made seam-free
- * over an atlas): rain falls along the mesh's -Y axis and wets where it hits; random
- * drops land uniformly by surface area. */
+/* Rain along -Y and random drops by area on a surface (Silva et al. §3.1 droplets). */
+/* Rain falls along the mesh's -Y axis and wets where it hits; random drops land
+ * uniformly by surface area; both wet by distance on the surface (seam-free). */
 #include "core/wet/rain.h"
 
 #include "core/base/error.h"

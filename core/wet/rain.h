@@ -1,6 +1,4 @@
-/* Rain and random drops on a mesh's surface (Silva et al. §3.1 droplets, seam-free over
- * an atlas): drops fall along the mesh's -Y axis and wet where they hit; random drops
- * land uniformly by surface area. No GL here. */
+/* Rain along -Y and random drops by area on a surface (Silva et al. §3.1 droplets). */
 #ifndef PELT_CORE_WET_RAIN_H
 #define PELT_CORE_WET_RAIN_H
 

@@ -4,6 +4,8 @@
  * test_surface_droplet.c. */
 #include "support/check.h"
 #include "core/wet/mask.h"
+#include "core/wet/paint.h"
+#include "core/wet/picture.h"
 
 #include <stdlib.h>
 #include <string.h>
