@@ -6,6 +6,8 @@
 #include "core/fur/furtex.h"
 #include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
+#include "core/wet/paint.h"
+#include "core/wet/picture.h"
 #include "pelt/dynamics.h"
 #include "pelt/wetness.h"
 
@@ -172,7 +174,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     st = pelt__wetness_create(d.wet.mask_size, d.wet.mask_size, &f->wetness, err);
     if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->surface, err);
     if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->bvh, err);
-    if (st == PELT_OK) st = pelt__fur_rain_init(f, err);
+    if (st == PELT_OK) st = pelt__rain_create(mesh, &f->rain, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
@@ -213,7 +215,7 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__wetness_destroy(f->wetness);
     pelt__surface_index_destroy(f->surface);
     pelt__bvh_destroy(f->bvh);
-    free(f->area_cdf);
+    pelt__rain_destroy(f->rain);
     free(f);
 }
 
@@ -229,7 +231,7 @@ void pelt_fur_step(pelt_fur *f, float dt, const pelt_forces *forces)
 {
     if (!(dt > 0.0f)) return;
     pelt__strands_step(f->strands, dt, forces, f->time);
-    if (f->rain.rate > 0.0f) pelt__fur_rain_step(f, dt);
+    pelt__rain_step(f->rain, f->wetness, f->surface, f->bvh, dt);
     if (f->dry_rate > 0.0f) pelt__wetness_dry(f->wetness, f->dry_rate, dt);
     f->time += dt;
     f->tips_version++;
@@ -281,24 +283,20 @@ pelt_status pelt_fur_add_droplet_at(pelt_fur *f, size_t triangle, const float ba
 bool pelt_fur_add_droplet_ray(pelt_fur *f, const float origin[3], const float direction[3],
                               float radius_world, float wetness)
 {
-    pelt__hit hit;
-    if (!pelt__bvh_raycast(f->bvh, origin, direction, INFINITY, &hit)) return false;
-    return pelt_fur_add_droplet_at(f, hit.triangle, hit.bary, radius_world, wetness, NULL) == PELT_OK;
+    return pelt__droplet_ray(f->wetness, f->mesh, f->surface, f->bvh, origin, direction,
+                             radius_world, wetness);
 }
 
-void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain)
+void pelt_fur_add_random_droplets(pelt_fur *f, const pelt_rain *rain, unsigned count)
 {
-    f->rain = *rain;
-    f->rain_rng = pelt__rng_seed(rain->seed, 0x7261696eULL);
-    f->rain_carry = 0.0;
+    pelt__rain_random_drops(f->rain, rain, count, f->wetness, f->surface);
 }
+
+void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain) { pelt__rain_set(f->rain, rain); }
 
 void pelt_fur_clear_wetness(pelt_fur *f) { pelt__wetness_clear(f->wetness); }
 
-void pelt_fur_set_rain_rate(pelt_fur *f, float rate)
-{
-    f->rain.rate = isfinite(rate) && rate > 0.0f ? rate : 0.0f;
-}
+void pelt_fur_set_rain_rate(pelt_fur *f, float rate) { pelt__rain_set_rate(f->rain, rate); }
 
 void pelt_fur_set_dry_rate(pelt_fur *f, float rate)
 {

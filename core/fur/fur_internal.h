@@ -5,10 +5,10 @@
 #include "pelt/fur.h"
 
 #include "core/mesh/raycast.h"
-#include "core/base/rng.h"
 #include "core/fur/strand.h"
+#include "core/wet/mask.h"
+#include "core/wet/rain.h"
 #include "core/wet/surface_droplet.h"
-#include "core/wet/wetness.h"
 
 struct pelt_fur {
     pelt_fur_desc desc;      /* every default filled in */
@@ -28,17 +28,9 @@ struct pelt_fur {
     pelt__wetness *wetness;  /* the wetness mask over the uvs */
     pelt__surface_index *surface; /* droplets by distance on the surface */
     pelt__bvh *bvh;          /* droplets by a ray */
-    pelt_rain rain;
-    pelt__rng rain_rng;
-    double rain_carry;       /* fraction of a drop carried to the next step */
-    float *area_cdf;         /* cumulative triangle areas, for random drops */
-    float world_per_uv;      /* mean world length of one mask-uv unit */
+    pelt__rain *rain;        /* rain and random drops (core/wet/rain.h) */
     float dry_rate;
 };
-
-/* Rain and random drops (core/fur_rain.c). */
-pelt_status pelt__fur_rain_init(pelt_fur *fur, pelt_error *err);
-void pelt__fur_rain_step(pelt_fur *fur, float dt);
 
 /* Fills the zero fields of `d` with defaults for `mesh`. */
 void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh);

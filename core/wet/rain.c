@@ -1,7 +1,7 @@
-/* Rain and random droplets on the fur's surface (Silva §3.1 droplets, made
- * seam-free over an atlas): rain falls along the mesh's -Y axis and wets
- * where it hits; random drops land uniformly by surface area. */
-#include "core/fur/fur_internal.h"
+/* Rain along -Y and random drops by area on a surface (Silva et al. §3.1 droplets). */
+/* Rain falls along the mesh's -Y axis and wets where it hits; random drops land
+ * uniformly by surface area; both wet by distance on the surface (seam-free). */
+#include "core/wet/rain.h"
 
 #include "core/base/error.h"
 #include "core/mesh/mesh_internal.h"
@@ -10,54 +10,123 @@
 
 #include <stdlib.h>
 
-pelt_status pelt__fur_rain_init(pelt_fur *f, pelt_error *err)
+struct pelt__rain {
+    const pelt_mesh *mesh;
+    pelt_rain settings;
+    pelt__rng rng;
+    double carry;       /* fraction of a drop carried to the next step */
+    float *area_cdf;    /* cumulative triangle areas, for random drops */
+    float world_per_uv; /* mean world length of one mask-uv unit */
+};
+
+/* Stream of the rain's generator (pelt__rng_seed). */
+#define RAIN_STREAM 0x7261696eULL
+
+pelt_status pelt__rain_create(const pelt_mesh *m, pelt__rain **out, pelt_error *err)
 {
-    const pelt_mesh *m = f->mesh;
-    f->area_cdf = pelt__calloc(m->triangle_count, sizeof *f->area_cdf);
-    if (!f->area_cdf) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur");
+    if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "rain: out is NULL");
+    *out = NULL;
+    if (!m || !m->positions || !m->uvs || !m->indices || m->triangle_count == 0)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "rain: a mesh with positions, uvs and triangles is required");
+    pelt__rain *r = pelt__calloc(1, sizeof *r);
+    if (r) r->area_cdf = pelt__calloc(m->triangle_count, sizeof *r->area_cdf);
+    if (!r || !r->area_cdf) {
+        pelt__rain_destroy(r);
+        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur");
+    }
+    r->mesh = m;
     double total = 0.0, uv_total = 0.0;
     for (size_t t = 0; t < m->triangle_count; t++) {
         total += pelt__triangle_area(m, t);
         uv_total += pelt__triangle_area_2d(m, m->uvs, t);
-        f->area_cdf[t] = (float)total;
+        r->area_cdf[t] = (float)total;
     }
     /* Mean world length of one mask-uv unit: converts droplet radii given
      * in mask units (pelt_rain) to the world units surface droplets use. */
-    f->world_per_uv = uv_total > 0.0 ? (float)sqrt(total / uv_total) : 1.0f;
-    f->rain_rng = pelt__rng_seed(1, 0x7261696eULL);
+    r->world_per_uv = uv_total > 0.0 ? (float)sqrt(total / uv_total) : 1.0f;
+    r->rng = pelt__rng_seed(1, RAIN_STREAM);
+    *out = r;
     return PELT_OK;
+}
+
+void pelt__rain_destroy(pelt__rain *r)
+{
+    if (!r) return;
+    free(r->area_cdf);
+    free(r);
+}
+
+void pelt__rain_set(pelt__rain *r, const pelt_rain *settings)
+{
+    r->settings = *settings;
+    r->rng = pelt__rng_seed(settings->seed, RAIN_STREAM);
+    r->carry = 0.0;
+}
+
+void pelt__rain_set_rate(pelt__rain *r, float rate)
+{
+    r->settings.rate = isfinite(rate) && rate > 0.0f ? rate : 0.0f;
+}
+
+/* The settings with defaults filled in: zero radius range -> [0.015, 0.04]
+ * uv, zero wetness range -> [0.5, 1]; reversed ranges are swapped. */
+static pelt_rain resolve(const pelt_rain *rain)
+{
+    pelt_rain r = *rain;
+    if (r.radius_min == 0.0f && r.radius_max == 0.0f) {
+        r.radius_min = 0.015f;
+        r.radius_max = 0.04f;
+    }
+    if (r.wetness_min == 0.0f && r.wetness_max == 0.0f) {
+        r.wetness_min = 0.5f;
+        r.wetness_max = 1.0f;
+    }
+    if (r.radius_min > r.radius_max) {
+        float t = r.radius_min;
+        r.radius_min = r.radius_max;
+        r.radius_max = t;
+    }
+    if (r.wetness_min > r.wetness_max) {
+        float t = r.wetness_min;
+        r.wetness_min = r.wetness_max;
+        r.wetness_max = t;
+    }
+    return r;
 }
 
 static float range(pelt__rng *r, float lo, float hi) { return pelt__rng_range(r, lo, hi); }
 
-/* Rain: rate * dt drops (fractions carried) from random points above the
- * mesh's bounds, falling along -Y; a drop that misses falls past. */
-void pelt__fur_rain_step(pelt_fur *f, float dt)
+size_t pelt__rain_step(pelt__rain *rain, pelt__wetness *mask, pelt__surface_index *index,
+                       const pelt__bvh *bvh, float dt)
 {
-    pelt_rain r = pelt__rain_resolve(&f->rain);
+    pelt_rain r = resolve(&rain->settings);
     double want = (double)r.rate * dt;
-    if (!(want > 0.0) || !isfinite(want)) return;
-    f->rain_carry += want;
-    double whole = floor(f->rain_carry);
-    f->rain_carry -= whole;
+    if (!(want > 0.0) || !isfinite(want)) return 0;
+    rain->carry += want;
+    double whole = floor(rain->carry);
+    rain->carry -= whole;
     size_t n = whole > (double)PELT__RAIN_MAX_PER_STEP ? PELT__RAIN_MAX_PER_STEP : (size_t)whole;
-    const float *lo = f->mesh->bounds_min, *hi = f->mesh->bounds_max;
+    const float *lo = rain->mesh->bounds_min, *hi = rain->mesh->bounds_max;
     const float down[3] = {0.0f, -1.0f, 0.0f};
     for (size_t i = 0; i < n; i++) {
-        float origin[3] = {range(&f->rain_rng, lo[0], hi[0]), hi[1] + 1.0f + (hi[1] - lo[1]),
-                           range(&f->rain_rng, lo[2], hi[2])};
-        float radius = range(&f->rain_rng, r.radius_min, r.radius_max) * f->world_per_uv;
-        float wetness = range(&f->rain_rng, r.wetness_min, r.wetness_max);
-        pelt_fur_add_droplet_ray(f, origin, down, radius, wetness);
+        float x = range(&rain->rng, lo[0], hi[0]);
+        float z = range(&rain->rng, lo[2], hi[2]);
+        float origin[3] = {x, hi[1] + 1.0f + (hi[1] - lo[1]), z};
+        float radius = range(&rain->rng, r.radius_min, r.radius_max) * rain->world_per_uv;
+        float wetness = range(&rain->rng, r.wetness_min, r.wetness_max);
+        pelt__droplet_ray(mask, rain->mesh, index, bvh, origin, down, radius, wetness);
     }
+    return n;
 }
 
-void pelt_fur_add_random_droplets(pelt_fur *f, const pelt_rain *rain, unsigned count)
+void pelt__rain_random_drops(const pelt__rain *rain, const pelt_rain *settings, unsigned count,
+                             pelt__wetness *mask, pelt__surface_index *index)
 {
-    pelt_rain r = pelt__rain_resolve(rain);
+    pelt_rain r = resolve(settings);
     pelt__rng rng = pelt__rng_seed(r.seed, 0x64726f70ULL);
-    size_t tris = f->mesh->triangle_count;
-    float total = f->area_cdf[tris - 1];
+    size_t tris = rain->mesh->triangle_count;
+    float total = rain->area_cdf[tris - 1];
     for (unsigned i = 0; i < count; i++) {
         /* A triangle with probability proportional to its area, then a
          * uniform point in it. */
@@ -65,13 +134,13 @@ void pelt_fur_add_random_droplets(pelt_fur *f, const pelt_rain *rain, unsigned c
         size_t a = 0, b = tris - 1;
         while (a < b) {
             size_t mid = a + (b - a) / 2;
-            if (f->area_cdf[mid] <= pick) a = mid + 1;
+            if (rain->area_cdf[mid] <= pick) a = mid + 1;
             else b = mid;
         }
         float s = sqrtf(pelt__rng_float(&rng)), t = pelt__rng_float(&rng);
         float bary[3] = {1.0f - s, s * (1.0f - t), s * t};
-        float radius = range(&rng, r.radius_min, r.radius_max) * f->world_per_uv;
+        float radius = range(&rng, r.radius_min, r.radius_max) * rain->world_per_uv;
         float wetness = range(&rng, r.wetness_min, r.wetness_max);
-        pelt_fur_add_droplet_at(f, a, bary, radius, wetness, NULL);
+        pelt__droplet_surface(mask, rain->mesh, index, a, bary, radius, wetness, NULL);
     }
 }

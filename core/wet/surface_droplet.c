@@ -220,7 +220,7 @@ static bool droplet_in_triangle(const pelt_mesh *mesh, size_t t, pelt_vec3 p, fl
     double s = (a22 * b1 - a12 * b2) / det, u = (a11 * b2 - a12 * b1) / det;
     c[0] = (float)(t0[0] + s * ((double)t1[0] - t0[0]) + u * ((double)t2[0] - t0[0]));
     c[1] = (float)(t0[1] + s * ((double)t1[1] - t0[1]) + u * ((double)t2[1] - t0[1]));
-    /* Same scale as pelt__droplet_on_surface: sqrt(uv area / world area). */
+    /* uv length per world length on t: sqrt(uv area / world area). */
     *r = radius * (float)sqrt(uv_area2 / sqrt(det));
     return true;
 }
@@ -305,20 +305,12 @@ static void wet_triangle(pelt__wetness *m, const pelt_mesh *mesh, size_t t, pelt
     }
 }
 
-/* r |= {x0, y0, x1, y1} (exclusive ends), the rectangle convention of
- * core/wetness.c. */
+/* r grows to hold the inclusive box b (a mask rectangle, core/wet/mask.h). */
 static void grow_rect(unsigned r[4], const changed_box *b)
 {
     if (b->x0 > b->x1 || b->y0 > b->y1) return;
     unsigned add[4] = {b->x0, b->y0, b->x1 + 1, b->y1 + 1};
-    if (r[0] >= r[2] || r[1] >= r[3]) {
-        memcpy(r, add, sizeof add);
-        return;
-    }
-    if (add[0] < r[0]) r[0] = add[0];
-    if (add[1] < r[1]) r[1] = add[1];
-    if (add[2] > r[2]) r[2] = add[2];
-    if (add[3] > r[3]) r[3] = add[3];
+    pelt__rect_union(r, add);
 }
 
 static bool same_uv(const pelt_mesh *mesh, uint32_t a, uint32_t b)
@@ -467,4 +459,14 @@ pelt_status pelt__droplet_surface(pelt__wetness *m, const pelt_mesh *mesh,
     grow_rect(m->dirty, &box);
     if (wd > 0.0f) grow_rect(m->wet, &box);
     return PELT_OK;
+}
+
+bool pelt__droplet_ray(pelt__wetness *m, const pelt_mesh *mesh, pelt__surface_index *index,
+                       const pelt__bvh *bvh, const float origin[3], const float dir[3],
+                       float radius_world, float wetness)
+{
+    pelt__hit hit;
+    if (!bvh || !pelt__bvh_raycast(bvh, origin, dir, INFINITY, &hit)) return false;
+    return pelt__droplet_surface(m, mesh, index, hit.triangle, hit.bary, radius_world, wetness,
+                                 NULL) == PELT_OK;
 }

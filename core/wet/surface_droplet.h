@@ -6,7 +6,8 @@
 #ifndef PELT_CORE_SURFACE_DROPLET_H
 #define PELT_CORE_SURFACE_DROPLET_H
 
-#include "core/wet/wetness.h"
+#include "core/mesh/raycast.h"
+#include "core/wet/mask.h"
 
 #include <stdint.h>
 
@@ -64,5 +65,14 @@ pelt_status pelt__droplet_surface(pelt__wetness *m, const pelt_mesh *mesh,
                                   pelt__surface_index *index, size_t triangle,
                                   const float bary[3], float radius_world, float wetness,
                                   pelt_error *err);
+
+/* The one ray -> droplet path (a click, a rain drop): the closest hit of
+ * the ray on bvh (built from mesh), then pelt__droplet_surface there with
+ * radius_world and wetness. dir need not be unit length. Returns false on
+ * a miss or when the droplet is refused (non-finite input, negative
+ * radius); the mask is then unchanged. No allocation. */
+bool pelt__droplet_ray(pelt__wetness *m, const pelt_mesh *mesh, pelt__surface_index *index,
+                       const pelt__bvh *bvh, const float origin[3], const float dir[3],
+                       float radius_world, float wetness);
 
 #endif

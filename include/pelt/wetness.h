@@ -21,13 +21,18 @@ typedef struct pelt_droplet {
     float wetness;
 } pelt_droplet;
 
-/* Random rain: droplets per second at seeded random places, uniform over
- * [0,1]^2 of the mask, radius and wetness uniform in their ranges.
- * Deterministic for a seed and a sequence of time steps; fractional
- * droplets carry over from one step to the next. */
+/* Rain (pelt_fur_set_rain) and random drops (pelt_fur_add_random_droplets):
+ * drops per second from seeded random places, radius and wetness uniform
+ * in their ranges (reversed ranges are swapped). Rain falls along the
+ * mesh's -Y axis from random points above its bounds, uniform over its X-Z
+ * extent, and wets where it hits; a drop that misses falls past. At most
+ * 65,536 drops fall in one step. Deterministic for a seed and a sequence
+ * of time steps; fractional drops carry over from one step to the next.
+ * Every drop wets by distance on the surface, as pelt_fur_add_droplet_at. */
 typedef struct pelt_rain {
-    float rate;             /* droplets per second, 0 = no rain */
-    float radius_min, radius_max;   /* in mask uv units; both 0 = [0.015, 0.04] */
+    float rate;             /* drops per second, 0 = no rain */
+    float radius_min, radius_max;   /* in mask uv units, made world units by the
+                                       mesh's mean uv scale; both 0 = [0.015, 0.04] */
     float wetness_min, wetness_max; /* both 0 = [0.5, 1] */
     uint32_t seed;
 } pelt_rain;
@@ -50,7 +55,9 @@ pelt_status pelt_fur_add_droplet_at(pelt_fur *fur, size_t triangle, const float 
 
 /* A droplet where a ray (in mesh coordinates) first hits the mesh, found
  * through a BVH built with the fur (fast enough per mouse event on a
- * 365k-triangle mesh). False when the ray misses. */
+ * 365k-triangle mesh), then wetting as pelt_fur_add_droplet_at there; rain
+ * takes the same path. False when the ray misses or the radius or wetness
+ * is not a finite number (radius >= 0). */
 bool pelt_fur_add_droplet_ray(pelt_fur *fur, const float origin[3], const float direction[3],
                               float radius_world, float wetness);
 
@@ -60,9 +67,10 @@ bool pelt_fur_add_droplet_ray(pelt_fur *fur, const float origin[3], const float 
  * wets by distance on the surface, across patch borders. */
 void pelt_fur_add_random_droplets(pelt_fur *fur, const pelt_rain *rain, unsigned count);
 
-/* Rain that pelt_fur_step lets fall (rate 0 stops it): drops fall along
- * the mesh's -Y axis from above its bounds and wet where they hit (top
- * surfaces first). And the drying rate: wetness lost per second. */
+/* Rain that pelt_fur_step lets fall (rate 0 stops it; see pelt_rain):
+ * drops fall along the mesh's -Y axis from above its bounds and wet where
+ * they hit (top surfaces first). Restarts the random sequence from
+ * rain->seed. And the drying rate: wetness lost per second. */
 void pelt_fur_set_rain(pelt_fur *fur, const pelt_rain *rain);
 void pelt_fur_set_dry_rate(pelt_fur *fur, float rate_per_second);
 /* Dries all the fur at once (a towel). */

@@ -317,6 +317,60 @@ static bool find_interior(const fixture *f, float radius, size_t *tri)
     return false;
 }
 
+/* The droplet a surface point makes in uv space, by hand: centre = the
+ * barycentric blend of the triangle's uvs, radius scaled by the triangle's
+ * sqrt(uv area / world area). */
+static pelt_droplet uv_droplet(const pelt_mesh *m, size_t t, const float bary[3], float radius,
+                               float wetness)
+{
+    pelt_droplet d = {{0.0f, 0.0f}, 0.0f, wetness};
+    for (int k = 0; k < 3; k++) {
+        d.center[0] += bary[k] * uv(m, t, k)[0];
+        d.center[1] += bary[k] * uv(m, t, k)[1];
+    }
+    const float *a = uv(m, t, 0), *b = uv(m, t, 1), *c = uv(m, t, 2);
+    float uv_area = 0.5f * fabsf((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+    float world_area = 0.5f * v3_len(v3_cross(v3_sub(pos(m, t, 1), pos(m, t, 0)),
+                                              v3_sub(pos(m, t, 2), pos(m, t, 0))));
+    d.radius = radius * sqrtf(uv_area / world_area);
+    return d;
+}
+
+/* One triangle, world area 2, uv area 0.125: a drop of world radius 0.4 is
+ * a clump of uv radius 0.4 * sqrt(0.125 / 2) = 0.1 centred on the
+ * barycentric blend of the uvs. */
+static void point_drop_scales_radius_by_uv_area(void)
+{
+    const float p[9] = {0, 0, 0, 2, 0, 0, 0, 2, 0}, t[6] = {0, 0, 0.5f, 0, 0, 0.5f};
+    const uint32_t ix[3] = {0, 1, 2};
+    pelt_mesh_data md = {.positions = p, .uvs = t, .vertex_count = 3, .indices = ix,
+                         .triangle_count = 1};
+    pelt_mesh *m = NULL;
+    pelt__surface_index *index = NULL;
+    pelt__wetness *mask = NULL;
+    CHECK(pelt_mesh_create(&md, &m, NULL) == PELT_OK);
+    if (!m) return;
+    CHECK(pelt__surface_index_create(m, &index, NULL) == PELT_OK);
+    CHECK(pelt__wetness_create(16, 16, &mask, NULL) == PELT_OK);
+    const float bary[3] = {0.2f, 0.3f, 0.5f};
+    CHECK(pelt__droplet_surface(mask, m, index, 0, bary, 0.4f, 0.6f, NULL) == PELT_OK);
+    /* Texel (2, 4) holds uv (0.15, 0.25). */
+    const float *x = mask->texels + (4 * 16 + 2) * 4;
+    CHECK_NEAR(x[0], 0.15, 1e-6);
+    CHECK_NEAR(x[1], 0.25, 1e-6);
+    CHECK_NEAR(x[2], 0.1, 1e-6);
+    CHECK(x[3] == 0.6f);
+    pelt_droplet d = uv_droplet(m, 0, bary, 0.4f, 0.6f);
+    CHECK_NEAR(d.radius, 0.1, 1e-6);
+    pelt_error err = {0};
+    CHECK(pelt__droplet_surface(mask, m, index, 1, bary, 0.4f, 0.6f, &err) ==
+          PELT_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(err.message, "triangle 1") != NULL);
+    pelt__wetness_destroy(mask);
+    pelt__surface_index_destroy(index);
+    pelt_mesh_destroy(m);
+}
+
 static void interior_drop_matches_mask_droplet(void)
 {
     fixture f = sphere_fixture();
@@ -335,8 +389,7 @@ static void interior_drop_matches_mask_droplet(void)
         memcpy(ref->texels, f.mask->texels, n * 4 * sizeof(float));
         CHECK(pelt__droplet_surface(f.mask, f.mesh, f.index, tri, bary[k], radius, wet[k], NULL) ==
               PELT_OK);
-        pelt_droplet d;
-        CHECK(pelt__droplet_on_surface(f.mesh, tri, bary[k], radius, wet[k], &d, NULL) == PELT_OK);
+        pelt_droplet d = uv_droplet(f.mesh, tri, bary[k], radius, wet[k]);
         CHECK(pelt__wetness_add_droplet(ref, &d, NULL) == PELT_OK);
         for (size_t i = 0; i < n; i++) {
             const float *a = f.mask->texels + i * 4, *b = ref->texels + i * 4;
@@ -548,6 +601,7 @@ int main(void)
     RUN(border_drop_is_one_clump_in_3d);
     RUN(wet_texels_lie_within_world_radius);
     RUN(changes_stay_inside_dirty_and_wet_rects);
+    RUN(point_drop_scales_radius_by_uv_area);
     RUN(interior_drop_matches_mask_droplet);
     RUN(negative_drop_dries_the_clump);
     RUN(bad_arguments_are_rejected);

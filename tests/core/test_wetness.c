@@ -1,8 +1,11 @@
 /* Wetness mask: Alg. 1 branches (Silva et al. §3.1 as DESIGN.md reads it),
- * drying, rain, dirty rectangles, painting and the mask picture. */
+ * drying, dirty rectangles, painting and the mask picture. Rain and the
+ * ray -> droplet path are in test_rain.c, droplets at surface points in
+ * test_surface_droplet.c. */
 #include "support/check.h"
-#include "core/mesh/mesh_internal.h"
-#include "core/wet/wetness.h"
+#include "core/wet/mask.h"
+#include "core/wet/paint.h"
+#include "core/wet/picture.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -323,78 +326,6 @@ static void wetness_small_droplet_touches_only_its_footprint(void)
     pelt__wetness_destroy(m);
 }
 
-static void wetness_rain_is_deterministic_per_seed(void)
-{
-    pelt__wetness *a = make_mask(64, 64), *b = make_mask(64, 64), *c = make_mask(64, 64);
-    pelt_rain rain = {.rate = 50.0f, .seed = 7};
-    pelt_rain other = rain;
-    other.seed = 8;
-    pelt__rain_state sa, sb, sc;
-    pelt__rain_start(&sa, &rain);
-    pelt__rain_start(&sb, &rain);
-    pelt__rain_start(&sc, &other);
-    for (int i = 0; i < 30; i++) {
-        float dt = 0.01f + 0.002f * (float)(i % 7);
-        pelt__wetness_rain(a, &rain, &sa, dt);
-        pelt__wetness_rain(b, &rain, &sb, dt);
-        pelt__wetness_rain(c, &other, &sc, dt);
-    }
-    size_t bytes = 64 * 64 * 4 * sizeof(float);
-    CHECK(memcmp(a->texels, b->texels, bytes) == 0);
-    CHECK(memcmp(a->texels, c->texels, bytes) != 0);
-    pelt__wetness_destroy(a);
-    pelt__wetness_destroy(b);
-    pelt__wetness_destroy(c);
-}
-
-static void wetness_rain_rate_is_right_on_average(void)
-{
-    pelt__wetness *m = make_mask(32, 32);
-    pelt_rain rain = {.rate = 37.5f, .radius_min = 0.01f, .radius_max = 0.02f,
-                      .wetness_min = 0.2f, .wetness_max = 0.4f, .seed = 3};
-    pelt__rain_state st;
-    pelt__rain_start(&st, &rain);
-    size_t total = 0;
-    double time = 0.0;
-    for (int i = 0; i < 1000; i++) {
-        float dt = (i % 3 == 0) ? 0.005f : 0.02f; /* fractions must carry */
-        total += pelt__wetness_rain(m, &rain, &st, dt);
-        time += dt;
-    }
-    /* Accumulated fractions: off by less than one droplet overall. */
-    CHECK_NEAR((double)total, 37.5 * time, 1.0);
-    /* Every wet texel's wetness is from the range or merges clamped to 1. */
-    for (unsigned i = 0; i < 32 * 32; i++) {
-        float r = m->texels[i * 4 + 3];
-        CHECK(r == 0.0f || (r >= 0.2f - 1e-6f && r <= 1.0f));
-    }
-    CHECK(pelt__wetness_rain(m, &rain, &st, 0.0f) == 0);
-    pelt_rain none = {0};
-    CHECK(pelt__wetness_rain(m, &none, &st, 1.0f) == 0);
-    pelt__wetness_destroy(m);
-}
-
-static void wetness_rain_positions_cover_the_mask_uniformly(void)
-{
-    /* Droplets covering a whole 2x2 mask with wetness 1 merge with
-     * alpha = 1, so every texel holds the last droplet's centre. */
-    pelt__wetness *m = make_mask(2, 2);
-    pelt_rain rain = {.rate = 1.0f, .radius_min = 1.5f, .radius_max = 1.5f,
-                      .wetness_min = 1.0f, .wetness_max = 1.0f, .seed = 11};
-    pelt__rain_state st;
-    pelt__rain_start(&st, &rain);
-    double sum_x = 0.0, sum_y = 0.0;
-    int n = 4000;
-    for (int i = 0; i < n; i++) {
-        pelt__wetness_rain(m, &rain, &st, 1.0f);
-        sum_x += m->texels[0];
-        sum_y += m->texels[1];
-    }
-    CHECK_NEAR(sum_x / n, 0.5, 0.02);
-    CHECK_NEAR(sum_y / n, 0.5, 0.02);
-    pelt__wetness_destroy(m);
-}
-
 /* Draws two vertical bars ("II") in a w x h image. */
 static uint8_t *two_bars(unsigned w, unsigned h)
 {
@@ -551,59 +482,6 @@ static void wetness_picture_is_black_dry_and_blue_wet(void)
     pelt__wetness_destroy(m);
 }
 
-static void wetness_surface_droplet_scales_radius_by_uv_area(void)
-{
-    float pos[9] = {0, 0, 0, 2, 0, 0, 0, 2, 0};     /* world area 2 */
-    float uv[6] = {0, 0, 0.5f, 0, 0, 0.5f};         /* uv area 0.125 */
-    uint32_t idx[3] = {0, 1, 2};
-    struct pelt_mesh mesh = {0};
-    mesh.vertex_count = 3;
-    mesh.triangle_count = 1;
-    mesh.positions = pos;
-    mesh.uvs = uv;
-    mesh.indices = idx;
-    float bary[3] = {0.2f, 0.3f, 0.5f};
-    pelt_droplet d;
-    CHECK(pelt__droplet_on_surface(&mesh, 0, bary, 0.4f, 0.6f, &d, NULL) == PELT_OK);
-    CHECK_NEAR(d.center[0], 0.15, 1e-6);
-    CHECK_NEAR(d.center[1], 0.25, 1e-6);
-    CHECK_NEAR(d.radius, 0.4 * 0.25, 1e-6); /* sqrt(0.125 / 2) = 0.25 */
-    CHECK(d.wetness == 0.6f);
-    pelt_error err = {0};
-    CHECK(pelt__droplet_on_surface(&mesh, 1, bary, 0.4f, 0.6f, &d, &err) ==
-          PELT_ERR_INVALID_ARGUMENT);
-    CHECK(strstr(err.message, "triangle 1") != NULL);
-}
-
-static void wetness_ray_droplet_lands_where_the_ray_hits(void)
-{
-    /* A unit square in z = 0 of two triangles, uv = (x, y). */
-    float pos[12] = {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0};
-    float uv[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-    uint32_t idx[6] = {0, 1, 2, 0, 2, 3};
-    struct pelt_mesh mesh = {0};
-    mesh.vertex_count = 4;
-    mesh.triangle_count = 2;
-    mesh.positions = pos;
-    mesh.uvs = uv;
-    mesh.indices = idx;
-    pelt__bvh *bvh = NULL;
-    CHECK(pelt__bvh_build(&mesh, &bvh, NULL) == PELT_OK);
-    if (!bvh) return;
-    float o[3] = {0.3f, 0.7f, 2.0f}, dir[3] = {0.0f, 0.0f, -1.0f};
-    pelt_droplet d;
-    pelt__hit hit;
-    CHECK(pelt__droplet_from_ray(&mesh, bvh, o, dir, 0.05f, 0.9f, &d, &hit));
-    CHECK(hit.triangle == 1); /* (0.3, 0.7) lies above the diagonal */
-    CHECK_NEAR(hit.t, 2.0, 1e-6);
-    CHECK_NEAR(d.center[0], 0.3, 1e-6);
-    CHECK_NEAR(d.center[1], 0.7, 1e-6);
-    CHECK_NEAR(d.radius, 0.05, 1e-6); /* uv and world areas equal */
-    float miss[3] = {2.0f, 2.0f, 2.0f};
-    CHECK(!pelt__droplet_from_ray(&mesh, bvh, miss, dir, 0.05f, 0.9f, &d, NULL));
-    pelt__bvh_destroy(bvh);
-}
-
 int main(void)
 {
     RUN(wetness_default_size_is_256);
@@ -621,14 +499,9 @@ int main(void)
     RUN(wetness_drying_reaches_exactly_zero_and_stops);
     RUN(wetness_dirty_rect_covers_exactly_the_changed_texels);
     RUN(wetness_small_droplet_touches_only_its_footprint);
-    RUN(wetness_rain_is_deterministic_per_seed);
-    RUN(wetness_rain_rate_is_right_on_average);
-    RUN(wetness_rain_positions_cover_the_mask_uniformly);
     RUN(wetness_painted_word_becomes_clumps_along_strokes);
     RUN(wetness_word_written_in_water_becomes_clumps_along_letters);
     RUN(wetness_painted_image_top_row_is_v_one);
     RUN(wetness_picture_is_black_dry_and_blue_wet);
-    RUN(wetness_surface_droplet_scales_radius_by_uv_area);
-    RUN(wetness_ray_droplet_lands_where_the_ray_hits);
     return check_summary();
 }

@@ -5,7 +5,7 @@
 
 #include "core/wet/clump.h"
 #include "core/fur/fur_shape.h"
-#include "core/wet/wetness.h"
+#include "core/wet/mask.h"
 #include "core/fur/shading.h"
 
 enum { W = 64, H = 48 };
@@ -139,7 +139,7 @@ static const char clump_main[] =
     "  o = vec4(float(r), q, clump_profile(h, w, 16.0));\n"
     "}\n";
 
-/* Silva Eq. 5 and Alg. 2 in the shell fragment shader vs core/clump.c, on
+/* Silva Eq. 5 and Alg. 2 in the shell fragment shader vs core/wet/clump.c, on
  * a mask with overlapping droplets. */
 static void clump_glsl_matches_c(void)
 {
