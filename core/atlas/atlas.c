@@ -9,6 +9,7 @@
 #include "core/mesh/mesh_internal.h"
 #include "core/base/rng.h"
 #include "core/base/vec.h"
+#include "core/base/weld.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -999,7 +1000,7 @@ pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
         return fail_oom(err, "atlas builder");
     }
     pelt_status st = PELT_OK;
-    if (!pelt__weld_positions(in->positions, b.vc, b.canon) ||
+    if (!pelt__weld(in->positions, NULL, b.vc, b.canon) ||
         !pelt__direction_field(in->positions, in->normals, b.vc, in->indices, b.tc, b.canon,
                                d.direction, d.vertex_directions, iters, b.dir, b.weight)) {
         builder_free(&b);

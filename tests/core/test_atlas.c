@@ -4,6 +4,7 @@
 #include "support/check.h"
 #include "core/atlas/atlas.h"
 #include "core/atlas/direction_field.h"
+#include "core/base/weld.h"
 #include "core/mesh/mesh_internal.h"
 
 #include <stdlib.h>
@@ -267,7 +268,7 @@ static void direction_field_stands_up_at_poles(void)
     uint32_t *canon = malloc(m->vertex_count * sizeof *canon);
     float *dir = malloc(m->vertex_count * 12), *w = malloc(m->vertex_count * 4);
     const float g[3] = {0, -1, 0};
-    CHECK(pelt__weld_positions(m->positions, m->vertex_count, canon));
+    CHECK(pelt__weld(m->positions, NULL, m->vertex_count, canon));
     CHECK(pelt__direction_field(m->positions, m->normals, m->vertex_count, m->indices, m->triangle_count,
                                 canon, g, NULL, 4, dir, w));
     size_t poles = 0, equator = 0;
@@ -299,7 +300,7 @@ static void direction_field_uses_per_vertex_vectors(void)
     float *dir = malloc(n * 12), *w = malloc(n * 4), *pv = calloc(n, 12);
     for (size_t v = 0; v < n; v++) pv[3 * v] = 1.0f, pv[3 * v + 1] = 5.0f; /* normal part dropped */
     const float g[3] = {0, 0, 1};
-    CHECK(pelt__weld_positions(m->positions, n, canon));
+    CHECK(pelt__weld(m->positions, NULL, n, canon));
     CHECK(pelt__direction_field(m->positions, m->normals, n, m->indices, m->triangle_count, canon, g, pv, 4, dir, w));
     for (size_t v = 0; v < n; v++) {
         CHECK_NEAR(dir[3 * v], 1.0, 1e-5);
