@@ -1,6 +1,6 @@
 /* Validation of a uv set: flipped triangles and texels claimed twice,
  * found by rasterizing each triangle's uv footprint. */
-#include "core/atlas/atlas.h"
+#include "core/atlas/atlas_internal.h"
 
 #include "core/base/error.h"
 #include "core/mesh/mesh_internal.h"

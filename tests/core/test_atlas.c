@@ -2,7 +2,8 @@
 #include "pelt/atlas.h"
 
 #include "support/check.h"
-#include "core/atlas/atlas.h"
+#include "core/atlas/atlas_cache.h"
+#include "core/atlas/atlas_internal.h"
 #include "core/atlas/direction_field.h"
 #include "core/base/weld.h"
 #include "core/mesh/mesh_internal.h"
