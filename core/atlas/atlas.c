@@ -4,7 +4,6 @@
 #include "core/atlas/atlas_cache.h"
 #include "core/atlas/direction_field.h"
 #include "core/base/error.h"
-#include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
 #include "core/base/weld.h"
 
@@ -59,14 +58,6 @@ pelt_mesh *pelt_atlas_take_mesh(pelt_atlas *a)
     if (!a) return NULL;
     pelt_mesh *m = a->mesh;
     a->mesh = NULL;
-    /* The direction field goes with the mesh as the comb direction, scaled
-     * by its weight, so the renderer combs along the field and stands the
-     * fur up where it vanishes. */
-    if (m && a->directions && a->weights && !m->comb) {
-        m->comb = pelt__calloc(m->vertex_count, 3 * sizeof(float));
-        for (size_t i = 0; m->comb && i < m->vertex_count; i++)
-            for (int k = 0; k < 3; k++) m->comb[3 * i + k] = a->directions[3 * i + k] * a->weights[i];
-    }
     return m;
 }
 const pelt_atlas_stats *pelt_atlas_get_stats(const pelt_atlas *a) { return a ? &a->stats : NULL; }
@@ -137,36 +128,83 @@ static bool builder_alloc(pelt__atlas_builder *b)
 
 /* ---- the output mesh --------------------------------------------------- */
 
-/* Makes the output mesh of an atlas whose per-vertex arrays are filled:
- * positions and the original normals come from `in` through source_vertex
- * (shells must not crack where vertices split), uvs, fur_uvs and indices
- * are given. Fills the count, stretch and flip statistics. */
+/* Makes the output mesh of an atlas whose per-vertex arrays are filled,
+ * through pelt_mesh_create as an embedder would: positions and the original
+ * normals come from `in` through source_vertex (shells must not crack where
+ * vertices split), the comb direction is the direction field times its
+ * weight (the fur stands up where the field vanishes), uvs, fur_uvs and
+ * indices are given. The vertices are first put in the order pelt_mesh_create
+ * numbers them (as the triangles first use them, unused ones left out), the
+ * atlas's own arrays with them, so the mesh and the arrays agree and the mesh
+ * round-trips through pelt_mesh_get_data. Fills the count, stretch and flip
+ * statistics. */
 static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const float *uvs,
                                     const float *fur_uvs, const uint32_t *indices,
                                     pelt_error *err)
 {
-    pelt_mesh *m = pelt__mesh_alloc(a->vertex_count, a->triangle_count);
-    if (m) m->fur_uvs = pelt__calloc(a->vertex_count, 2 * sizeof(float));
-    if (!m || !m->fur_uvs) {
-        pelt_mesh_destroy(m);
+    const pelt_mesh_data src = pelt_mesh_get_data(in);
+    size_t nv = a->vertex_count, tc = a->triangle_count;
+    /* 3 + 3 + 3 + 2 + 2 + 3 (directions) + 1 (weight) floats and 2 + 1
+     * (old index) indices per vertex, 3 indices per triangle. */
+    float *fbuf = pelt__calloc(nv, 17 * sizeof(float));
+    uint32_t *ibuf = pelt__calloc(3 * nv + 3 * tc, sizeof(uint32_t));
+    if (!fbuf || !ibuf) {
+        free(fbuf), free(ibuf);
         return pelt__atlas_fail_oom(err, "output mesh");
     }
-    for (size_t o = 0; o < a->vertex_count; o++) {
-        uint32_t v = a->source_vertex[o];
-        memcpy(m->positions + 3 * o, in->positions + 3 * v, 3 * sizeof(float));
-        memcpy(m->normals + 3 * o, in->normals + 3 * v, 3 * sizeof(float));
+    float *positions = fbuf, *normals = fbuf + 3 * nv, *comb = fbuf + 6 * nv;
+    float *ord_uvs = fbuf + 9 * nv, *ord_fur = fbuf + 11 * nv, *dirs = fbuf + 13 * nv,
+          *wts = fbuf + 16 * nv;
+    uint32_t *old_of = ibuf, *source = ibuf + nv, *welded = ibuf + 2 * nv,
+             *ord_indices = ibuf + 3 * nv;
+    uint32_t *new_of = source; /* scratch until the gather below: new index + 1, 0 = unused */
+    size_t vc = 0;
+    for (size_t i = 0; i < 3 * tc; i++) {
+        uint32_t v = indices[i];
+        if (!new_of[v]) {
+            new_of[v] = (uint32_t)++vc;
+            old_of[vc - 1] = v;
+        }
+        ord_indices[i] = new_of[v] - 1;
     }
-    memcpy(m->uvs, uvs, a->vertex_count * 2 * sizeof(float));
-    memcpy(m->fur_uvs, fur_uvs, a->vertex_count * 2 * sizeof(float));
-    memcpy(m->indices, indices, a->triangle_count * 3 * sizeof(uint32_t));
-    pelt__mesh_finish(m, false);
-    m->stats.computed_normals = in->stats.computed_normals;
-    m->stats.fallback_uvs = false;
-    m->stats.dropped_degenerate = in->stats.dropped_degenerate;
+    for (size_t o = 0; o < vc; o++) {
+        uint32_t p = old_of[o];
+        source[o] = a->source_vertex[p]; /* overwrites new_of, no longer needed */
+        welded[o] = a->welded_vertex[p];
+        memcpy(dirs + 3 * o, a->directions + 3 * p, 3 * sizeof(float));
+        wts[o] = a->weights[p];
+        memcpy(ord_uvs + 2 * o, uvs + 2 * p, 2 * sizeof(float));
+        memcpy(ord_fur + 2 * o, fur_uvs + 2 * p, 2 * sizeof(float));
+        memcpy(positions + 3 * o, src.positions + 3 * source[o], 3 * sizeof(float));
+        memcpy(normals + 3 * o, src.normals + 3 * source[o], 3 * sizeof(float));
+        for (int k = 0; k < 3; k++) comb[3 * o + k] = dirs[3 * o + k] * wts[o];
+    }
+    a->vertex_count = vc;
+    memcpy(a->source_vertex, source, vc * sizeof(uint32_t));
+    memcpy(a->welded_vertex, welded, vc * sizeof(uint32_t));
+    memcpy(a->directions, dirs, vc * 3 * sizeof(float));
+    memcpy(a->weights, wts, vc * sizeof(float));
+    pelt_mesh_data d = {.positions = positions, .normals = normals, .uvs = ord_uvs,
+                        .vertex_count = vc, .indices = ord_indices, .triangle_count = tc,
+                        .fur_uvs = ord_fur, .comb = comb};
+    pelt_error merr = {0};
+    pelt_mesh *m = NULL;
+    pelt_status st = pelt_mesh_create(&d, &m, &merr);
+    free(fbuf), free(ibuf);
+    if (st != PELT_OK) return pelt__fail(err, st, "pelt_atlas_create: output mesh: %s", merr.message);
+    const pelt_mesh_data out = pelt_mesh_get_data(m);
+    if (out.vertex_count != vc || out.triangle_count != tc) {
+        /* The input passed the same validation, so this cannot happen; the
+         * per-vertex arrays would no longer match the mesh. */
+        pelt_mesh_destroy(m);
+        return pelt__fail(err, PELT_ERR_FORMAT,
+                          "pelt_atlas_create: validation kept %zu of %zu triangles of the output mesh",
+                          out.triangle_count, tc);
+    }
     a->mesh = m;
-    a->stats.vertex_count = a->vertex_count;
-    a->stats.triangle_count = a->triangle_count;
-    pelt__atlas_uv_stats(m->positions, m->uvs, m->indices, m->triangle_count, &a->stats);
+    a->stats.vertex_count = vc;
+    a->stats.triangle_count = tc;
+    pelt__atlas_uv_stats(out.positions, out.uvs, out.indices, tc, &a->stats);
     return PELT_OK;
 }
 

@@ -21,6 +21,10 @@
  * small enough to keep genuine slivers of a million-triangle scan. */
 #define PELT__MIN_AREA_FRACTION 1e-12
 
+/* A normal whose length is within this of 1 counts as unit: a few float
+ * roundings of a normalised vector (which are up to ~3e-7). */
+#define PELT__UNIT_TOLERANCE 1e-6
+
 pelt_mesh *pelt__mesh_alloc(size_t vertex_count, size_t triangle_count)
 {
     if (vertex_count > (size_t)UINT32_MAX) return NULL; /* indices are 32-bit */
@@ -493,10 +497,13 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
             for (int k = 0; k < 3; k++) m->comb[3 * o + k] = isfinite(c[k]) ? c[k] : 0.0f;
         }
         if (normals_ok) {
-            /* Normalised in double: tiny or huge input normals stay finite. */
+            /* Normalised in double: tiny or huge input normals stay finite.
+             * A normal already unit to float precision is kept as given, so
+             * creating a mesh from pelt_mesh_get_data changes nothing. */
             const float *n = data->normals + 3 * i;
             double l = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
-            for (int k = 0; k < 3; k++) m->normals[3 * o + k] = (float)(n[k] / l);
+            for (int k = 0; k < 3; k++)
+                m->normals[3 * o + k] = fabs(l - 1.0) <= PELT__UNIT_TOLERANCE ? n[k] : (float)(n[k] / l);
         }
     }
     free(keep);
