@@ -4,7 +4,6 @@
 #include "core/atlas/atlas_cache.h"
 #include "core/atlas/direction_field.h"
 #include "core/base/error.h"
-#include "core/base/vec.h"
 #include "core/base/weld.h"
 
 #include <math.h>
@@ -239,16 +238,9 @@ static pelt_status build_mesh_uvs(const pelt_mesh *in, float density, const floa
         free(fur_uvs);
         return pelt__atlas_fail_oom(err, "atlas arrays");
     }
-    double tot_uv = 0, tot_w = 0;
-    for (size_t t = 0; t < m.triangle_count; t++) {
-        const uint32_t *tri = m.indices + 3 * t;
-        const float *u = m.uvs;
-        tot_uv += fabs((u[2 * tri[1]] - u[2 * tri[0]]) * (u[2 * tri[2] + 1] - u[2 * tri[0] + 1]) -
-                       (u[2 * tri[2]] - u[2 * tri[0]]) * (u[2 * tri[1] + 1] - u[2 * tri[0] + 1]));
-        pelt_vec3 p0 = v3_load(m.positions + 3 * tri[0]);
-        tot_w += v3_len(v3_cross(v3_sub(v3_load(m.positions + 3 * tri[1]), p0),
-                                 v3_sub(v3_load(m.positions + 3 * tri[2]), p0)));
-    }
+    double tot_uv, tot_w;
+    pelt__atlas_area_totals(m.positions, m.uvs, m.indices, m.triangle_count, &tot_uv, &tot_w,
+                            NULL, NULL);
     float k = tot_uv > 0 ? (float)(density * sqrt(tot_w / tot_uv)) : density;
     for (size_t v = 0; v < m.vertex_count; v++) {
         a->source_vertex[v] = (uint32_t)v;

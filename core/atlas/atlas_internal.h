@@ -137,6 +137,12 @@ pelt_status pelt__atlas_pack(const pelt__atlas_builder *b, unsigned mask, float 
 
 /* ---- atlas_stats.c ------------------------------------------------------- */
 
+/* Twice the total unsigned uv area and twice the total world area of the
+ * triangles, and how many have positive / negative uv orientation (either
+ * pointer may be NULL). */
+void pelt__atlas_area_totals(const float *positions, const float *uvs, const uint32_t *indices,
+                             size_t triangle_count, double *uv_total, double *world_total,
+                             size_t *positive, size_t *negative);
 /* Fills st->flipped and the stretch statistics of a uv set against the
  * world areas of the triangles. */
 void pelt__atlas_uv_stats(const float *positions, const float *uvs, const uint32_t *indices,

@@ -17,18 +17,30 @@ static void doubled_areas(const float *pos, const float *uv, const uint32_t *tri
     *w = 2.0 * (0.5f * v3_len(v3_cross(e1, e2)));
 }
 
-void pelt__atlas_uv_stats(const float *positions, const float *uv, const uint32_t *indices,
-                          size_t triangle_count, pelt_atlas_stats *st)
+void pelt__atlas_area_totals(const float *positions, const float *uvs, const uint32_t *indices,
+                             size_t triangle_count, double *uv_total, double *world_total,
+                             size_t *positive, size_t *negative)
 {
     double tot_uv = 0, tot_w = 0;
     size_t pos = 0, neg = 0;
     for (size_t t = 0; t < triangle_count; t++) {
         double a, w;
-        doubled_areas(positions, uv, indices + 3 * t, &a, &w);
+        doubled_areas(positions, uvs, indices + 3 * t, &a, &w);
         tot_uv += fabs(a);
         tot_w += w;
         pos += a > 0, neg += a < 0;
     }
+    *uv_total = tot_uv, *world_total = tot_w;
+    if (positive) *positive = pos;
+    if (negative) *negative = neg;
+}
+
+void pelt__atlas_uv_stats(const float *positions, const float *uv, const uint32_t *indices,
+                          size_t triangle_count, pelt_atlas_stats *st)
+{
+    double tot_uv, tot_w;
+    size_t pos, neg;
+    pelt__atlas_area_totals(positions, uv, indices, triangle_count, &tot_uv, &tot_w, &pos, &neg);
     st->flipped = pos >= neg ? neg : pos;
     double norm = tot_uv > 0 ? tot_w / tot_uv : 0, sum = 0, lo = INFINITY, hi = 0;
     size_t counted = 0;
