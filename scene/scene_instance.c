@@ -232,13 +232,16 @@ static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
 {
     pelt_status st = copy_scene(inst, sc, err);
     if (st == PELT_OK) st = load_mesh(&sc->mesh, &inst->mesh, err);
+    /* What validation dropped is the loaded mesh's to tell: an atlas made
+     * from it replaces it with a mesh that dropped nothing. */
+    size_t dropped = st == PELT_OK ? pelt_mesh_get_stats(inst->mesh).dropped_degenerate : 0;
     unsigned mask_size = sc->fur.wet.mask_size;
     if (st == PELT_OK) st = build_atlas(inst, desc->cache_dir, &mask_size, err);
     if (st != PELT_OK) return st;
     pelt_mesh_stats ms = pelt_mesh_get_stats(inst->mesh);
-    if (ms.dropped_degenerate)
+    if (dropped)
         pelt__log(&inst->hooks.logger, PELT_LOG_WARNING, "%zu degenerate triangle(s) dropped",
-                  ms.dropped_degenerate);
+                  dropped);
     if (ms.fallback_uvs)
         pelt__log(&inst->hooks.logger, PELT_LOG_WARNING,
                   "the mesh has no uvs; using a spherical fallback mapping (expect stretched fur "

@@ -1,63 +1,20 @@
-/* On-disk cache of atlas results: one small binary file per (mesh, desc)
- * key with a header, a version and a checksum; anything that does not
- * match exactly is ignored and rebuilt. */
+/* On-disk atlas cache: one versioned, checksummed file per key holding a plain record (Lengyel §2.1 results). */
 #define _POSIX_C_SOURCE 200809L
-#include "core/atlas/atlas.h"
+#include "core/atlas/atlas_cache.h"
 
 #include "core/base/error.h"
-#include "core/mesh/mesh_internal.h"
 
 #include <errno.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
 
+/* The file: a header, the arrays (see payload_size), the checksum. Anything
+ * that does not match exactly is ignored, and the atlas is rebuilt. */
 #define CACHE_MAGIC "PELTATL\0"
-#define CACHE_VERSION 1u
-
-typedef struct hasher { uint64_t h; } hasher;
-
-/* FNV-1a, 64 bit. */
-static void hash_bytes(hasher *s, const void *data, size_t n)
-{
-    const unsigned char *p = data;
-    uint64_t h = s->h;
-    for (size_t i = 0; i < n; i++) {
-        h ^= p[i];
-        h *= 0x100000001b3ULL;
-    }
-    s->h = h;
-}
-
-static void hash_u64(hasher *s, uint64_t v) { hash_bytes(s, &v, sizeof v); }
-static void hash_f32(hasher *s, float v) { hash_bytes(s, &v, sizeof v); }
-
-uint64_t pelt__atlas_key(const pelt_mesh *in, const pelt_atlas_desc *d, unsigned mask_size,
-                         float density)
-{
-    hasher s = {0xcbf29ce484222325ULL};
-    hash_u64(&s, CACHE_VERSION);
-    hash_u64(&s, in->vertex_count);
-    hash_u64(&s, in->triangle_count);
-    hash_bytes(&s, in->positions, in->vertex_count * 3 * sizeof(float));
-    hash_bytes(&s, in->normals, in->vertex_count * 3 * sizeof(float));
-    hash_bytes(&s, in->uvs, in->vertex_count * 2 * sizeof(float));
-    hash_bytes(&s, in->indices, in->triangle_count * 3 * sizeof(uint32_t));
-    hash_u64(&s, in->stats.fallback_uvs);
-    hash_u64(&s, mask_size);
-    hash_f32(&s, density);
-    for (int k = 0; k < 3; k++) hash_f32(&s, d->direction[k]);
-    hash_u64(&s, d->vertex_directions != NULL);
-    if (d->vertex_directions) hash_bytes(&s, d->vertex_directions, in->vertex_count * 3 * sizeof(float));
-    hash_u64(&s, d->seed);
-    hash_f32(&s, d->max_stretch);
-    hash_u64(&s, (uint64_t)(int64_t)d->mode);
-    hash_u64(&s, d->max_patch_faces);
-    hash_u64(&s, d->smoothing_iterations);
-    return s.h;
-}
 
 void pelt__atlas_cache_path(const char *dir, uint64_t key, char *buf, size_t size)
 {
@@ -109,15 +66,17 @@ static bool mkdir_p(const char *dir)
     return true;
 }
 
-static bool write_all(FILE *f, const void *p, size_t n, hasher *s)
+static bool write_all(FILE *f, const void *p, size_t n, pelt__atlas_hash *s)
 {
-    hash_bytes(s, p, n);
+    pelt__atlas_hash_bytes(s, p, n);
     return fwrite(p, 1, n, f) == n;
 }
 
-bool pelt__atlas_cache_store(const char *dir, uint64_t key, const pelt_atlas *a)
+bool pelt__atlas_cache_store(const char *dir, uint64_t key, const pelt__atlas_record *r)
 {
-    if (!a->mesh || !mkdir_p(dir)) return false;
+    if (!r->source_vertex || !r->welded_vertex || !r->directions || !r->weights || !r->uvs ||
+        !r->fur_uvs || !r->triangle_patch || !r->indices || !mkdir_p(dir))
+        return false;
     char path[4200], tmp[4300];
     pelt__atlas_cache_path(dir, key, path, sizeof path);
     struct timespec ts;
@@ -128,33 +87,33 @@ bool pelt__atlas_cache_store(const char *dir, uint64_t key, const pelt_atlas *a)
     cache_header h;
     memset(&h, 0, sizeof h);
     memcpy(h.magic, CACHE_MAGIC, 8);
-    h.version = CACHE_VERSION;
-    h.mode_used = (uint32_t)a->stats.mode_used;
+    h.version = PELT__ATLAS_CACHE_VERSION;
+    h.mode_used = (uint32_t)r->stats.mode_used;
     h.key = key;
-    h.vertices = a->vertex_count;
-    h.triangles = a->triangle_count;
-    h.patch_count = a->stats.patch_count;
-    h.mask_size = a->stats.mask_size;
-    h.texel_density = a->stats.texel_density;
-    h.fur_per_atlas = a->stats.fur_per_atlas;
-    h.fill = a->stats.fill;
-    memcpy(h.uv_warning, a->stats.uv_warning, sizeof h.uv_warning);
+    h.vertices = r->vertex_count;
+    h.triangles = r->triangle_count;
+    h.patch_count = r->stats.patch_count;
+    h.mask_size = r->stats.mask_size;
+    h.texel_density = r->stats.texel_density;
+    h.fur_per_atlas = r->stats.fur_per_atlas;
+    h.fill = r->stats.fill;
+    memcpy(h.uv_warning, r->stats.uv_warning, sizeof h.uv_warning);
     /* in_* are filled from the source indices' range by the loader check. */
     h.in_vertices = 0;
-    for (size_t o = 0; o < a->vertex_count; o++)
-        if (a->source_vertex[o] + 1u > h.in_vertices) h.in_vertices = a->source_vertex[o] + 1u;
-    h.in_triangles = a->triangle_count;
-    hasher s = {0xcbf29ce484222325ULL};
-    size_t vc = a->vertex_count, tc = a->triangle_count;
+    for (size_t o = 0; o < r->vertex_count; o++)
+        if (r->source_vertex[o] + 1u > h.in_vertices) h.in_vertices = r->source_vertex[o] + 1u;
+    h.in_triangles = r->triangle_count;
+    pelt__atlas_hash s = pelt__atlas_hash_begin();
+    size_t vc = r->vertex_count, tc = r->triangle_count;
     bool ok = write_all(f, &h, sizeof h, &s) &&
-              write_all(f, a->source_vertex, vc * 4, &s) &&
-              write_all(f, a->welded_vertex, vc * 4, &s) &&
-              write_all(f, a->directions, vc * 12, &s) &&
-              write_all(f, a->weights, vc * 4, &s) &&
-              write_all(f, a->mesh->uvs, vc * 8, &s) &&
-              write_all(f, a->mesh->fur_uvs, vc * 8, &s) &&
-              write_all(f, a->triangle_patch, tc * 4, &s) &&
-              write_all(f, a->mesh->indices, tc * 12, &s);
+              write_all(f, r->source_vertex, vc * 4, &s) &&
+              write_all(f, r->welded_vertex, vc * 4, &s) &&
+              write_all(f, r->directions, vc * 12, &s) &&
+              write_all(f, r->weights, vc * 4, &s) &&
+              write_all(f, r->uvs, vc * 8, &s) &&
+              write_all(f, r->fur_uvs, vc * 8, &s) &&
+              write_all(f, r->triangle_patch, tc * 4, &s) &&
+              write_all(f, r->indices, tc * 12, &s);
     uint64_t sum = s.h;
     ok = ok && fwrite(&sum, sizeof sum, 1, f) == 1;
     ok = (fclose(f) == 0) && ok;
@@ -170,21 +129,30 @@ static bool all_finite(const float *v, size_t n)
     return true;
 }
 
-bool pelt__atlas_cache_load(const char *dir, uint64_t key, const pelt_mesh *in, pelt_atlas **out)
+void pelt__atlas_record_free(pelt__atlas_record *r)
 {
+    if (!r) return;
+    free(r->owned);
+    memset(r, 0, sizeof *r);
+}
+
+bool pelt__atlas_cache_load(const char *dir, uint64_t key, size_t in_vertices,
+                            size_t in_triangles, pelt__atlas_record *out)
+{
+    memset(out, 0, sizeof *out);
     char path[4200];
     pelt__atlas_cache_path(dir, key, path, sizeof path);
     FILE *f = fopen(path, "rb");
     if (!f) return false;
     cache_header h;
     bool ok = fread(&h, sizeof h, 1, f) == 1 && memcmp(h.magic, CACHE_MAGIC, 8) == 0 &&
-              h.version == CACHE_VERSION && h.key == key && h.triangles == in->triangle_count &&
-              h.in_triangles == in->triangle_count && h.in_vertices <= in->vertex_count &&
-              h.vertices > 0 && h.vertices <= 3 * h.triangles && h.mask_size > 0 &&
-              h.mask_size <= 16384 && h.patch_count >= 1 && h.patch_count <= h.triangles &&
+              h.version == PELT__ATLAS_CACHE_VERSION && h.key == key &&
+              h.triangles == in_triangles && h.in_triangles == in_triangles &&
+              h.in_vertices <= in_vertices && h.vertices > 0 && h.vertices <= 3 * h.triangles &&
+              h.mask_size > 0 && h.mask_size <= 16384 && h.patch_count >= 1 &&
+              h.patch_count <= h.triangles &&
               (h.mode_used == PELT_ATLAS_MESH_UVS || h.mode_used == PELT_ATLAS_PATCHES) &&
               memchr(h.uv_warning, '\0', sizeof h.uv_warning) != NULL;
-    pelt_atlas *a = NULL;
     unsigned char *buf = NULL;
     if (ok) {
         size_t n = payload_size(h.vertices, h.triangles);
@@ -192,54 +160,50 @@ bool pelt__atlas_cache_load(const char *dir, uint64_t key, const pelt_mesh *in, 
         /* Exactly the expected length: one byte more means a stale layout. */
         ok = buf && fread(buf, 1, n + sizeof(uint64_t) + 1, f) == n + sizeof(uint64_t);
         if (ok) {
-            hasher s = {0xcbf29ce484222325ULL};
-            hash_bytes(&s, &h, sizeof h);
-            hash_bytes(&s, buf, n);
+            pelt__atlas_hash s = pelt__atlas_hash_begin();
+            pelt__atlas_hash_bytes(&s, &h, sizeof h);
+            pelt__atlas_hash_bytes(&s, buf, n);
             uint64_t sum;
             memcpy(&sum, buf + n, sizeof sum);
             ok = sum == s.h;
         }
-        if (ok) {
-            a = pelt__atlas_alloc(h.vertices, h.triangles);
-            if (a) a->mesh = pelt__mesh_alloc(h.vertices, h.triangles);
-            if (a && a->mesh) a->mesh->fur_uvs = pelt__calloc(h.vertices, 2 * sizeof(float));
-            ok = a && a->mesh && a->mesh->fur_uvs;
-        }
-        if (ok) {
-            size_t vc = h.vertices, tc = h.triangles;
-            const unsigned char *p = buf;
-            memcpy(a->source_vertex, p, vc * 4), p += vc * 4;
-            memcpy(a->welded_vertex, p, vc * 4), p += vc * 4;
-            memcpy(a->directions, p, vc * 12), p += vc * 12;
-            memcpy(a->weights, p, vc * 4), p += vc * 4;
-            memcpy(a->mesh->uvs, p, vc * 8), p += vc * 8;
-            memcpy(a->mesh->fur_uvs, p, vc * 8), p += vc * 8;
-            memcpy(a->triangle_patch, p, tc * 4), p += tc * 4;
-            memcpy(a->mesh->indices, p, tc * 12);
-            /* The checksum guards against damage, these against a file that
-             * was made for something else. */
-            for (size_t o = 0; o < vc && ok; o++)
-                ok = a->source_vertex[o] < in->vertex_count && a->welded_vertex[o] < in->vertex_count;
-            for (size_t i = 0; i < 3 * tc && ok; i++) ok = a->mesh->indices[i] < vc;
-            for (size_t t = 0; t < tc && ok; t++) ok = a->triangle_patch[t] < h.patch_count;
-            ok = ok && all_finite(a->directions, 3 * vc) && all_finite(a->weights, vc) &&
-                 all_finite(a->mesh->uvs, 2 * vc) && all_finite(a->mesh->fur_uvs, 2 * vc);
-        }
     }
     fclose(f);
-    free(buf);
     if (!ok) {
-        pelt_atlas_destroy(a);
+        free(buf);
         return false;
     }
-    a->stats.mode_used = (int)h.mode_used;
-    a->stats.patch_count = h.patch_count;
-    a->stats.mask_size = h.mask_size;
-    a->stats.texel_density = h.texel_density;
-    a->stats.fur_per_atlas = h.fur_per_atlas;
-    a->stats.fill = h.fill;
-    memcpy(a->stats.uv_warning, h.uv_warning, sizeof h.uv_warning);
-    pelt__atlas_finish_mesh(a, in);
-    *out = a;
+    /* The arrays stay in the buffer: every one starts at a multiple of 4. */
+    size_t vc = h.vertices, tc = h.triangles;
+    const unsigned char *p = buf;
+    pelt__atlas_record r = {.vertex_count = vc, .triangle_count = tc, .owned = buf};
+    r.source_vertex = (const uint32_t *)p, p += vc * 4;
+    r.welded_vertex = (const uint32_t *)p, p += vc * 4;
+    r.directions = (const float *)p, p += vc * 12;
+    r.weights = (const float *)p, p += vc * 4;
+    r.uvs = (const float *)p, p += vc * 8;
+    r.fur_uvs = (const float *)p, p += vc * 8;
+    r.triangle_patch = (const uint32_t *)p, p += tc * 4;
+    r.indices = (const uint32_t *)p;
+    /* The checksum guards against damage, these against a file that was made
+     * for something else. */
+    for (size_t o = 0; o < vc && ok; o++)
+        ok = r.source_vertex[o] < in_vertices && r.welded_vertex[o] < in_vertices;
+    for (size_t i = 0; i < 3 * tc && ok; i++) ok = r.indices[i] < vc;
+    for (size_t t = 0; t < tc && ok; t++) ok = r.triangle_patch[t] < h.patch_count;
+    ok = ok && all_finite(r.directions, 3 * vc) && all_finite(r.weights, vc) &&
+         all_finite(r.uvs, 2 * vc) && all_finite(r.fur_uvs, 2 * vc);
+    if (!ok) {
+        free(buf);
+        return false;
+    }
+    r.stats.mode_used = (int)h.mode_used;
+    r.stats.patch_count = h.patch_count;
+    r.stats.mask_size = h.mask_size;
+    r.stats.texel_density = h.texel_density;
+    r.stats.fur_per_atlas = h.fur_per_atlas;
+    r.stats.fill = h.fill;
+    memcpy(r.stats.uv_warning, h.uv_warning, sizeof h.uv_warning);
+    *out = r;
     return true;
 }

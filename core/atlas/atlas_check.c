@@ -1,9 +1,7 @@
-/* Validation of a uv set: flipped triangles and texels claimed twice,
- * found by rasterizing each triangle's uv footprint. */
-#include "core/atlas/atlas.h"
+/* Validation of a uv set as a mask atlas: flipped triangles and texels claimed twice (Lengyel §2.1, Silva §3.1). */
+#include "core/atlas/atlas_internal.h"
 
 #include "core/base/error.h"
-#include "core/mesh/mesh_internal.h"
 #include "core/base/raster.h"
 
 #include <math.h>
@@ -80,11 +78,12 @@ pelt_status pelt_atlas_check_uvs(const pelt_mesh *mesh, unsigned resolution,
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "pelt_atlas_check_uvs: resolution %u outside 1..16384", resolution);
     memset(result, 0, sizeof *result);
-    result->triangle_count = mesh->triangle_count;
+    const pelt_mesh_data m = pelt_mesh_get_data(mesh);
+    result->triangle_count = m.triangle_count;
     size_t pos = 0, neg = 0;
-    const float *uv = mesh->uvs;
-    for (size_t t = 0; t < mesh->triangle_count; t++) {
-        const uint32_t *tri = mesh->indices + 3 * t;
+    const float *uv = m.uvs;
+    for (size_t t = 0; t < m.triangle_count; t++) {
+        const uint32_t *tri = m.indices + 3 * t;
         double u0 = uv[2 * tri[0]], v0 = uv[2 * tri[0] + 1];
         double a = (uv[2 * tri[1]] - u0) * (uv[2 * tri[2] + 1] - v0) -
                    (uv[2 * tri[2]] - u0) * (uv[2 * tri[1] + 1] - v0);
@@ -104,7 +103,7 @@ pelt_status pelt_atlas_check_uvs(const pelt_mesh *mesh, unsigned resolution,
     uint8_t *claims = pelt__calloc((size_t)resolution * resolution, 1);
     if (!claims)
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "pelt_atlas_check_uvs: %u^2 texels", resolution);
-    result->overlap_texels = pelt__raster_overlaps(uv, mesh->indices, mesh->triangle_count,
+    result->overlap_texels = pelt__raster_overlaps(uv, m.indices, m.triangle_count,
                                                    resolution, claims, &result->covered_texels);
     free(claims);
     return PELT_OK;

@@ -1,3 +1,4 @@
+/* Hair direction field: global or per-vertex c_v projected and smoothed (Lengyel et al. §3, §2.1). */
 #include "core/atlas/direction_field.h"
 
 #include "core/base/error.h"
@@ -5,41 +6,6 @@
 
 #include <stdlib.h>
 #include <string.h>
-
-typedef struct weld_item { float p[3]; uint32_t index; } weld_item;
-
-static int compare_weld(const void *a, const void *b)
-{
-    const weld_item *x = a, *y = b;
-    for (int k = 0; k < 3; k++) {
-        if (x->p[k] < y->p[k]) return -1;
-        if (x->p[k] > y->p[k]) return 1;
-    }
-    return (x->index > y->index) - (x->index < y->index);
-}
-
-bool pelt__weld_positions(const float *positions, size_t vertex_count, uint32_t *canon)
-{
-    weld_item *items = pelt__calloc(vertex_count, sizeof *items);
-    if (!items) return false;
-    for (size_t i = 0; i < vertex_count; i++) {
-        /* + 0.0f turns -0 into +0: the same point must weld. */
-        for (int k = 0; k < 3; k++) items[i].p[k] = positions[3 * i + k] + 0.0f;
-        items[i].index = (uint32_t)i;
-    }
-    qsort(items, vertex_count, sizeof *items, compare_weld);
-    /* Sorted by position then index: the first of each run is the smallest. */
-    for (size_t b = 0; b < vertex_count;) {
-        size_t e = b + 1;
-        while (e < vertex_count && items[e].p[0] == items[b].p[0] && items[e].p[1] == items[b].p[1] &&
-               items[e].p[2] == items[b].p[2])
-            e++;
-        for (size_t i = b; i < e; i++) canon[items[i].index] = items[b].index;
-        b = e;
-    }
-    free(items);
-    return true;
-}
 
 void pelt__any_tangent(const float n[3], float t[3])
 {

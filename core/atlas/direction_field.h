@@ -1,13 +1,9 @@
 /* Hair direction field on a mesh (Lengyel et al. §3 "Hair direction", §2.1
- * global direction field) and position welding shared by the atlas. */
+ * global direction field). Vertices are welded by core/base/weld.h. */
 #ifndef PELT_DIRECTION_FIELD_H
 #define PELT_DIRECTION_FIELD_H
 
 #include "pelt/base.h"
-
-/* canon[i] = the smallest vertex index with exactly the same position as i.
- * Returns false when out of memory. */
-bool pelt__weld_positions(const float *positions, size_t vertex_count, uint32_t *canon);
 
 /* A unit vector perpendicular to unit n (a consistent frame where the field
  * vanishes). */
@@ -18,7 +14,8 @@ void pelt__any_tangent(const float n[3], float t[3]);
  * (or per_vertex[3i..] projected, when per_vertex is not NULL); it is then
  * smoothed `iterations` times over the welded vertex adjacency and
  * re-projected. Where it vanishes the weight goes to 0 and dir is any
- * consistent tangent. Vertices with the same canon get the same value. */
+ * consistent tangent. canon is pelt__weld's (by position); vertices with the
+ * same canon get the same value. */
 bool pelt__direction_field(const float *positions, const float *normals, size_t vertex_count,
                            const uint32_t *indices, size_t triangle_count, const uint32_t *canon,
                            const float global[3], const float *per_vertex, unsigned iterations,

@@ -4,6 +4,7 @@
 
 #include "core/base/error.h"
 #include "core/base/vec.h"
+#include "core/base/weld.h"
 
 #include <inttypes.h>
 #include <math.h>
@@ -19,6 +20,10 @@
 /* A triangle is "zero area" below this fraction of the bbox diagonal squared:
  * small enough to keep genuine slivers of a million-triangle scan. */
 #define PELT__MIN_AREA_FRACTION 1e-12
+
+/* A normal whose length is within this of 1 counts as unit: a few float
+ * roundings of a normalised vector (which are up to ~3e-7). */
+#define PELT__UNIT_TOLERANCE 1e-6
 
 pelt_mesh *pelt__mesh_alloc(size_t vertex_count, size_t triangle_count)
 {
@@ -80,61 +85,6 @@ void pelt_mesh_bounds(const pelt_mesh *mesh, float min[3], float max[3])
     }
 }
 
-/* ---- welding: vertices grouped by exact position (and normal) ---------- */
-
-/* Sort key of one vertex: the values that must match exactly, then the
- * vertex index. Sorting copies keeps qsort free of a context pointer. */
-typedef struct weld_key {
-    float v[6];
-    uint32_t index;
-} weld_key;
-
-static int weld_cmp_n(const weld_key *a, const weld_key *b, int n)
-{
-    for (int k = 0; k < n; k++) {
-        if (a->v[k] < b->v[k]) return -1;
-        if (a->v[k] > b->v[k]) return 1;
-    }
-    return 0;
-}
-
-static int weld_cmp3(const void *pa, const void *pb)
-{
-    int c = weld_cmp_n(pa, pb, 3);
-    if (c) return c;
-    return ((const weld_key *)pa)->index < ((const weld_key *)pb)->index ? -1 : 1;
-}
-
-static int weld_cmp6(const void *pa, const void *pb)
-{
-    int c = weld_cmp_n(pa, pb, 6);
-    if (c) return c;
-    return ((const weld_key *)pa)->index < ((const weld_key *)pb)->index ? -1 : 1;
-}
-
-/* Sorted keys of all vertices by position (n = 3) or position + normal
- * (n = 6); NULL when out of memory. Caller frees. */
-static weld_key *weld_sorted(const pelt_mesh *m, int n)
-{
-    weld_key *keys = pelt__calloc(m->vertex_count, sizeof *keys);
-    if (!keys) return NULL;
-    for (size_t i = 0; i < m->vertex_count; i++) {
-        memcpy(keys[i].v, m->positions + 3 * i, 3 * sizeof(float));
-        if (n == 6) memcpy(keys[i].v + 3, m->normals + 3 * i, 3 * sizeof(float));
-        keys[i].index = (uint32_t)i;
-    }
-    qsort(keys, m->vertex_count, sizeof *keys, n == 6 ? weld_cmp6 : weld_cmp3);
-    return keys;
-}
-
-/* End (exclusive) of the run of keys equal to keys[begin]. */
-static size_t weld_run_end(const weld_key *keys, size_t count, size_t begin, int n)
-{
-    size_t end = begin + 1;
-    while (end < count && weld_cmp_n(&keys[begin], &keys[end], n) == 0) end++;
-    return end;
-}
-
 /* ---- normals ----------------------------------------------------------- */
 
 /* 1 / the largest bbox extent: frames are computed on the mesh scaled to
@@ -172,7 +122,7 @@ static pelt_vec3 tri_cross(const pelt_mesh *m, size_t t, double s)
 /* Area-weighted vertex normals, summed over all vertices that share a
  * position: a uv seam duplicates vertices, and different normals on its two
  * sides would open a crack between the offset shells. */
-static void compute_normals(pelt_mesh *m, weld_key *keys)
+static void compute_normals(pelt_mesh *m, const uint32_t *canon)
 {
     const double s = frame_scale(m);
     float *n = m->normals;
@@ -184,14 +134,16 @@ static void compute_normals(pelt_mesh *m, weld_key *keys)
             v3_store(p, v3_add(v3_load(p), c));
         }
     }
-    if (keys) {
-        for (size_t b = 0; b < m->vertex_count;) {
-            size_t e = weld_run_end(keys, m->vertex_count, b, 3);
-            pelt_vec3 sum = v3(0, 0, 0);
-            for (size_t i = b; i < e; i++) sum = v3_add(sum, v3_load(n + 3 * keys[i].index));
-            for (size_t i = b; i < e; i++) v3_store(n + 3 * keys[i].index, sum);
-            b = e;
+    if (canon) {
+        /* Each group's sum, in ascending vertex order, lands on its smallest
+         * vertex (canon[i] <= i), then is copied to the others. */
+        for (size_t i = 0; i < m->vertex_count; i++) {
+            float *sum = n + 3 * canon[i];
+            if (canon[i] == i) v3_store(sum, v3_add(v3(0, 0, 0), v3_load(sum)));
+            else v3_store(sum, v3_add(v3_load(sum), v3_load(n + 3 * i)));
         }
+        for (size_t i = 0; i < m->vertex_count; i++)
+            if (canon[i] != i) memcpy(n + 3 * i, n + 3 * canon[i], 3 * sizeof(float));
     }
     /* Where faces cancel (a fold), any incident face normal beats none. */
     const pelt_vec3 zero = v3(0, 0, 0);
@@ -253,43 +205,43 @@ static void accumulate_uv_frames(const pelt_mesh *m, const float *uv, float *tan
 /* Vertices with the same position and normal share their frame when all of
  * them point roughly the same way (a seam of a continuous map); a mirrored
  * seam or a pole fan keeps its own per-vertex frames. */
-static void weld_tangents(const pelt_mesh *m, const weld_key *keys, float *tan, float *bit)
+static void weld_tangents(const pelt_mesh *m, const uint32_t *canon, const uint32_t *next,
+                          float *tan, float *bit)
 {
-    for (size_t b = 0; b < m->vertex_count;) {
-        size_t e = weld_run_end(keys, m->vertex_count, b, 6);
-        if (e - b > 1) {
-            pelt_vec3 st = v3(0, 0, 0), sb = v3(0, 0, 0);
-            for (size_t i = b; i < e; i++) {
-                st = v3_add(st, v3_load(tan + 3 * keys[i].index));
-                sb = v3_add(sb, v3_load(bit + 3 * keys[i].index));
-            }
-            pelt_vec3 ut = v3_norm_or(st, v3(0, 0, 0)), ub = v3_norm_or(sb, v3(0, 0, 0));
-            int agree = v3_len(ut) > 0.5f;
-            for (size_t i = b; i < e && agree; i++) {
-                pelt_vec3 ti = v3_norm_or(v3_load(tan + 3 * keys[i].index), v3(0, 0, 0));
-                pelt_vec3 bi = v3_norm_or(v3_load(bit + 3 * keys[i].index), v3(0, 0, 0));
-                agree = v3_dot(ti, ut) > 0.7f && v3_dot(bi, ub) > 0.0f;
-            }
-            if (agree) {
-                for (size_t i = b; i < e; i++) {
-                    v3_store(tan + 3 * keys[i].index, st);
-                    v3_store(bit + 3 * keys[i].index, sb);
-                }
+    const uint32_t none = PELT__WELD_NONE;
+    for (size_t c = 0; c < m->vertex_count; c++) {
+        if (canon[c] != c || next[c] == none) continue; /* not a group's head, or alone */
+        pelt_vec3 st = v3(0, 0, 0), sb = v3(0, 0, 0);
+        for (uint32_t i = (uint32_t)c; i != none; i = next[i]) {
+            st = v3_add(st, v3_load(tan + 3 * i));
+            sb = v3_add(sb, v3_load(bit + 3 * i));
+        }
+        pelt_vec3 ut = v3_norm_or(st, v3(0, 0, 0)), ub = v3_norm_or(sb, v3(0, 0, 0));
+        int agree = v3_len(ut) > 0.5f;
+        for (uint32_t i = (uint32_t)c; i != none && agree; i = next[i]) {
+            pelt_vec3 ti = v3_norm_or(v3_load(tan + 3 * i), v3(0, 0, 0));
+            pelt_vec3 bi = v3_norm_or(v3_load(bit + 3 * i), v3(0, 0, 0));
+            agree = v3_dot(ti, ut) > 0.7f && v3_dot(bi, ub) > 0.0f;
+        }
+        if (agree) {
+            for (uint32_t i = (uint32_t)c; i != none; i = next[i]) {
+                v3_store(tan + 3 * i, st);
+                v3_store(bit + 3 * i, sb);
             }
         }
-        b = e;
     }
 }
 
 /* Unit tangent along +u orthogonalised against the normal (Gram-Schmidt),
  * w = +1 when (n x t) points along +v, else -1. */
-static void compute_tangents(pelt_mesh *m, const weld_key *keys6, float *scratch)
+static void compute_tangents(pelt_mesh *m, const uint32_t *canon, const uint32_t *next,
+                             float *scratch)
 {
     const float *uv = m->fur_uvs ? m->fur_uvs : m->uvs;
     float *tan = scratch, *bit = scratch + 3 * m->vertex_count;
     memset(scratch, 0, m->vertex_count * 6 * sizeof(float));
     accumulate_uv_frames(m, uv, tan, bit);
-    if (keys6) weld_tangents(m, keys6, tan, bit);
+    if (canon) weld_tangents(m, canon, next, tan, bit);
     for (size_t i = 0; i < m->vertex_count; i++) {
         pelt_vec3 n = v3_load(m->normals + 3 * i);
         pelt_vec3 raw = v3_load(tan + 3 * i);
@@ -330,17 +282,20 @@ void pelt__mesh_finish(pelt_mesh *mesh, bool compute_normals_flag)
     pelt_mesh *m = mesh;
     compute_bounds(m);
     /* Welding is a quality step: without memory for it the frames are still
-     * valid, just not shared across seams. */
-    weld_key *keys = compute_normals_flag ? weld_sorted(m, 3) : NULL;
+     * valid, just not shared across seams. Normals are summed over a
+     * position, tangent frames over a position and normal. */
+    uint32_t *canon = pelt__calloc(m->vertex_count, sizeof *canon);
+    uint32_t *next = pelt__calloc(m->vertex_count, sizeof *next);
     if (compute_normals_flag) {
-        compute_normals(m, keys);
+        bool by_position = canon && pelt__weld(m->positions, NULL, m->vertex_count, canon);
+        compute_normals(m, by_position ? canon : NULL);
         m->stats.computed_normals = true;
     }
-    free(keys);
-    keys = weld_sorted(m, 6);
+    bool by_frame = canon && next && pelt__weld(m->positions, m->normals, m->vertex_count, canon);
+    if (by_frame) pelt__weld_chain(canon, m->vertex_count, next);
     float *scratch = pelt__calloc(m->vertex_count, 6 * sizeof(float));
     if (scratch) {
-        compute_tangents(m, keys, scratch);
+        compute_tangents(m, by_frame ? canon : NULL, next, scratch);
     } else {
         for (size_t i = 0; i < m->vertex_count; i++) {
             v3_store(m->tangents + 4 * i, perpendicular(v3_load(m->normals + 3 * i)));
@@ -348,7 +303,8 @@ void pelt__mesh_finish(pelt_mesh *mesh, bool compute_normals_flag)
         }
     }
     free(scratch);
-    free(keys);
+    free(canon);
+    free(next);
     m->stats.vertex_count = m->vertex_count;
     m->stats.triangle_count = m->triangle_count;
 }
@@ -541,10 +497,13 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
             for (int k = 0; k < 3; k++) m->comb[3 * o + k] = isfinite(c[k]) ? c[k] : 0.0f;
         }
         if (normals_ok) {
-            /* Normalised in double: tiny or huge input normals stay finite. */
+            /* Normalised in double: tiny or huge input normals stay finite.
+             * A normal already unit to float precision is kept as given, so
+             * creating a mesh from pelt_mesh_get_data changes nothing. */
             const float *n = data->normals + 3 * i;
             double l = sqrt((double)n[0] * n[0] + (double)n[1] * n[1] + (double)n[2] * n[2]);
-            for (int k = 0; k < 3; k++) m->normals[3 * o + k] = (float)(n[k] / l);
+            for (int k = 0; k < 3; k++)
+                m->normals[3 * o + k] = fabs(l - 1.0) <= PELT__UNIT_TOLERANCE ? n[k] : (float)(n[k] / l);
         }
     }
     free(keep);

@@ -7,6 +7,7 @@
 #include "core/mesh/mesh_internal.h"
 #include "core/base/raster.h"
 #include "core/base/vec.h"
+#include "core/base/weld.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -16,57 +17,6 @@
 #define NONE UINT32_MAX
 
 /* ---- building the index -------------------------------------------------- */
-
-static uint32_t float_bits(float f)
-{
-    if (f == 0.0f) f = 0.0f; /* -0 and +0 are one position */
-    uint32_t u;
-    memcpy(&u, &f, sizeof u);
-    return u;
-}
-
-static uint64_t position_hash(const float *p)
-{
-    uint64_t h = 1469598103934665603ull;
-    for (int k = 0; k < 3; k++) {
-        h ^= float_bits(p[k]);
-        h *= 1099511628211ull;
-        h ^= h >> 29;
-    }
-    return h;
-}
-
-static bool same_position(const float *a, const float *b)
-{
-    return float_bits(a[0]) == float_bits(b[0]) && float_bits(a[1]) == float_bits(b[1]) &&
-           float_bits(a[2]) == float_bits(b[2]);
-}
-
-/* Welded id per vertex by exact position (open-addressing hash). */
-static bool weld(const pelt_mesh *mesh, uint32_t *welded, size_t *count)
-{
-    size_t n = mesh->vertex_count, cap = 16;
-    while (cap < 2 * n) cap *= 2;
-    uint32_t *slot = malloc(cap * sizeof *slot); /* vertex index or NONE */
-    if (!slot) return false;
-    memset(slot, 0xff, cap * sizeof *slot);
-    size_t next = 0;
-    for (size_t v = 0; v < n; v++) {
-        const float *p = mesh->positions + v * 3;
-        size_t s = (size_t)position_hash(p) & (cap - 1);
-        while (slot[s] != NONE && !same_position(mesh->positions + (size_t)slot[s] * 3, p))
-            s = (s + 1) & (cap - 1);
-        if (slot[s] == NONE) {
-            slot[s] = (uint32_t)v;
-            welded[v] = (uint32_t)next++;
-        } else {
-            welded[v] = welded[slot[s]];
-        }
-    }
-    free(slot);
-    *count = next;
-    return true;
-}
 
 void pelt__surface_index_destroy(pelt__surface_index *index)
 {
@@ -121,7 +71,8 @@ pelt_status pelt__surface_index_create(const pelt_mesh *mesh, pelt__surface_inde
     x->group_dist2 = pelt__calloc(nt1, sizeof *x->group_dist2);
     bool ok = x->welded && x->fan && x->tri_stamp && x->tri_dist2 && x->queue &&
               x->group_stamp && x->group && x->stack && x->group_ref && x->group_dist2 &&
-              weld(mesh, x->welded, &x->welded_count);
+              pelt__weld(mesh->positions, NULL, nv, x->welded);
+    if (ok) x->welded_count = pelt__weld_ids(x->welded, nv, x->welded);
     if (ok) {
         x->fan_start = pelt__calloc(x->welded_count + 1, sizeof *x->fan_start);
         x->vert_stamp = pelt__calloc(x->welded_count + 1, sizeof *x->vert_stamp);

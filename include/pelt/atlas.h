@@ -57,8 +57,12 @@ typedef struct pelt_atlas pelt_atlas;
 
 /* Builds the atlas of `in`: an output mesh whose vertices are split on patch
  * borders, uvs = atlas coordinates in [0,1] (address the mask), fur_uvs =
- * patch coordinates in fur tiles, normals copied from `in`, tangents along
- * +u of fur_uvs; plus per-output-vertex arrays below. Looks in / writes to
+ * patch coordinates in fur tiles, comb = direction times weight (below),
+ * normals copied from `in`, tangents along +u of fur_uvs; plus
+ * per-output-vertex arrays below, in the mesh's vertex order. The mesh is
+ * made by pelt_mesh_create, so its pelt_mesh_get_data makes an equal mesh
+ * (an embedder's own atlas feeds the renderer the same way); its stats are
+ * that validation's (nothing dropped). Looks in / writes to
  * desc->cache_dir. desc may be NULL (defaults). Free with pelt_atlas_destroy. */
 pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
                               pelt_atlas **out, pelt_error *err);

@@ -44,8 +44,10 @@ typedef struct pelt_mesh_stats {
 
 /* Validates and copies `data` into a new mesh: indices in range and finite
  * coordinates (else PELT_ERR_FORMAT), degenerate and zero-area triangles
- * dropped and counted, normals computed when absent, tangent frames from
- * uvs. The caller frees *out with pelt_mesh_destroy. */
+ * dropped and counted, vertices numbered in the order the kept triangles
+ * first use them (unused ones dropped), normals computed when absent and
+ * normalised when not unit length (within 1e-6), tangent frames from
+ * fur_uvs, else uvs. The caller frees *out with pelt_mesh_destroy. */
 pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out,
                              pelt_error *err);
 

@@ -2,8 +2,10 @@
 #include "pelt/atlas.h"
 
 #include "support/check.h"
-#include "core/atlas/atlas.h"
+#include "core/atlas/atlas_cache.h"
+#include "core/atlas/atlas_internal.h"
 #include "core/atlas/direction_field.h"
+#include "core/base/weld.h"
 #include "core/mesh/mesh_internal.h"
 
 #include <stdlib.h>
@@ -267,7 +269,7 @@ static void direction_field_stands_up_at_poles(void)
     uint32_t *canon = malloc(m->vertex_count * sizeof *canon);
     float *dir = malloc(m->vertex_count * 12), *w = malloc(m->vertex_count * 4);
     const float g[3] = {0, -1, 0};
-    CHECK(pelt__weld_positions(m->positions, m->vertex_count, canon));
+    CHECK(pelt__weld(m->positions, NULL, m->vertex_count, canon));
     CHECK(pelt__direction_field(m->positions, m->normals, m->vertex_count, m->indices, m->triangle_count,
                                 canon, g, NULL, 4, dir, w));
     size_t poles = 0, equator = 0;
@@ -299,7 +301,7 @@ static void direction_field_uses_per_vertex_vectors(void)
     float *dir = malloc(n * 12), *w = malloc(n * 4), *pv = calloc(n, 12);
     for (size_t v = 0; v < n; v++) pv[3 * v] = 1.0f, pv[3 * v + 1] = 5.0f; /* normal part dropped */
     const float g[3] = {0, 0, 1};
-    CHECK(pelt__weld_positions(m->positions, n, canon));
+    CHECK(pelt__weld(m->positions, NULL, n, canon));
     CHECK(pelt__direction_field(m->positions, m->normals, n, m->indices, m->triangle_count, canon, g, pv, 4, dir, w));
     for (size_t v = 0; v < n; v++) {
         CHECK_NEAR(dir[3 * v], 1.0, 1e-5);
@@ -407,6 +409,58 @@ static bool same_mesh(const pelt_mesh *a, const pelt_mesh *b)
            !memcmp(a->uvs, b->uvs, v * 8) && !memcmp(a->fur_uvs, b->fur_uvs, v * 8) &&
            !memcmp(a->tangents, b->tangents, v * 16) &&
            !memcmp(a->indices, b->indices, a->triangle_count * 12);
+}
+
+/* An embedder can make the atlas mesh itself from the arrays: the atlas
+ * builds it through pelt_mesh_create, so pelt_mesh_get_data -> create gives
+ * the same positions, normals, uvs, fur uvs, comb, tangents and indices, and
+ * the comb is the direction field times its weight. Patches on a torus and
+ * the mesh's own uvs on a sphere (whose spare pole vertices are dropped). */
+static void atlas_mesh_rebuilds_from_its_arrays(void)
+{
+    for (int c = 0; c < 2; c++) {
+        pelt_mesh *m = c == 0 ? torus() : sphere();
+        pelt_atlas_desc d = {.mode = c == 0 ? PELT_ATLAS_PATCHES : PELT_ATLAS_MESH_UVS,
+                             .max_patch_faces = 400};
+        pelt_atlas *a = NULL;
+        CHECK(pelt_atlas_create(m, &d, &a, NULL) == PELT_OK);
+        if (!a) {
+            pelt_mesh_destroy(m);
+            continue;
+        }
+        pelt_mesh_data o = pelt_mesh_get_data(pelt_atlas_mesh(a));
+        size_t n = o.vertex_count;
+        CHECK(n == pelt_atlas_vertex_count(a));
+        CHECK(o.fur_uvs != NULL && o.comb != NULL);
+        if (!o.fur_uvs || !o.comb || n != pelt_atlas_vertex_count(a)) {
+            pelt_atlas_destroy(a);
+            pelt_mesh_destroy(m);
+            continue;
+        }
+        const float *dir = pelt_atlas_directions(a), *w = pelt_atlas_direction_weights(a);
+        size_t bad_comb = 0;
+        for (size_t v = 0; v < n; v++)
+            for (int k = 0; k < 3; k++) bad_comb += o.comb[3 * v + k] != dir[3 * v + k] * w[v];
+        CHECK(bad_comb == 0);
+        pelt_mesh *r = NULL;
+        CHECK(pelt_mesh_create(&o, &r, NULL) == PELT_OK);
+        if (r) {
+            pelt_mesh_data e = pelt_mesh_get_data(r);
+            CHECK(e.vertex_count == n && e.triangle_count == o.triangle_count);
+            if (e.vertex_count == n && e.triangle_count == o.triangle_count) {
+                CHECK(!memcmp(e.positions, o.positions, n * 12));
+                CHECK(!memcmp(e.normals, o.normals, n * 12));
+                CHECK(!memcmp(e.uvs, o.uvs, n * 8));
+                CHECK(e.fur_uvs && !memcmp(e.fur_uvs, o.fur_uvs, n * 8));
+                CHECK(e.comb && !memcmp(e.comb, o.comb, n * 12));
+                CHECK(!memcmp(pelt_mesh_tangents(r), pelt_mesh_tangents(pelt_atlas_mesh(a)), n * 16));
+                CHECK(!memcmp(e.indices, o.indices, o.triangle_count * 12));
+            }
+        }
+        pelt_mesh_destroy(r);
+        pelt_atlas_destroy(a);
+        pelt_mesh_destroy(m);
+    }
 }
 
 static void atlas_cache_round_trip_and_rejects_corruption(void)
@@ -522,6 +576,7 @@ int main(void)
     RUN(atlas_direction_field_runs_along_u);
     RUN(atlas_gutter_separates_patches);
     RUN(atlas_split_vertices_keep_original_normals);
+    RUN(atlas_mesh_rebuilds_from_its_arrays);
     RUN(atlas_cache_round_trip_and_rejects_corruption);
     RUN(atlas_draw_paints_patches_and_borders);
     RUN(atlas_rejects_bad_desc_with_named_field);

@@ -387,6 +387,29 @@ static void torus_without_normals_gets_welded_seam_normals(void)
     pelt_mesh_destroy(t);
 }
 
+/* pelt_mesh_get_data of a created mesh creates the same mesh again: unit
+ * normals (computed ones here) are kept as given, not normalised anew. */
+static void create_of_get_data_gives_the_same_mesh(void)
+{
+    pelt_mesh *t = NULL, *m = NULL, *r = NULL;
+    CHECK(pelt_mesh_torus(1.0f, 0.4f, 30, 20, &t, NULL) == PELT_OK);
+    CHECK(create(t->positions, NULL, t->uvs, t->vertex_count, t->indices, t->triangle_count, &m,
+                 NULL) == PELT_OK);
+    pelt_mesh_data d = pelt_mesh_get_data(m);
+    CHECK(pelt_mesh_create(&d, &r, NULL) == PELT_OK);
+    if (r) {
+        size_t n = m->vertex_count;
+        CHECK(r->vertex_count == n && r->triangle_count == m->triangle_count);
+        CHECK(!memcmp(r->positions, m->positions, n * 12));
+        CHECK(!memcmp(r->normals, m->normals, n * 12));
+        CHECK(!memcmp(r->tangents, m->tangents, n * 16));
+        CHECK(!memcmp(r->indices, m->indices, m->triangle_count * 12));
+    }
+    pelt_mesh_destroy(r);
+    pelt_mesh_destroy(m);
+    pelt_mesh_destroy(t);
+}
+
 static void sphere_counts_radius_and_frames(void)
 {
     pelt_mesh *m = NULL;
@@ -580,6 +603,7 @@ int main(void)
     RUN(torus_normals_point_away_from_the_tube_centre);
     RUN(torus_seam_vertices_share_normals_and_tangents);
     RUN(torus_without_normals_gets_welded_seam_normals);
+    RUN(create_of_get_data_gives_the_same_mesh);
     RUN(sphere_counts_radius_and_frames);
     RUN(square_lies_in_xz_with_normal_up);
     RUN(procedural_rejects_bad_arguments);
