@@ -4,6 +4,7 @@
 #include "core/fur/strand.h"
 
 #include "core/base/error.h"
+#include "core/base/rng.h"
 #include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
 
@@ -124,21 +125,6 @@ static void write_offset(pelt__strands *s, size_t i, pelt_vec3 tip, pelt_vec3 ro
 
 /* ---- gusts: seeded value noise in (x, y, z, t) ---------------------------- */
 
-static uint32_t mix32(uint32_t h)
-{
-    /* Murmur3 finaliser: every input bit affects every output bit. */
-    h ^= h >> 16;
-    h *= 0x85ebca6bu;
-    h ^= h >> 13;
-    h *= 0xc2b2ae35u;
-    h ^= h >> 16;
-    return h;
-}
-
-/* Lattice hash built one axis at a time, so the 16 corners of a 4D cell
- * share the hashing of their outer coordinates (30 mixes, not 64). */
-static uint32_t hash_axis(uint32_t h, int32_t c, uint32_t prime) { return mix32(h ^ ((uint32_t)c * prime)); }
-
 /* Three channels in [-1, 1] from 10 bits each. */
 static pelt_vec3 lattice_value(uint32_t h)
 {
@@ -166,15 +152,15 @@ static pelt_vec3 noise_slice(uint32_t seed, pelt_vec3 x, int32_t t)
 {
     int32_t base[3];
     float w[3] = {noise_cell(x.x, &base[0]), noise_cell(x.y, &base[1]), noise_cell(x.z, &base[2])};
-    uint32_t ht = hash_axis(mix32(seed ^ 0x9e3779b9u), t, 0x27d4eb2fu);
+    uint32_t ht = pelt__hash_axis(pelt__hash32(seed ^ 0x9e3779b9u), t, 0x27d4eb2fu);
     pelt_vec3 along_z[2];
     for (int z = 0; z < 2; z++) {
-        uint32_t hz = hash_axis(ht, base[2] + z, 0x165667b1u);
+        uint32_t hz = pelt__hash_axis(ht, base[2] + z, 0x165667b1u);
         pelt_vec3 along_y[2];
         for (int y = 0; y < 2; y++) {
-            uint32_t hy = hash_axis(hz, base[1] + y, 0xd3a2646cu);
-            along_y[y] = v3_lerp(lattice_value(hash_axis(hy, base[0], 0xfd7046c5u)),
-                                 lattice_value(hash_axis(hy, base[0] + 1, 0xfd7046c5u)), w[0]);
+            uint32_t hy = pelt__hash_axis(hz, base[1] + y, 0xd3a2646cu);
+            along_y[y] = v3_lerp(lattice_value(pelt__hash_axis(hy, base[0], 0xfd7046c5u)),
+                                 lattice_value(pelt__hash_axis(hy, base[0] + 1, 0xfd7046c5u)), w[0]);
         }
         along_z[z] = v3_lerp(along_y[0], along_y[1], w[1]);
     }
