@@ -18,6 +18,7 @@ static inline pelt_vec3 v3_cross(pelt_vec3 a, pelt_vec3 b)
 {
     return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
+static inline pelt_vec3 v3_lerp(pelt_vec3 a, pelt_vec3 b, float t) { return v3_mad(a, v3_sub(b, a), t); }
 static inline float v3_len(pelt_vec3 a) { return sqrtf(v3_dot(a, a)); }
 /* Unit vector along a, or `fallback` when a is (near) zero. */
 static inline pelt_vec3 v3_norm_or(pelt_vec3 a, pelt_vec3 fallback)
