@@ -152,10 +152,13 @@ static gust_frame make_gust_frame(const pelt_forces *f, uint32_t seed, float tim
     g.wt = pelt__noise_cell(finite_or(time, 0.0f) * frequency, &g.t0);
     g.amplitude = strength * speed;
     g.along = v3_scale(wind, 1.0f / speed);
-    /* Helper axis least aligned with the wind. */
-    pelt_vec3 helper = fabsf(g.along.x) < 0.6f ? v3(1, 0, 0) : v3(0, 1, 0);
-    g.side1 = v3_norm_or(v3_cross(g.along, helper), v3(0, 0, 1));
-    g.side2 = v3_cross(g.along, g.side1);
+    /* Two axes across the wind from the shared basis. Their signs are free
+     * (the noise channels are symmetric); negated, a wind along +-X sways
+     * along +-Z and -+Y as the gusts always have. */
+    pelt_vec3 t, b;
+    v3_basis(g.along, &t, &b);
+    g.side1 = v3_scale(t, -1.0f);
+    g.side2 = v3_scale(b, -1.0f);
     return g;
 }
 

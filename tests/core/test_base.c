@@ -1,9 +1,11 @@
-/* The one value noise (core/base/noise.c) and the one integer hash
- * (core/base/rng.h) that gusts and colour patterns share. */
+/* core/base helpers that several modules share: the one integer hash
+ * (rng.h), the one value noise (noise.c) and the one orthonormal basis
+ * (vec.h). */
 #include "support/check.h"
 
 #include "core/base/noise.h"
 #include "core/base/rng.h"
+#include "core/base/vec.h"
 
 #include <math.h>
 #include <string.h>
@@ -96,6 +98,33 @@ static void value_noise_differs_by_seed_and_slice(void)
     CHECK(by_slice > 190);
 }
 
+static void basis_is_orthonormal_and_right_handed(void)
+{
+    pelt__rng r = pelt__rng_seed(3, 4);
+    float worst = 0.0f;
+    for (int i = 0; i < 20000; i++) {
+        pelt_vec3 n = v3_norm_or(v3(pelt__rng_range(&r, -1, 1), pelt__rng_range(&r, -1, 1),
+                                    pelt__rng_range(&r, -1, 1)), v3(0, 0, 1));
+        if (i < 6) n = v3(i == 0 ? 1.0f : i == 1 ? -1.0f : 0.0f, i == 2 ? 1.0f : i == 3 ? -1.0f : 0.0f,
+                          i == 4 ? 1.0f : i == 5 ? -1.0f : 0.0f); /* the axes */
+        pelt_vec3 t, b;
+        v3_basis(n, &t, &b);
+        pelt_vec3 p = v3_perpendicular(n);
+        CHECK(memcmp(&p, &t, sizeof p) == 0);
+        float e = fmaxf(fabsf(v3_len(t) - 1.0f), fabsf(v3_len(b) - 1.0f));
+        e = fmaxf(e, fmaxf(fabsf(v3_dot(t, n)), fmaxf(fabsf(v3_dot(b, n)), fabsf(v3_dot(t, b)))));
+        e = fmaxf(e, v3_len(v3_sub(v3_cross(t, b), n))); /* (t, b, n) right-handed */
+        worst = fmaxf(worst, e);
+    }
+    CHECK_NEAR(worst, 0.0f, 1e-5f);
+    /* A few values by hand: n = +z gives (x, y); n = -z gives (x, -y). */
+    pelt_vec3 t, b;
+    v3_basis(v3(0, 0, 1), &t, &b);
+    CHECK(t.x == 1.0f && t.y == 0.0f && t.z == 0.0f && b.x == 0.0f && b.y == 1.0f && b.z == 0.0f);
+    v3_basis(v3(0, 0, -1), &t, &b);
+    CHECK(t.x == 1.0f && t.y == 0.0f && t.z == 0.0f && b.x == 0.0f && b.y == -1.0f && b.z == 0.0f);
+}
+
 int main(void)
 {
     RUN(hash32_is_the_murmur3_finaliser);
@@ -104,5 +133,6 @@ int main(void)
     RUN(value_noise_is_continuous_across_cells);
     RUN(value_noise_tiles_with_its_period);
     RUN(value_noise_differs_by_seed_and_slice);
+    RUN(basis_is_orthonormal_and_right_handed);
     return check_summary();
 }
