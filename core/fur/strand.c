@@ -196,18 +196,10 @@ void pelt__gust(const pelt_forces *f, uint32_t seed, const float pos[3], float t
 
 /* ---- create / destroy ----------------------------------------------------- */
 
-static float positive_or(float x, float fallback) { return (isfinite(x) && x > 0.0f) ? x : fallback; }
-
-pelt__strand_params pelt__strand_params_resolve(const pelt__strand_params *p)
+static bool params_valid(const pelt__strand_params *p)
 {
-    pelt__strand_params r;
-    memset(&r, 0, sizeof r);
-    if (p) r = *p;
-    r.length = positive_or(r.length, PELT__STRAND_DEFAULT_LENGTH);
-    r.spring_k = positive_or(r.spring_k, PELT__STRAND_DEFAULT_SPRING_K);
-    r.mass = positive_or(r.mass, PELT__STRAND_DEFAULT_MASS);
-    r.damping = positive_or(r.damping, PELT__STRAND_DEFAULT_DAMPING);
-    return r;
+    return isfinite(p->length) && p->length > 0.0f && isfinite(p->spring_k) && p->spring_k > 0.0f &&
+           isfinite(p->mass) && p->mass > 0.0f && isfinite(p->damping) && p->damping >= 0.0f;
 }
 
 pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_params *p,
@@ -217,12 +209,17 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: out is NULL", fn);
     *out = NULL;
     if (!mesh) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: mesh is NULL", fn);
+    if (!p) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: params are NULL", fn);
+    if (!params_valid(p))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "%s: length %g, spring_k %g and mass %g must be positive, damping %g >= 0", fn,
+                          (double)p->length, (double)p->spring_k, (double)p->mass, (double)p->damping);
 
     pelt__strands *s = pelt__calloc(1, sizeof *s);
     if (!s) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", fn);
     size_t n = mesh->vertex_count;
     s->count = n;
-    s->params = pelt__strand_params_resolve(p);
+    s->params = *p;
     s->k_per_mass = fminf(s->params.spring_k / s->params.mass, PELT__RATE_MAX);
     s->c_per_mass = fminf(s->params.damping / s->params.mass, PELT__RATE_MAX);
 
