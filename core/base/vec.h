@@ -18,12 +18,32 @@ static inline pelt_vec3 v3_cross(pelt_vec3 a, pelt_vec3 b)
 {
     return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
+static inline pelt_vec3 v3_lerp(pelt_vec3 a, pelt_vec3 b, float t) { return v3_mad(a, v3_sub(b, a), t); }
 static inline float v3_len(pelt_vec3 a) { return sqrtf(v3_dot(a, a)); }
 /* Unit vector along a, or `fallback` when a is (near) zero. */
 static inline pelt_vec3 v3_norm_or(pelt_vec3 a, pelt_vec3 fallback)
 {
     float l = v3_len(a);
     return l > 1e-20f ? v3_scale(a, 1.0f / l) : fallback;
+}
+/* A unit vector perpendicular to unit n: the t of v3_basis. */
+static inline pelt_vec3 v3_perpendicular(pelt_vec3 n)
+{
+    float s = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n.z);
+    float b = n.x * n.y * a;
+    return v3(1.0f + s * n.x * n.x * a, s * b, -s * n.x);
+}
+/* The orthonormal basis of core/: unit t and b across unit n, with (t, b, n)
+ * right-handed (b = n x t). Duff et al. 2017, "Building an orthonormal
+ * basis, revisited": no branch on n but the sign of n.z, continuous except
+ * where n.z changes sign. */
+static inline void v3_basis(pelt_vec3 n, pelt_vec3 *t, pelt_vec3 *b)
+{
+    float s = n.z >= 0.0f ? 1.0f : -1.0f;
+    float a = -1.0f / (s + n.z);
+    *t = v3_perpendicular(n);
+    *b = v3(n.x * n.y * a, s + n.y * n.y * a, -n.y);
 }
 static inline float clampf(float x, float lo, float hi) { return x < lo ? lo : (x > hi ? hi : x); }
 

@@ -3,29 +3,10 @@
 #include "pelt/fur.h"
 
 #include "core/base/error.h"
-#include "core/base/rng.h"
+#include "core/base/noise.h"
 #include "core/base/vec.h"
 
 #include <stdlib.h>
-
-/* Tileable value noise on a period x period lattice. */
-static float lattice(const float *g, int period, int x, int y)
-{
-    x = ((x % period) + period) % period;
-    y = ((y % period) + period) % period;
-    return g[y * period + x];
-}
-
-static float smooth_noise(const float *g, int period, float x, float y)
-{
-    int ix = (int)floorf(x), iy = (int)floorf(y);
-    float fx = x - (float)ix, fy = y - (float)iy;
-    fx = fx * fx * (3.0f - 2.0f * fx);
-    fy = fy * fy * (3.0f - 2.0f * fy);
-    float a = lattice(g, period, ix, iy), b = lattice(g, period, ix + 1, iy);
-    float c = lattice(g, period, ix, iy + 1), d = lattice(g, period, ix + 1, iy + 1);
-    return (a + (b - a) * fx) * (1.0f - fy) + (c + (d - c) * fx) * fy;
-}
 
 pelt_status pelt_fur_set_color_pattern(pelt_fur *fur, pelt_color_pattern pattern, uint32_t seed,
                                        pelt_error *err)
@@ -38,19 +19,19 @@ pelt_status pelt_fur_set_color_pattern(pelt_fur *fur, pelt_color_pattern pattern
     if (pattern < PELT_COLOR_PATTERN_NONE || pattern > PELT_COLOR_PATTERN_NOISE)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "unknown colour pattern %d", (int)pattern);
     uint8_t *rgba = malloc((size_t)SIZE * SIZE * 4);
-    float grid[4][PERIOD * 4 * PERIOD * 4];
     if (!rgba) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a colour pattern");
-    pelt__rng rng = pelt__rng_seed(seed, 0x70617474ULL);
-    for (int o = 0; o < 4; o++)
-        for (int i = 0; i < PERIOD * 4 * PERIOD * 4; i++) grid[o][i] = pelt__rng_float(&rng);
+    const uint32_t noise_seed = seed ^ 0x70617474u; /* "patt": unlike the gusts of the same seed */
     for (int y = 0; y < SIZE; y++)
         for (int x = 0; x < SIZE; x++) {
             float u = (float)x / SIZE, v = (float)y / SIZE;
-            /* Three octaves of tileable noise: periods 8, 16, 32. */
+            /* Three octaves of tileable value noise in [0, 1]: periods 8,
+             * 16, 32 over the texture, octave o on lattice slice o. */
             float n = 0.0f, amp = 0.5f;
             for (int o = 0; o < 3; o++) {
                 int period = PERIOD << o;
-                n += amp * smooth_noise(grid[o], period, u * (float)period, v * (float)period);
+                const float at[2] = {u * (float)period, v * (float)period};
+                float octave = 0.5f + 0.5f * pelt__value_noise(noise_seed, 2, at, o, period).x;
+                n += amp * octave;
                 amp *= 0.5f;
             }
             n /= 0.875f;

@@ -4,6 +4,7 @@
 #include "core/fur/strand.h"
 
 #include "core/base/error.h"
+#include "core/base/noise.h"
 #include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
 
@@ -12,10 +13,9 @@
 #include <string.h>
 
 /* Bounds that keep every product finite in float: accelerations and
- * velocities are clamped to these, noise coordinates to PELT__NOISE_MAX. */
+ * velocities are clamped to these (noise coordinates to PELT__NOISE_MAX). */
 #define PELT__ACCEL_MAX 1e9f
 #define PELT__RATE_MAX 1e9f
-#define PELT__NOISE_MAX 1e6f
 /* Strands stepped together (see pelt__strands_step). */
 #define PELT__STRAND_BLOCK 32
 
@@ -33,7 +33,7 @@ struct pelt__strands {
     float *tip[3];        /* world tip position p */
     float *vel[3];        /* world tip velocity */
     float *offsets;       /* 3 per vertex, mesh-local p - p_root (interleaved for upload) */
-    float *gust0[3], *gust1[3]; /* cached gust noise slices at the roots (see noise_slice) */
+    float *gust0[3], *gust1[3]; /* cached gust noise slices at the roots (see gust_slices) */
     float *block;
 
     float model[16];  /* column-major, mesh-local to world */
@@ -124,63 +124,6 @@ static void write_offset(pelt__strands *s, size_t i, pelt_vec3 tip, pelt_vec3 ro
 
 /* ---- gusts: seeded value noise in (x, y, z, t) ---------------------------- */
 
-static uint32_t mix32(uint32_t h)
-{
-    /* Murmur3 finaliser: every input bit affects every output bit. */
-    h ^= h >> 16;
-    h *= 0x85ebca6bu;
-    h ^= h >> 13;
-    h *= 0xc2b2ae35u;
-    h ^= h >> 16;
-    return h;
-}
-
-/* Lattice hash built one axis at a time, so the 16 corners of a 4D cell
- * share the hashing of their outer coordinates (30 mixes, not 64). */
-static uint32_t hash_axis(uint32_t h, int32_t c, uint32_t prime) { return mix32(h ^ ((uint32_t)c * prime)); }
-
-/* Three channels in [-1, 1] from 10 bits each. */
-static pelt_vec3 lattice_value(uint32_t h)
-{
-    const float s = 2.0f / 1023.0f;
-    return v3((float)(h & 1023u) * s - 1.0f, (float)((h >> 10) & 1023u) * s - 1.0f,
-              (float)((h >> 20) & 1023u) * s - 1.0f);
-}
-
-static pelt_vec3 v3_lerp(pelt_vec3 a, pelt_vec3 b, float t) { return v3_mad(a, v3_sub(b, a), t); }
-
-/* Lattice cell and smoothstep weight (C1 across cells) of one coordinate. */
-static float noise_cell(float x, int32_t *base)
-{
-    float xc = clampf(x, -PELT__NOISE_MAX, PELT__NOISE_MAX);
-    float fl = floorf(xc);
-    float f = xc - fl;
-    *base = (int32_t)fl;
-    return f * f * (3.0f - 2.0f * f);
-}
-
-/* Three channels of 3D value noise in [-1, 1] at position x on the time
- * lattice plane t. 4D value noise (x, y, z, time) is the smoothstep blend
- * of two such slices, t0 and t0 + 1: a static mesh caches the slices. */
-static pelt_vec3 noise_slice(uint32_t seed, pelt_vec3 x, int32_t t)
-{
-    int32_t base[3];
-    float w[3] = {noise_cell(x.x, &base[0]), noise_cell(x.y, &base[1]), noise_cell(x.z, &base[2])};
-    uint32_t ht = hash_axis(mix32(seed ^ 0x9e3779b9u), t, 0x27d4eb2fu);
-    pelt_vec3 along_z[2];
-    for (int z = 0; z < 2; z++) {
-        uint32_t hz = hash_axis(ht, base[2] + z, 0x165667b1u);
-        pelt_vec3 along_y[2];
-        for (int y = 0; y < 2; y++) {
-            uint32_t hy = hash_axis(hz, base[1] + y, 0xd3a2646cu);
-            along_y[y] = v3_lerp(lattice_value(hash_axis(hy, base[0], 0xfd7046c5u)),
-                                 lattice_value(hash_axis(hy, base[0] + 1, 0xfd7046c5u)), w[0]);
-        }
-        along_z[z] = v3_lerp(along_y[0], along_y[1], w[1]);
-    }
-    return v3_lerp(along_z[0], along_z[1], w[2]);
-}
-
 /* What a step needs to evaluate gusts, derived once per call. */
 typedef struct gust_frame {
     bool enabled;
@@ -206,21 +149,27 @@ static gust_frame make_gust_frame(const pelt_forces *f, uint32_t seed, float tim
     g.seed = seed;
     g.inv_scale = 1.0f / scale;
     float frequency = clampf(finite_or(f->gust_frequency, 0.0f), 0.0f, 1e4f);
-    g.wt = noise_cell(finite_or(time, 0.0f) * frequency, &g.t0);
+    g.wt = pelt__noise_cell(finite_or(time, 0.0f) * frequency, &g.t0);
     g.amplitude = strength * speed;
     g.along = v3_scale(wind, 1.0f / speed);
-    /* Helper axis least aligned with the wind. */
-    pelt_vec3 helper = fabsf(g.along.x) < 0.6f ? v3(1, 0, 0) : v3(0, 1, 0);
-    g.side1 = v3_norm_or(v3_cross(g.along, helper), v3(0, 0, 1));
-    g.side2 = v3_cross(g.along, g.side1);
+    /* Two axes across the wind from the shared basis. Their signs are free
+     * (the noise channels are symmetric); negated, a wind along +-X sways
+     * along +-Z and -+Y as the gusts always have. */
+    pelt_vec3 t, b;
+    v3_basis(g.along, &t, &b);
+    g.side1 = v3_scale(t, -1.0f);
+    g.side2 = v3_scale(b, -1.0f);
     return g;
 }
 
 static void gust_slices(const gust_frame *g, pelt_vec3 pos, pelt_vec3 *s0, pelt_vec3 *s1)
 {
+    /* 4D value noise (x, y, z, time) as the smoothstep blend of the time
+     * slices t0 and t0 + 1 (gust_combine): a still mesh caches the slices. */
     pelt_vec3 x = v3_scale(pos, g->inv_scale);
-    *s0 = noise_slice(g->seed, x, g->t0);
-    *s1 = noise_slice(g->seed, x, g->t0 + 1);
+    const float xs[3] = {x.x, x.y, x.z};
+    *s0 = pelt__value_noise(g->seed, 3, xs, g->t0, 0);
+    *s1 = pelt__value_noise(g->seed, 3, xs, g->t0 + 1, 0);
 }
 
 /* Gust = strength * |wind| * (n0 along the wind + half of (n1, n2) across it):
@@ -247,18 +196,10 @@ void pelt__gust(const pelt_forces *f, uint32_t seed, const float pos[3], float t
 
 /* ---- create / destroy ----------------------------------------------------- */
 
-static float positive_or(float x, float fallback) { return (isfinite(x) && x > 0.0f) ? x : fallback; }
-
-pelt__strand_params pelt__strand_params_resolve(const pelt__strand_params *p)
+static bool params_valid(const pelt__strand_params *p)
 {
-    pelt__strand_params r;
-    memset(&r, 0, sizeof r);
-    if (p) r = *p;
-    r.length = positive_or(r.length, PELT__STRAND_DEFAULT_LENGTH);
-    r.spring_k = positive_or(r.spring_k, PELT__STRAND_DEFAULT_SPRING_K);
-    r.mass = positive_or(r.mass, PELT__STRAND_DEFAULT_MASS);
-    r.damping = positive_or(r.damping, PELT__STRAND_DEFAULT_DAMPING);
-    return r;
+    return isfinite(p->length) && p->length > 0.0f && isfinite(p->spring_k) && p->spring_k > 0.0f &&
+           isfinite(p->mass) && p->mass > 0.0f && isfinite(p->damping) && p->damping >= 0.0f;
 }
 
 pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_params *p,
@@ -268,12 +209,17 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: out is NULL", fn);
     *out = NULL;
     if (!mesh) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: mesh is NULL", fn);
+    if (!p) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: params are NULL", fn);
+    if (!params_valid(p))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "%s: length %g, spring_k %g and mass %g must be positive, damping %g >= 0", fn,
+                          (double)p->length, (double)p->spring_k, (double)p->mass, (double)p->damping);
 
     pelt__strands *s = pelt__calloc(1, sizeof *s);
     if (!s) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", fn);
     size_t n = mesh->vertex_count;
     s->count = n;
-    s->params = pelt__strand_params_resolve(p);
+    s->params = *p;
     s->k_per_mass = fminf(s->params.spring_k / s->params.mass, PELT__RATE_MAX);
     s->c_per_mass = fminf(s->params.damping / s->params.mass, PELT__RATE_MAX);
 

@@ -16,23 +16,16 @@
 #include "pelt/dynamics.h"
 #include "pelt/mesh.h"
 
-/* Strand parameters. A field <= 0 (or not finite) takes its default; the
- * defaults make gravity (9.81) bend fur of length 0.1 visibly without
- * flattening it (static sag g m / k = 0.04 = 0.4 L0) and a wind of 20-30
- * lean it strongly (25 m / k = 0.1 = L0, so the tip reaches the
- * constraint sphere at about 45 degrees). */
+/* Strand parameters, fully resolved: the strands have no defaults of their
+ * own. pelt_fur_desc's dynamics defaults (pelt__fur_desc_defaults in
+ * core/fur/fur.c, stated in include/pelt/fur.h) are the one home. */
 typedef struct pelt__strand_params {
-    float length;   /* L0, world units; default 0.1 */
-    float spring_k; /* spring constant, force per unit length; default 250 */
-    float mass;     /* tip mass; default 1 (natural frequency sqrt(k/m) = 15.8 rad/s, 2.5 Hz) */
-    float damping;  /* drag force per unit velocity; default 8 (damping ratio 0.25) */
+    float length;   /* L0, world units, > 0 */
+    float spring_k; /* spring constant, force per unit length, > 0 */
+    float mass;     /* tip mass, > 0 */
+    float damping;  /* drag force per unit velocity, >= 0 */
     uint32_t seed;  /* gust noise seed; 0 is a valid seed */
 } pelt__strand_params;
-
-#define PELT__STRAND_DEFAULT_LENGTH 0.1f
-#define PELT__STRAND_DEFAULT_SPRING_K 250.0f
-#define PELT__STRAND_DEFAULT_MASS 1.0f
-#define PELT__STRAND_DEFAULT_DAMPING 8.0f
 
 /* Largest internal substep, and the most substeps one call takes; longer
  * calls use larger substeps (the spring-damper is integrated implicitly, so
@@ -43,13 +36,11 @@ typedef struct pelt__strand_params {
 
 typedef struct pelt__strands pelt__strands;
 
-/* The params with every default filled in (p may be NULL: all defaults). */
-pelt__strand_params pelt__strand_params_resolve(const pelt__strand_params *p);
-
 /* One strand per vertex of `mesh`, all tips at rest, identity transform.
  * The mesh's positions and normals are copied, so the mesh need not outlive
  * the strands. All memory is allocated here; stepping allocates nothing.
- * p may be NULL (defaults). Free with pelt__strands_destroy. */
+ * PELT_ERR_INVALID_ARGUMENT when p is NULL or a parameter is out of its
+ * range or not finite. Free with pelt__strands_destroy. */
 pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_params *p,
                                  pelt__strands **out, pelt_error *err);
 void pelt__strands_destroy(pelt__strands *s);

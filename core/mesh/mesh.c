@@ -160,15 +160,8 @@ static void compute_normals(pelt_mesh *m, const uint32_t *canon)
 
 /* ---- tangents ---------------------------------------------------------- */
 
-/* A unit vector perpendicular to unit n, continuous except where n.z changes
- * sign (Duff et al. 2017, "Building an orthonormal basis, revisited"). */
-static pelt_vec3 perpendicular(pelt_vec3 n)
-{
-    float s = n.z >= 0.0f ? 1.0f : -1.0f;
-    float a = -1.0f / (s + n.z);
-    float b = n.x * n.y * a;
-    return v3(1.0f + s * n.x * n.x * a, s * b, -s * n.x);
-}
+/* A unit vector perpendicular to unit n: the shared basis (core/base/vec.h). */
+static pelt_vec3 perpendicular(pelt_vec3 n) { return v3_perpendicular(n); }
 
 /* Accumulates area-weighted unit +u and +v directions per vertex into
  * tan (3 per vertex) and bit (3 per vertex). */

@@ -65,7 +65,9 @@ typedef struct pelt_fur_comb {
 
 /* Fur parameters, one home each. A zero field means its documented
  * default; the defaults are the paper's Table 1 set-up (16 layers, 256x256
- * fur texture and wetness mask). */
+ * fur texture and wetness mask). These are the only defaults: the strands
+ * and the texture synthesis take them resolved, and test_fur_defaults
+ * checks every default stated here against pelt_fur_get_desc. */
 typedef struct pelt_fur_desc {
     unsigned layers;         /* shells N, default 16, at most 256 */
     float length;            /* fur length L0 in world units, default 3% of

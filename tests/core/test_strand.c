@@ -4,6 +4,7 @@
 
 #include "core/mesh/mesh_internal.h"
 #include "core/base/rng.h"
+#include "core/fur/fur_internal.h"
 #include "core/fur/strand.h"
 #include "core/base/vec.h"
 
@@ -39,6 +40,26 @@ static pelt__strands *strands_for(const pelt_mesh *m, const pelt__strand_params 
     return s;
 }
 
+/* The fur length most tests use. */
+#define L0_TEST 0.1f
+
+/* The strand parameters the product runs for fur of length L0: the fur
+ * desc's defaults (pelt__fur_desc_defaults), the one home of them. */
+static pelt__strand_params fur_defaults(float length)
+{
+    pelt_fur_desc d = {0};
+    d.length = length;
+    pelt__fur_desc_defaults(&d, NULL);
+    pelt__strand_params p = {d.length, d.dynamics.spring_k, d.dynamics.mass, d.dynamics.damping, 0};
+    return p;
+}
+
+static pelt__strands *strands_default(const pelt_mesh *m)
+{
+    pelt__strand_params p = fur_defaults(L0_TEST);
+    return strands_for(m, &p);
+}
+
 static pelt_forces no_forces(void)
 {
     pelt_forces f = pelt_forces_default();
@@ -69,7 +90,7 @@ static float wild(pelt__rng *r)
 static void strand_constraints_hold_after_100000_random_steps(void)
 {
     pelt_mesh *m = torus(8, 6);
-    pelt__strand_params p = {.length = 0.1f};
+    pelt__strand_params p = fur_defaults(0.1f);
     pelt__strands *s = m ? strands_for(m, &p) : NULL;
     CHECK(s != NULL);
     if (!s) {
@@ -136,7 +157,7 @@ static void strand_constraints_hold_after_100000_random_steps(void)
 static void strand_returns_to_rest_without_force_when_damped(void)
 {
     pelt_mesh *m = torus(12, 8);
-    pelt__strand_params p = {.length = 0.1f};
+    pelt__strand_params p = fur_defaults(0.1f);
     pelt__strands *s = m ? strands_for(m, &p) : NULL;
     CHECK(s != NULL);
     if (!s) {
@@ -193,9 +214,9 @@ static void strand_static_sag_equals_force_over_stiffness(void)
 
 static void strand_defaults_bend_under_gravity_and_lean_in_wind(void)
 {
-    /* A wall: the square turned so its normal is +x, default parameters. */
+    /* A wall: the square turned so its normal is +x, the fur defaults. */
     pelt_mesh *m = square(1);
-    pelt__strands *s = m ? strands_for(m, NULL) : NULL;
+    pelt__strands *s = m ? strands_default(m) : NULL;
     CHECK(s != NULL);
     if (!s) {
         pelt_mesh_destroy(m);
@@ -205,7 +226,7 @@ static void strand_defaults_bend_under_gravity_and_lean_in_wind(void)
     pelt__mat4_rotate(model, v3(0, 0, 1), -1.5707963f); /* +y to +x */
     CHECK(pelt__strands_set_transform(s, model));
     pelt__strands_reset(s);
-    const float L0 = PELT__STRAND_DEFAULT_LENGTH;
+    const float L0 = L0_TEST;
     pelt_forces f = pelt_forces_default();
     f.gust_strength = 0.0f;
     for (int i = 0; i < 300; i++) pelt__strands_step(s, 1.0f / 60.0f, &f, (float)i / 60.0f);
@@ -235,13 +256,13 @@ static void strand_defaults_bend_under_gravity_and_lean_in_wind(void)
 static void strand_steady_wind_moves_every_tip_downwind(void)
 {
     pelt_mesh *m = torus(24, 16);
-    pelt__strands *s = m ? strands_for(m, NULL) : NULL;
+    pelt__strands *s = m ? strands_default(m) : NULL;
     CHECK(s != NULL);
     if (!s) {
         pelt_mesh_destroy(m);
         return;
     }
-    const float L0 = PELT__STRAND_DEFAULT_LENGTH;
+    const float L0 = L0_TEST;
     pelt_forces f = no_forces();
     pelt_vec3 wind = v3(20.0f, 0.0f, 10.0f);
     v3_store(f.wind, wind);
@@ -265,7 +286,7 @@ static void strand_steady_wind_moves_every_tip_downwind(void)
 static void strand_tips_lag_behind_translation(void)
 {
     pelt_mesh *m = square(3);
-    pelt__strands *s = m ? strands_for(m, NULL) : NULL;
+    pelt__strands *s = m ? strands_default(m) : NULL;
     CHECK(s != NULL);
     if (!s) {
         pelt_mesh_destroy(m);
@@ -285,7 +306,7 @@ static void strand_tips_lag_behind_translation(void)
         pelt__strands_tip_world(s, i, tip);
         pelt__strands_root_world(s, i, root);
         CHECK_NEAR(root[0], m->positions[3 * i] + 0.5f, 1e-5);
-        CHECK(tip[0] - root[0] < -0.01f * PELT__STRAND_DEFAULT_LENGTH);
+        CHECK(tip[0] - root[0] < -0.01f * L0_TEST);
         CHECK(offset_of(s, i).x < 0.0f); /* seen in mesh-local terms too */
     }
     pelt__strands_destroy(s);
@@ -295,7 +316,7 @@ static void strand_tips_lag_behind_translation(void)
 static void strand_tips_lag_behind_turntable(void)
 {
     pelt_mesh *m = torus(24, 16);
-    pelt__strands *s = m ? strands_for(m, NULL) : NULL;
+    pelt__strands *s = m ? strands_default(m) : NULL;
     CHECK(s != NULL);
     if (!s) {
         pelt_mesh_destroy(m);
@@ -320,7 +341,7 @@ static void strand_tips_lag_behind_turntable(void)
         /* Fur pointing backwards cannot trail further: the sphere stops it. */
         if (v3_dot(n, motion) < -0.9f) continue;
         checked++;
-        pelt_vec3 rest = v3_mad(r, n, PELT__STRAND_DEFAULT_LENGTH);
+        pelt_vec3 rest = v3_mad(r, n, L0_TEST);
         if (!(v3_dot(v3_sub(v3_load(tip), rest), motion) < 0.0f)) ahead++;
     }
     CHECK(checked > pelt__strands_count(s) / 2);
@@ -333,7 +354,7 @@ static void strand_coincident_seam_vertices_get_identical_tips(void)
 {
     const unsigned M = 20, mm = 12;
     pelt_mesh *m = torus(M, mm);
-    pelt__strands *s = m ? strands_for(m, NULL) : NULL;
+    pelt__strands *s = m ? strands_default(m) : NULL;
     CHECK(s != NULL);
     if (!s) {
         pelt_mesh_destroy(m);
@@ -360,8 +381,8 @@ static void strand_coincident_seam_vertices_get_identical_tips(void)
         if (memcmp(o + 3 * (i * row), o + 3 * (i * row + mm), 3 * sizeof(float)) != 0) differ++;
     CHECK(differ == 0);
     /* And the fur did move, so the equality is not that of resting tips. */
-    CHECK(v3_len(v3_sub(offset_of(s, 0), v3_scale(normal_of(m, 0), PELT__STRAND_DEFAULT_LENGTH))) >
-          0.01f * PELT__STRAND_DEFAULT_LENGTH);
+    CHECK(v3_len(v3_sub(offset_of(s, 0), v3_scale(normal_of(m, 0), L0_TEST))) >
+          0.01f * L0_TEST);
     pelt__strands_destroy(s);
     pelt_mesh_destroy(m);
 }
@@ -414,8 +435,8 @@ static void strand_cached_gusts_match_fresh_ones(void)
      * every step forces fresh noise. Both must give the same tips, over
      * several gust time cells. */
     pelt_mesh *m = torus(16, 10);
-    pelt__strands *a = m ? strands_for(m, NULL) : NULL;
-    pelt__strands *b = m ? strands_for(m, NULL) : NULL;
+    pelt__strands *a = m ? strands_default(m) : NULL;
+    pelt__strands *b = m ? strands_default(m) : NULL;
     CHECK(a != NULL && b != NULL);
     if (a && b) {
         pelt_forces f = pelt_forces_default();
@@ -431,7 +452,7 @@ static void strand_cached_gusts_match_fresh_ones(void)
         size_t n = pelt__strands_count(a);
         CHECK(memcmp(pelt__strands_tip_offsets(a), pelt__strands_tip_offsets(b), 3 * n * sizeof(float)) == 0);
         /* The gusts did something: without them the tips differ. */
-        pelt__strands *c = strands_for(m, NULL);
+        pelt__strands *c = strands_default(m);
         if (c) {
             f.gust_strength = 0.0f;
             for (int i = 0; i < 240; i++) pelt__strands_step(c, 1.0f / 60.0f, &f, (float)i / 60.0f);
@@ -453,7 +474,7 @@ static void strand_bad_input_is_rejected_or_ignored(void)
     CHECK(strstr(err.message, "mesh") != NULL);
     pelt_mesh *m = square(1);
     CHECK(pelt__strands_create(m, NULL, NULL, NULL) == PELT_ERR_INVALID_ARGUMENT);
-    s = m ? strands_for(m, NULL) : NULL;
+    s = m ? strands_default(m) : NULL;
     CHECK(s != NULL);
     if (!s) {
         pelt_mesh_destroy(m);
@@ -477,7 +498,7 @@ static void strand_bad_input_is_rejected_or_ignored(void)
     for (size_t i = 0; i < pelt__strands_count(s); i++) {
         pelt_vec3 d = offset_of(s, i);
         CHECK(isfinite(d.x) && isfinite(d.y) && isfinite(d.z));
-        CHECK(v3_len(d) <= PELT__STRAND_DEFAULT_LENGTH * 1.0001f);
+        CHECK(v3_len(d) <= L0_TEST * 1.0001f);
         CHECK(d.y >= 0.0f);
     }
     pelt__strands_destroy(s);
@@ -485,18 +506,40 @@ static void strand_bad_input_is_rejected_or_ignored(void)
     pelt_mesh_destroy(m);
 }
 
-static void strand_params_zero_fields_take_defaults(void)
+static void strand_params_are_checked_not_defaulted(void)
 {
-    pelt__strand_params z = {0};
-    pelt__strand_params r = pelt__strand_params_resolve(&z);
-    CHECK(r.length == PELT__STRAND_DEFAULT_LENGTH);
-    CHECK(r.spring_k == PELT__STRAND_DEFAULT_SPRING_K);
-    CHECK(r.mass == PELT__STRAND_DEFAULT_MASS);
-    CHECK(r.damping == PELT__STRAND_DEFAULT_DAMPING);
-    pelt__strand_params given = {.length = 0.3f, .spring_k = NAN, .mass = -2.0f, .damping = 4.0f, .seed = 9};
-    r = pelt__strand_params_resolve(&given);
-    CHECK(r.length == 0.3f && r.damping == 4.0f && r.seed == 9);
-    CHECK(r.spring_k == PELT__STRAND_DEFAULT_SPRING_K && r.mass == PELT__STRAND_DEFAULT_MASS);
+    /* The strands take resolved parameters: a zero, negative or not-finite
+     * one is an error, not a default (the fur desc has the defaults). */
+    pelt_mesh *m = square(1);
+    CHECK(m != NULL);
+    if (!m) return;
+    pelt__strands *s = NULL;
+    pelt_error err = {0};
+    CHECK(pelt__strands_create(m, NULL, &s, &err) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(s == NULL && strstr(err.message, "params") != NULL);
+    const pelt__strand_params good = fur_defaults(L0_TEST);
+    pelt__strand_params bad[6] = {good, good, good, good, good, good};
+    bad[0].length = 0.0f;
+    bad[1].spring_k = NAN;
+    bad[2].mass = -2.0f;
+    bad[3].damping = -1.0f;
+    bad[4].length = INFINITY;
+    memset(&bad[5], 0, sizeof bad[5]);
+    for (int i = 0; i < 6; i++) {
+        CHECK(pelt__strands_create(m, &bad[i], &s, &err) == PELT_ERR_INVALID_ARGUMENT);
+        CHECK(s == NULL);
+    }
+    /* No damping at all is allowed; the params come back as given. */
+    pelt__strand_params undamped = good;
+    undamped.damping = 0.0f;
+    undamped.seed = 9;
+    CHECK(pelt__strands_create(m, &undamped, &s, &err) == PELT_OK);
+    if (s) {
+        pelt__strand_params r = pelt__strands_params(s);
+        CHECK(memcmp(&r, &undamped, sizeof r) == 0);
+    }
+    pelt__strands_destroy(s);
+    pelt_mesh_destroy(m);
 }
 
 static void strand_rest_offsets_are_length_times_normal_in_mesh_space(void)
@@ -504,7 +547,7 @@ static void strand_rest_offsets_are_length_times_normal_in_mesh_space(void)
     /* Even under a scaled, rotated transform the uploaded offsets are
      * mesh-local: L0 n at rest. */
     pelt_mesh *m = torus(10, 6);
-    pelt__strand_params p = {.length = 0.05f};
+    pelt__strand_params p = fur_defaults(0.05f);
     pelt__strands *s = m ? strands_for(m, &p) : NULL;
     CHECK(s != NULL);
     if (!s) {
@@ -526,7 +569,7 @@ static void strand_rest_offsets_are_length_times_normal_in_mesh_space(void)
 
 int main(void)
 {
-    RUN(strand_params_zero_fields_take_defaults);
+    RUN(strand_params_are_checked_not_defaulted);
     RUN(strand_rest_offsets_are_length_times_normal_in_mesh_space);
     RUN(strand_static_sag_equals_force_over_stiffness);
     RUN(strand_defaults_bend_under_gravity_and_lean_in_wind);
