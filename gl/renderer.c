@@ -4,8 +4,7 @@
 #include "pelt/render.h"
 
 #include "core/base/error.h"
-#include "core/fur/fur_internal.h"
-#include "core/mesh/mesh_internal.h"
+#include "core/fur/fur_gpu.h"
 #include "core/base/vec.h"
 #include "gl/shader.h"
 
@@ -64,24 +63,25 @@ enum { STATIC_FLOATS = 3 + 3 + 2 + 2 + 4 + 3 };
 
 static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
 {
-    const pelt_mesh *m = r->mesh;
-    float *data = pelt__calloc(m->vertex_count, STATIC_FLOATS * sizeof(float));
+    const pelt_mesh_data m = pelt_mesh_get_data(r->mesh);
+    const float *tangents = pelt_mesh_tangents(r->mesh), *fur_uvs = pelt__fur_gpu_uvs(r->fur);
+    float *data = pelt__calloc(m.vertex_count, STATIC_FLOATS * sizeof(float));
     if (!data) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex data");
-    for (size_t i = 0; i < m->vertex_count; i++) {
+    for (size_t i = 0; i < m.vertex_count; i++) {
         float *v = data + i * STATIC_FLOATS;
-        memcpy(v + 0, m->positions + 3 * i, 3 * sizeof(float));
-        memcpy(v + 3, m->normals + 3 * i, 3 * sizeof(float));
-        memcpy(v + 6, m->uvs + 2 * i, 2 * sizeof(float));
-        memcpy(v + 8, r->fur->fur_uvs + 2 * i, 2 * sizeof(float));
-        memcpy(v + 10, m->tangents + 4 * i, 4 * sizeof(float));
+        memcpy(v + 0, m.positions + 3 * i, 3 * sizeof(float));
+        memcpy(v + 3, m.normals + 3 * i, 3 * sizeof(float));
+        memcpy(v + 6, m.uvs + 2 * i, 2 * sizeof(float));
+        memcpy(v + 8, fur_uvs + 2 * i, 2 * sizeof(float));
+        memcpy(v + 10, tangents + 4 * i, 4 * sizeof(float));
         /* Without a direction field, comb along the fur texture's u axis. */
-        memcpy(v + 14, m->comb ? m->comb + 3 * i : m->tangents + 4 * i, 3 * sizeof(float));
+        memcpy(v + 14, m.comb ? m.comb + 3 * i : tangents + 4 * i, 3 * sizeof(float));
     }
     glGenVertexArrays(1, &r->vao);
     glBindVertexArray(r->vao);
     glGenBuffers(1, &r->vbo_static);
     glBindBuffer(GL_ARRAY_BUFFER, r->vbo_static);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m->vertex_count * STATIC_FLOATS * sizeof(float)),
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * STATIC_FLOATS * sizeof(float)),
                  data, GL_STATIC_DRAW);
     free(data);
     const GLsizei stride = STATIC_FLOATS * sizeof(float);
@@ -97,17 +97,16 @@ static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
     /* Strand tips change every frame: their own buffer, updated in place. */
     glGenBuffers(1, &r->vbo_tips);
     glBindBuffer(GL_ARRAY_BUFFER, r->vbo_tips);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m->vertex_count * 3 * sizeof(float)),
-                 r->fur->tips, GL_DYNAMIC_DRAW);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * 3 * sizeof(float)),
+                 pelt__fur_gpu_tips(r->fur, &r->tips_version), GL_DYNAMIC_DRAW);
     glEnableVertexAttribArray(5);
     glVertexAttribPointer(5, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
-    r->tips_version = r->fur->tips_version;
 
     glGenBuffers(1, &r->ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, r->ebo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m->triangle_count * 3 * sizeof(uint32_t)),
-                 m->indices, GL_STATIC_DRAW);
-    r->index_count = (GLsizei)(m->triangle_count * 3);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m.triangle_count * 3 * sizeof(uint32_t)),
+                 m.indices, GL_STATIC_DRAW);
+    r->index_count = (GLsizei)(m.triangle_count * 3);
     glBindVertexArray(0);
     return PELT_OK;
 }
@@ -115,11 +114,13 @@ static pelt_status upload_geometry(pelt_renderer *r, pelt_error *err)
 static void upload_textures(pelt_renderer *r)
 {
     pelt_fur *f = r->fur;
-    GLsizei s = (GLsizei)f->desc.look.texture_size;
+    unsigned size, slices;
+    const uint8_t *volume = pelt__fur_gpu_volume(f, &size, &slices);
+    GLsizei s = (GLsizei)size;
     glGenTextures(1, &r->fur_texture);
     glBindTexture(GL_TEXTURE_2D_ARRAY, r->fur_texture);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, (GLsizei)f->texture_slices, 0, GL_RGBA,
-                 GL_UNSIGNED_BYTE, f->texture);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, s, s, (GLsizei)slices, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, volume);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -135,18 +136,19 @@ static void upload_textures(pelt_renderer *r)
     r->color_version = (unsigned)-1;
 
     /* The wetness mask: float texels, nearest sampling (Silva §3.1). */
-    const pelt__wetness *m = f->wetness;
+    unsigned mw, mh;
+    const float *texels = pelt__fur_gpu_mask(f, &mw, &mh);
     glGenTextures(1, &r->mask_texture);
     glBindTexture(GL_TEXTURE_2D, r->mask_texture);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)m->width, (GLsizei)m->height, 0, GL_RGBA,
-                 GL_FLOAT, m->texels);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)mw, (GLsizei)mh, 0, GL_RGBA,
+                 GL_FLOAT, texels);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     unsigned rect[4];
-    pelt__wetness_take_dirty(f->wetness, rect); /* all of it went up just now */
+    pelt__fur_gpu_take_mask_dirty(f, rect); /* all of it went up just now */
 }
 
 pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
@@ -155,10 +157,10 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
 {
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_renderer_create: out is NULL");
     *out = NULL;
-    if (!mesh || !fur || fur->mesh != mesh)
+    if (!mesh || !fur || pelt__fur_gpu_mesh(fur) != mesh)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "pelt_renderer_create: needs a mesh and a fur made for that mesh");
-    if (mesh->triangle_count * 3 > 0x7fffffff)
+    if (pelt_mesh_get_data(mesh).triangle_count * 3 > 0x7fffffff)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "mesh too large for one draw call");
     pelt_renderer *r = calloc(1, sizeof *r);
     if (!r) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
@@ -205,32 +207,36 @@ void pelt_renderer_destroy(pelt_renderer *r)
 void pelt_renderer_upload(pelt_renderer *r)
 {
     pelt_fur *f = r->fur;
-    if (r->tips_version != f->tips_version) {
+    unsigned tips_version, color_version, cw, ch;
+    const float *tips = pelt__fur_gpu_tips(f, &tips_version);
+    if (r->tips_version != tips_version) {
         glBindBuffer(GL_ARRAY_BUFFER, r->vbo_tips);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(r->mesh->vertex_count * 3 * sizeof(float)),
-                        f->tips);
-        r->tips_version = f->tips_version;
+        glBufferSubData(GL_ARRAY_BUFFER, 0,
+                        (GLsizeiptr)(pelt_mesh_get_data(r->mesh).vertex_count * 3 * sizeof(float)), tips);
+        r->tips_version = tips_version;
     }
-    if (r->color_version != f->color_version && f->color_texture) {
+    const uint8_t *color = pelt__fur_gpu_color(f, &cw, &ch, &color_version);
+    if (r->color_version != color_version && color) {
         glBindTexture(GL_TEXTURE_2D, r->color_texture);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)f->color_width, (GLsizei)f->color_height,
-                     0, GL_RGBA, GL_UNSIGNED_BYTE, f->color_texture);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)cw, (GLsizei)ch,
+                     0, GL_RGBA, GL_UNSIGNED_BYTE, color);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
         glGenerateMipmap(GL_TEXTURE_2D);
-        r->color_version = f->color_version;
+        r->color_version = color_version;
     }
     /* Only the rectangle of the mask that changed since the last upload. */
     unsigned rect[4];
-    if (pelt__wetness_take_dirty(f->wetness, rect)) {
-        const pelt__wetness *m = f->wetness;
+    if (pelt__fur_gpu_take_mask_dirty(f, rect)) {
+        unsigned mw, mh;
+        const float *texels = pelt__fur_gpu_mask(f, &mw, &mh);
         glBindTexture(GL_TEXTURE_2D, r->mask_texture);
-        glPixelStorei(GL_UNPACK_ROW_LENGTH, (GLint)m->width);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, (GLint)mw);
         glTexSubImage2D(GL_TEXTURE_2D, 0, (GLint)rect[0], (GLint)rect[1], (GLsizei)(rect[2] - rect[0]),
                         (GLsizei)(rect[3] - rect[1]), GL_RGBA, GL_FLOAT,
-                        m->texels + ((size_t)rect[1] * m->width + rect[0]) * 4);
+                        texels + ((size_t)rect[1] * mw + rect[0]) * 4);
         glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
     }
 }
@@ -238,7 +244,9 @@ void pelt_renderer_upload(pelt_renderer *r)
 static void set_common(const pelt_renderer *r, const uniforms *u, const pelt_view *v,
                        const float view_proj[16])
 {
-    const pelt_fur_desc *d = &r->fur->desc;
+    const pelt_fur_desc desc = pelt_fur_get_desc(r->fur), *d = &desc;
+    float fur_per_uv[2];
+    pelt__fur_gpu_per_uv(r->fur, fur_per_uv);
     glUniformMatrix4fv(u->model, 1, GL_FALSE, v->model);
     glUniformMatrix4fv(u->view_proj, 1, GL_FALSE, view_proj);
     glUniform1f(u->layers, (float)d->layers);
@@ -257,7 +265,7 @@ static void set_common(const pelt_renderer *r, const uniforms *u, const pelt_vie
     glUniform1f(u->clump_blend, d->wet.clump_blend);
     glUniform1f(u->clump_tightness, d->wet.clump_tightness);
     glUniform1f(u->wet_darken, d->wet.darken);
-    glUniform2fv(u->fur_per_uv, 1, r->fur->fur_per_uv);
+    glUniform2fv(u->fur_per_uv, 1, fur_per_uv);
     glUniform1f(u->color_scale, d->look.color_scale);
     glUniform1f(u->slant, tanf(d->comb.slant * 3.14159265f / 180.0f));
 }
@@ -287,7 +295,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *v)
         glDrawElements(GL_TRIANGLES, r->index_count, GL_UNSIGNED_INT, NULL);
     }
     r->shell_draw_calls = 0;
-    unsigned layers = r->fur->desc.layers, first = r->desc.first_layer;
+    unsigned layers = pelt_fur_get_desc(r->fur).layers, first = r->desc.first_layer;
     unsigned count = first >= layers ? 0 : layers - first;
     if (r->desc.layer_count && r->desc.layer_count < count) count = r->desc.layer_count;
     if (!r->desc.no_shells && count > 0) {
