@@ -6,7 +6,7 @@
 #include "core/base/error.h"
 #include "core/fur/fur_gpu.h"
 #include "core/base/vec.h"
-#include "gl/shader.h"
+#include "gl/programs.h"
 
 #include <math.h>
 #include <stdlib.h>

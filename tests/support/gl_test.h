@@ -5,7 +5,7 @@
 #define PELT_GL_TEST_H
 
 #include "pelt/pelt.h"
-#include "gl/shader.h"
+#include "gl/programs.h"
 #include "support/check.h"
 
 #include <epoxy/gl.h>

@@ -1,4 +1,4 @@
-#include "gl/shader.h"
+#include "gl/programs.h"
 
 #include "core/base/error.h"
 

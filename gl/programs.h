@@ -1,6 +1,6 @@
 /* Building GL programs from the embedded .glsl sources. */
-#ifndef PELT_GL_SHADER_H
-#define PELT_GL_SHADER_H
+#ifndef PELT_GL_PROGRAMS_H
+#define PELT_GL_PROGRAMS_H
 
 #include "pelt/base.h"
 
