@@ -280,7 +280,7 @@ void cli_session_draw(cli_session *s, const pelt_scene *sc)
     const float *bg = sc->output.background;
     glClearColor(bg[0], bg[1], bg[2], bg[3]);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    pelt_renderer_draw(s->renderer, &s->view);
+    pelt_renderer_draw(s->renderer, &s->view, NULL);
 }
 
 bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h)

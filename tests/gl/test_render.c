@@ -32,7 +32,7 @@ static void golden_square_default_fur(void)
 static void fur_covers_beyond_bare_silhouette(void)
 {
     pelt_fur_desc d = {0};
-    pelt_renderer_desc bare = {.no_shells = true};
+    pelt_draw_desc bare = {.no_shells = true};
     uint8_t *skin = gl_test_render(gl, torus, &d, &torus_cam, &bare, NULL, NULL);
     uint8_t *fur = gl_test_render(gl, torus, &d, &torus_cam, NULL, NULL, NULL);
     CHECK(skin && fur);
@@ -73,9 +73,9 @@ static void shells_are_one_instanced_draw(void)
         pelt_fur_desc d = {.layers = layer_counts[k]};
         pelt_fur *fur = NULL;
         pelt_renderer *r = NULL;
-        pelt_renderer_desc rd = {.no_skin = true};
+        pelt_draw_desc shells_only = {.no_skin = true};
         CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
-        CHECK(pelt_renderer_create(torus, fur, &rd, &r, NULL) == PELT_OK);
+        CHECK(pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
         if (!r) {
             pelt_fur_destroy(fur);
             continue;
@@ -86,12 +86,16 @@ static void shells_are_one_instanced_draw(void)
         GLuint q;
         glGenQueries(1, &q);
         glBeginQuery(GL_PRIMITIVES_GENERATED, q);
-        pelt_renderer_draw(r, &v);
+        pelt_renderer_draw(r, &v, &shells_only);
         glEndQuery(GL_PRIMITIVES_GENERATED);
         GLuint prims = 0;
         glGetQueryObjectuiv(q, GL_QUERY_RESULT, &prims);
         glDeleteQueries(1, &q);
-        CHECK(pelt_renderer_shell_draw_calls(r) == 1);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        CHECK(st.shell_draw_calls == 1);
+        CHECK(st.skin_draw_calls == 0);
+        CHECK(st.shell_instances == layer_counts[k]);
+        CHECK(st.triangles == (size_t)9360 * layer_counts[k]);
         CHECK_NEAR(prims, 9360.0 * layer_counts[k], 0.0);
         pelt_renderer_destroy(r);
         pelt_fur_destroy(fur);
@@ -265,7 +269,7 @@ static void clumps_grow_thinner_toward_the_tips(void)
     const unsigned layers[] = {1, 4, 7, 10};
     double dry_r[4], wet_r[4];
     for (int k = 0; k < 4; k++) {
-        pelt_renderer_desc one = {.no_skin = true, .first_layer = layers[k], .layer_count = 1};
+        pelt_draw_desc one = {.no_skin = true, .first_layer = layers[k], .layer_count = 1};
         uint8_t *dry = gl_test_render(gl, square, &d, &top, &one, NULL, NULL);
         uint8_t *wet = gl_test_render(gl, square, &d, &top, &one, one_big_clump, NULL);
         CHECK(dry && wet);
