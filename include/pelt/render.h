@@ -48,19 +48,17 @@ typedef struct pelt_render_stats {
 } pelt_render_stats;
 
 /* GL state contract of pelt_renderer_create, pelt_renderer_upload and
- * pelt_renderer_draw.
+ * pelt_renderer_draw (tests/gl/test_render.c checks it).
  *
  * Needs: for draw, the target framebuffer bound to GL_DRAW_FRAMEBUFFER
  * (with a depth buffer: the skin writes depth, the shells test against it)
  * and glViewport set to the part of it to draw into. Draw does not clear.
- * Not touched, and used as found: framebuffer, viewport, scissor, stencil,
- * colour and depth clear values, colour write mask, polygon mode,
- * multisampling, sRGB, primitive restart.
- * Set by each call for itself (what it finds there does not matter):
- * program, vertex array, depth test, depth function and mask, blending,
- * face culling, the texture units and uniform buffer binding points below,
- * the pixel unpack state.
- * Leaves behind, after every call, GL's initial values for all of that:
+ * Used as found, never changed: framebuffer bindings, viewport, scissor,
+ * stencil, clear values, colour write mask, polygon mode and offset,
+ * glCullFace/glFrontFace (culling itself is off), multisampling, sRGB,
+ * primitive restart, pixel pack state, texture units 3 and up.
+ * Set by each call for itself, so what it finds there does not matter,
+ * and left at GL's initial values afterwards:
  *   - program 0, vertex array 0, GL_ARRAY_BUFFER 0;
  *   - GL_UNIFORM_BUFFER 0, and 0 on uniform buffer binding points 0 and 1;
  *   - texture units 0, 1 and 2 with texture 0 on GL_TEXTURE_2D and
