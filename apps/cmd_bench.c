@@ -180,7 +180,9 @@ int cmd_bench(int argc, char **argv)
     stats plain[PARTS], wet[PARTS];
     measure(&s, sc, o.warmup, frames, t, plain);
     report(o.bench_clumps ? "as given (dry unless the scene wets it):" : "frame:", plain);
-    printf("shell draw calls per frame: %u\n", pelt_renderer_shell_draw_calls(s.renderer));
+    pelt_render_stats rs = pelt_renderer_get_stats(s.renderer);
+    printf("shell draw calls per frame: %u (%u layers), %zu triangles submitted\n",
+           rs.shell_draw_calls, rs.shell_instances, rs.triangles);
     if (o.bench_clumps) {
         add_third_of_clumps(fur);
         measure(&s, sc, o.warmup, frames, t, wet);

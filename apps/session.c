@@ -69,7 +69,7 @@ void cli_session_draw(cli_session *s)
     glClearColor(bg[0], bg[1], bg[2], bg[3]);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     pelt_view view = pelt_scene_instance_view(s->instance);
-    pelt_renderer_draw(s->renderer, &view);
+    pelt_renderer_draw(s->renderer, &view, NULL);
 }
 
 bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h)

@@ -36,10 +36,11 @@ int main(void)
     for (int frame = 0; frame < 30; frame++) {
         pelt_fur_set_transform(fur, view.model, NULL);
         pelt_fur_step(fur, 1.0f / 60.0f, &forces);
-        pelt_renderer_draw(renderer, &view); /* into the bound framebuffer */
+        pelt_renderer_draw(renderer, &view, NULL); /* into the bound framebuffer */
     }
-    printf("drew 30 frames, %u shell draw call per frame\n",
-           pelt_renderer_shell_draw_calls(renderer));
+    pelt_render_stats stats = pelt_renderer_get_stats(renderer);
+    printf("drew 30 frames, %u shell draw call per frame for %u layers\n",
+           stats.shell_draw_calls, stats.shell_instances);
     rc = 0;
 done:
     pelt_renderer_destroy(renderer);

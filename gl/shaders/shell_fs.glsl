@@ -8,24 +8,9 @@ in vec3 v_normal;
 in float v_h;
 flat in float v_layer;
 
-uniform highp sampler2DArray u_fur;
-uniform sampler2D u_color_tex;
-uniform float u_color_scale;
-uniform vec3 u_color;
-uniform vec3 u_tip_color;
-uniform vec3 u_specular;
-uniform float u_shininess;
-uniform float u_shadow;
-uniform vec3 u_eye;
-uniform vec3 u_light_dir;
-uniform vec3 u_light_color;
-uniform float u_ambient;
-uniform float u_layers;
-uniform sampler2D u_mask;
-uniform float u_clump_blend;
-uniform float u_clump_tightness;
-uniform float u_wet_darken;
-uniform vec2 u_fur_per_uv;
+uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
+uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
+uniform sampler2D u_mask;          // PELT_UNIT_MASK
 
 out vec4 o_color;
 

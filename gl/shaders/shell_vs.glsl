@@ -1,22 +1,15 @@
 // All shells in one instanced draw: the layer is gl_InstanceID.
 // Silva et al. Eq. 1: offset(h) = beta(h) + phi(h).
-layout(location = 0) in vec3 a_position;
-layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv;
-layout(location = 3) in vec2 a_fur_uv;
-layout(location = 4) in vec4 a_tangent;
-layout(location = 5) in vec3 a_tip;     // p - p_root, mesh-local
-layout(location = 6) in vec3 a_comb;    // comb direction x weight (0: stands up)
+layout(location = PELT_ATTR_POSITION) in vec3 a_position;
+layout(location = PELT_ATTR_NORMAL) in vec3 a_normal;
+layout(location = PELT_ATTR_UV) in vec2 a_uv;
+layout(location = PELT_ATTR_FUR_UV) in vec2 a_fur_uv;
+layout(location = PELT_ATTR_TANGENT) in vec4 a_tangent;
+layout(location = PELT_ATTR_TIP) in vec3 a_tip;     // p - p_root, mesh-local
+layout(location = PELT_ATTR_COMB) in vec3 a_comb;    // comb direction x weight (0: stands up)
 
-uniform mat4 u_model;
-uniform mat4 u_view_proj;
-uniform float u_layers;
-uniform float u_first_layer;            // the instance range may start above 0
-uniform float u_length;
-uniform float u_curl_frequency;
-uniform float u_curl_radius;
-uniform float u_slant;                  // tan of the comb angle (Lengyel §3)
-uniform sampler2D u_mask;               // wetness mask, rho in alpha
+uniform float u_first_layer;            // the shell pass's own: the range may start above 0
+uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
 
 out vec2 v_uv;
 out vec2 v_fur_uv;

@@ -1,15 +1,10 @@
+// Opaque skin: the innermost fur slice lit by Lambert, under gamma(0).
 in vec3 v_normal;
 in vec2 v_uv;
 in vec2 v_fur_uv;
 
-uniform highp sampler2DArray u_fur;
-uniform sampler2D u_color_tex;
-uniform float u_color_scale;
-uniform vec3 u_color;
-uniform vec3 u_light_dir;
-uniform vec3 u_light_color;
-uniform float u_ambient;
-uniform float u_shadow;
+uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
+uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
 
 out vec4 o_color;
 

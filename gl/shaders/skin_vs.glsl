@@ -1,11 +1,8 @@
 // Opaque skin pass: the mesh itself, the innermost fur slice as its colour.
-layout(location = 0) in vec3 a_position;
-layout(location = 1) in vec3 a_normal;
-layout(location = 2) in vec2 a_uv;
-layout(location = 3) in vec2 a_fur_uv;
-
-uniform mat4 u_model;
-uniform mat4 u_view_proj;
+layout(location = PELT_ATTR_POSITION) in vec3 a_position;
+layout(location = PELT_ATTR_NORMAL) in vec3 a_normal;
+layout(location = PELT_ATTR_UV) in vec2 a_uv;
+layout(location = PELT_ATTR_FUR_UV) in vec2 a_fur_uv;
 
 out vec3 v_normal;
 out vec2 v_uv;

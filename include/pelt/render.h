@@ -14,33 +14,83 @@ extern "C" {
 
 typedef struct pelt_renderer pelt_renderer;
 
+/* What is fixed when the renderer is made. Zero-initialised (or a NULL
+ * desc) means malloc/free and no logger. */
 typedef struct pelt_renderer_desc {
+    /* The renderer allocates itself and its temporary vertex array through
+     * hooks.allocator (both functions set, or neither) and frees through
+     * it; shader compile and link errors also go to hooks.logger. */
+    pelt_hooks hooks;
+} pelt_renderer_desc;
+
+/* Per-frame choices of one pelt_renderer_draw. Zero-initialised (or a NULL
+ * pointer) draws everything. */
+typedef struct pelt_draw_desc {
     bool no_skin;   /* skip the opaque skin pass */
     bool no_shells; /* skip the shells (for measuring) */
     /* Draw only shells first_layer .. first_layer + layer_count - 1
      * (layer_count 0 = through the outermost): for inspecting one height
      * of the fur, and for level of detail. Still one instanced draw. */
     unsigned first_layer, layer_count;
-} pelt_renderer_desc;
+} pelt_draw_desc;
+
+/* What the last pelt_renderer_draw did. */
+typedef struct pelt_render_stats {
+    unsigned skin_draw_calls;  /* 1 when the skin was drawn, else 0 */
+    unsigned shell_draw_calls; /* 1 when shells were drawn: all in one instanced draw */
+    unsigned shell_instances;  /* shell layers that draw covered */
+    size_t triangles;          /* triangles submitted by all passes, every shell
+                                  layer counted */
+    size_t upload_bytes;       /* bytes sent to GL for this frame: pelt_renderer_upload
+                                  calls since the previous draw and the draw's own
+                                  (strand tips, colour texture, changed mask
+                                  rectangle, uniform blocks) */
+} pelt_render_stats;
+
+/* GL state contract of pelt_renderer_create, pelt_renderer_upload and
+ * pelt_renderer_draw (tests/gl/test_render.c checks it).
+ *
+ * Needs: for draw, the target framebuffer bound to GL_DRAW_FRAMEBUFFER
+ * (with a depth buffer: the skin writes depth, the shells test against it)
+ * and glViewport set to the part of it to draw into. Draw does not clear.
+ * Used as found, never changed: framebuffer bindings, viewport, scissor,
+ * stencil, clear values, colour write mask, polygon mode and offset,
+ * glCullFace/glFrontFace (culling itself is off), multisampling, sRGB,
+ * primitive restart, pixel pack state, texture units 3 and up.
+ * Set by each call for itself, so what it finds there does not matter,
+ * and left at GL's initial values afterwards:
+ *   - program 0, vertex array 0, GL_ARRAY_BUFFER 0;
+ *   - GL_UNIFORM_BUFFER 0, and 0 on uniform buffer binding points 0 and 1;
+ *   - texture units 0, 1 and 2 with texture 0 on GL_TEXTURE_2D and
+ *     GL_TEXTURE_2D_ARRAY; GL_ACTIVE_TEXTURE GL_TEXTURE0;
+ *   - GL_DEPTH_TEST off, glDepthFunc(GL_LESS), glDepthMask(GL_TRUE);
+ *   - GL_BLEND off, glBlendFunc(GL_ONE, GL_ZERO), glBlendEquation(GL_FUNC_ADD);
+ *   - GL_CULL_FACE off;
+ *   - GL_PIXEL_UNPACK_BUFFER 0, GL_UNPACK_ALIGNMENT 4, GL_UNPACK_ROW_LENGTH,
+ *     _SKIP_ROWS, _SKIP_PIXELS, _IMAGE_HEIGHT and _SKIP_IMAGES 0.
+ * pelt_renderer_destroy deletes its objects (GL unbinds what was bound). */
 
 /* Compiles the shaders and uploads mesh and fur. The mesh and fur must
- * outlive the renderer. Free with pelt_renderer_destroy (context current). */
+ * outlive the renderer. desc may be NULL. Free with pelt_renderer_destroy
+ * (context current). */
 pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
                                  const pelt_renderer_desc *desc,
                                  pelt_renderer **out, pelt_error *err);
 void pelt_renderer_destroy(pelt_renderer *renderer);
 
 /* Uploads what changed in the fur since the last upload (strand tips,
- * colour texture, the changed rectangle of the wetness mask). Draw calls it
- * too; call it first to time uploads apart from drawing. */
+ * colour texture, the changed rectangle of the wetness mask, the look).
+ * Draw calls it too; call it first to time uploads apart from drawing. */
 void pelt_renderer_upload(pelt_renderer *renderer);
 
 /* Draws skin then all shells (one instanced draw call) into the currently
- * bound framebuffer. Does not clear. No allocation, no file I/O. */
-void pelt_renderer_draw(pelt_renderer *renderer, const pelt_view *view);
+ * bound framebuffer with the camera and light of `view`. draw may be NULL
+ * (everything). No allocation, no file I/O. */
+void pelt_renderer_draw(pelt_renderer *renderer, const pelt_view *view,
+                        const pelt_draw_desc *draw);
 
-/* Draw calls issued by the last pelt_renderer_draw for the shells. */
-unsigned pelt_renderer_shell_draw_calls(const pelt_renderer *renderer);
+/* What the last pelt_renderer_draw did (all zero before the first). */
+pelt_render_stats pelt_renderer_get_stats(const pelt_renderer *renderer);
 
 #ifdef __cplusplus
 }

@@ -2,6 +2,8 @@
  * tolerance, and properties that need no reference. */
 #include "support/gl_test.h"
 
+#include "gl/gpu.h"
+
 enum { W = 160, H = 120 };
 
 static pelt_headless *gl;
@@ -32,7 +34,7 @@ static void golden_square_default_fur(void)
 static void fur_covers_beyond_bare_silhouette(void)
 {
     pelt_fur_desc d = {0};
-    pelt_renderer_desc bare = {.no_shells = true};
+    pelt_draw_desc bare = {.no_shells = true};
     uint8_t *skin = gl_test_render(gl, torus, &d, &torus_cam, &bare, NULL, NULL);
     uint8_t *fur = gl_test_render(gl, torus, &d, &torus_cam, NULL, NULL, NULL);
     CHECK(skin && fur);
@@ -73,9 +75,9 @@ static void shells_are_one_instanced_draw(void)
         pelt_fur_desc d = {.layers = layer_counts[k]};
         pelt_fur *fur = NULL;
         pelt_renderer *r = NULL;
-        pelt_renderer_desc rd = {.no_skin = true};
+        pelt_draw_desc shells_only = {.no_skin = true};
         CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
-        CHECK(pelt_renderer_create(torus, fur, &rd, &r, NULL) == PELT_OK);
+        CHECK(pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
         if (!r) {
             pelt_fur_destroy(fur);
             continue;
@@ -86,12 +88,16 @@ static void shells_are_one_instanced_draw(void)
         GLuint q;
         glGenQueries(1, &q);
         glBeginQuery(GL_PRIMITIVES_GENERATED, q);
-        pelt_renderer_draw(r, &v);
+        pelt_renderer_draw(r, &v, &shells_only);
         glEndQuery(GL_PRIMITIVES_GENERATED);
         GLuint prims = 0;
         glGetQueryObjectuiv(q, GL_QUERY_RESULT, &prims);
         glDeleteQueries(1, &q);
-        CHECK(pelt_renderer_shell_draw_calls(r) == 1);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        CHECK(st.shell_draw_calls == 1);
+        CHECK(st.skin_draw_calls == 0);
+        CHECK(st.shell_instances == layer_counts[k]);
+        CHECK(st.triangles == (size_t)9360 * layer_counts[k]);
         CHECK_NEAR(prims, 9360.0 * layer_counts[k], 0.0);
         pelt_renderer_destroy(r);
         pelt_fur_destroy(fur);
@@ -265,7 +271,7 @@ static void clumps_grow_thinner_toward_the_tips(void)
     const unsigned layers[] = {1, 4, 7, 10};
     double dry_r[4], wet_r[4];
     for (int k = 0; k < 4; k++) {
-        pelt_renderer_desc one = {.no_skin = true, .first_layer = layers[k], .layer_count = 1};
+        pelt_draw_desc one = {.no_skin = true, .first_layer = layers[k], .layer_count = 1};
         uint8_t *dry = gl_test_render(gl, square, &d, &top, &one, NULL, NULL);
         uint8_t *wet = gl_test_render(gl, square, &d, &top, &one, one_big_clump, NULL);
         CHECK(dry && wet);
@@ -279,6 +285,334 @@ static void clumps_grow_thinner_toward_the_tips(void)
     for (int k = 1; k < 4; k++) CHECK(wet_r[k] < wet_r[k - 1]);
     CHECK(wet_r[3] < 0.6 * wet_r[0]);
     CHECK(dry_r[3] > 0.9 * dry_r[0]);
+}
+
+/* Counts what the renderer's allocator hooks see. */
+typedef struct counting_allocator {
+    size_t allocs, frees;
+} counting_allocator;
+
+static void *count_alloc(size_t size, void *user)
+{
+    ((counting_allocator *)user)->allocs++;
+    return malloc(size);
+}
+
+static void count_free(void *ptr, void *user)
+{
+    ((counting_allocator *)user)->frees++;
+    free(ptr);
+}
+
+/* The desc's allocator makes and frees everything the renderer allocates
+ * (itself and the temporary vertex array); a half-set allocator is refused. */
+static void renderer_allocates_through_its_hooks(void)
+{
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    CHECK(pelt_fur_create(square, &(pelt_fur_desc){.look.texture_size = 32}, &fur, NULL) == PELT_OK);
+    counting_allocator counts = {0, 0};
+    pelt_renderer_desc rd = {.hooks.allocator = {count_alloc, count_free, &counts}};
+    CHECK(pelt_renderer_create(square, fur, &rd, &r, NULL) == PELT_OK);
+    CHECK(counts.allocs == 2); /* the renderer, the interleaved vertex array */
+    CHECK(counts.frees == 1);
+    pelt_renderer_destroy(r);
+    CHECK(counts.allocs == counts.frees);
+    pelt_renderer_desc half = {.hooks.allocator = {count_alloc, NULL, &counts}};
+    pelt_error err = {0};
+    r = NULL;
+    CHECK(pelt_renderer_create(square, fur, &half, &r, &err) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(r == NULL);
+    pelt_fur_destroy(fur);
+}
+
+static void log_into(pelt_log_level level, const char *message, void *user)
+{
+    if (level == PELT_LOG_ERROR) snprintf(user, 512, "%s", message);
+}
+
+/* A shader that does not compile reaches the logger as well as the error. */
+static void program_errors_reach_the_logger(void)
+{
+    char logged[512] = "";
+    pelt_hooks hooks = {.logger = {log_into, logged}};
+    const char *vs[] = {"void main() { gl_Position = vec4(0.0); }\n", NULL};
+    const char *fs[] = {"out vec4 o; void main() { o = not_declared; }\n", NULL};
+    GLuint p = 0;
+    pelt_error err = {0};
+    CHECK(pelt__gl_program_create("broken", vs, fs, &hooks, &p, &err) == PELT_ERR_GL);
+    CHECK(p == 0);
+    CHECK(strstr(logged, "broken fragment shader does not compile") != NULL);
+    CHECK(strcmp(logged, err.message) == 0);
+    pelt__gl_state_reset();
+}
+
+/* The C images of the uniform blocks sit where GL puts the std140 members
+ * (gl/uniform_blocks.c asserts the same offsets at compile time). */
+static void uniform_blocks_match_their_c_structs(void)
+{
+    const char *vs[] = {"void main() { gl_Position = vec4(0.0); }\n", NULL};
+    const char *fs[] = {"out vec4 o; void main() { o = vec4(u_ambient + u_slant); }\n", NULL};
+    GLuint p = 0;
+    CHECK(pelt__gl_program_create("blocks", vs, fs, &(pelt_hooks){0}, &p, NULL) == PELT_OK);
+    if (!p) return;
+    static const struct { const char *name; size_t offset; } members[] = {
+        {"u_model", offsetof(pelt__frame_block, model)},
+        {"u_view_proj", offsetof(pelt__frame_block, view_proj)},
+        {"u_eye", offsetof(pelt__frame_block, eye)},
+        {"u_ambient", offsetof(pelt__frame_block, ambient)},
+        {"u_light_dir", offsetof(pelt__frame_block, light_dir)},
+        {"u_light_color", offsetof(pelt__frame_block, light_color)},
+        {"u_color", offsetof(pelt__fur_block, color)},
+        {"u_layers", offsetof(pelt__fur_block, layers)},
+        {"u_tip_color", offsetof(pelt__fur_block, tip_color)},
+        {"u_length", offsetof(pelt__fur_block, length)},
+        {"u_specular", offsetof(pelt__fur_block, specular)},
+        {"u_shininess", offsetof(pelt__fur_block, shininess)},
+        {"u_fur_per_uv", offsetof(pelt__fur_block, fur_per_uv)},
+        {"u_shadow", offsetof(pelt__fur_block, shadow)},
+        {"u_curl_frequency", offsetof(pelt__fur_block, curl_frequency)},
+        {"u_curl_radius", offsetof(pelt__fur_block, curl_radius)},
+        {"u_clump_blend", offsetof(pelt__fur_block, clump_blend)},
+        {"u_clump_tightness", offsetof(pelt__fur_block, clump_tightness)},
+        {"u_wet_darken", offsetof(pelt__fur_block, wet_darken)},
+        {"u_color_scale", offsetof(pelt__fur_block, color_scale)},
+        {"u_slant", offsetof(pelt__fur_block, slant)},
+    };
+    for (size_t i = 0; i < sizeof members / sizeof members[0]; i++) {
+        GLuint index = GL_INVALID_INDEX;
+        GLint offset = -1;
+        glGetUniformIndices(p, 1, &members[i].name, &index);
+        if (index != GL_INVALID_INDEX) glGetActiveUniformsiv(p, 1, &index, GL_UNIFORM_OFFSET, &offset);
+        if (offset != (GLint)members[i].offset)
+            fprintf(stderr, "  %s: GL offset %d, C offset %zu\n", members[i].name, offset,
+                    members[i].offset);
+        CHECK(offset == (GLint)members[i].offset);
+    }
+    static const struct { const char *name; size_t size; GLint binding; } blocks[] = {
+        {"pelt_frame_block", sizeof(pelt__frame_block), PELT_BLOCK_FRAME},
+        {"pelt_fur_block", sizeof(pelt__fur_block), PELT_BLOCK_FUR},
+    };
+    for (size_t i = 0; i < 2; i++) {
+        GLuint index = glGetUniformBlockIndex(p, blocks[i].name);
+        GLint size = 0, binding = -1;
+        CHECK(index != GL_INVALID_INDEX);
+        if (index == GL_INVALID_INDEX) continue;
+        glGetActiveUniformBlockiv(p, index, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
+        glGetActiveUniformBlockiv(p, index, GL_UNIFORM_BLOCK_BINDING, &binding);
+        CHECK(size == (GLint)blocks[i].size);
+        CHECK(binding == blocks[i].binding);
+    }
+    glDeleteProgram(p);
+    pelt__gl_state_reset();
+}
+
+/* The stats of a draw: per-pass draw calls, layers, triangles, and the
+ * bytes the frame uploaded (only what changed goes up). */
+static void stats_count_passes_layers_and_uploads(void)
+{
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    CHECK(pelt_fur_create(torus, &(pelt_fur_desc){.layers = 16}, &fur, NULL) == PELT_OK);
+    CHECK(pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    if (!r) {
+        pelt_fur_destroy(fur);
+        return;
+    }
+    pelt_render_stats st = pelt_renderer_get_stats(r);
+    CHECK(st.skin_draw_calls == 0 && st.shell_draw_calls == 0 && st.triangles == 0);
+    pelt_view v;
+    memset(&v, 0, sizeof v);
+    pelt_camera_to_view(&torus_cam, (float)W / H, &v);
+    const size_t tris = 9360, verts = pelt_mesh_get_data(torus).vertex_count;
+
+    pelt_renderer_draw(r, &v, NULL);
+    st = pelt_renderer_get_stats(r);
+    CHECK(st.skin_draw_calls == 1 && st.shell_draw_calls == 1 && st.shell_instances == 16);
+    CHECK(st.triangles == tris * 17);
+    CHECK(st.upload_bytes == sizeof(pelt__frame_block)); /* nothing changed since create */
+
+    pelt_fur_step(fur, 1.0f / 60.0f, &(pelt_forces){0});
+    pelt_fur_add_droplet(fur, &(pelt_droplet){{0.5f, 0.5f}, 0.05f, 1.0f}, NULL);
+    pelt_renderer_upload(r); /* counted with the next draw */
+    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.first_layer = 4, .layer_count = 3});
+    st = pelt_renderer_get_stats(r);
+    CHECK(st.shell_instances == 3 && st.triangles == tris * 4);
+    printf("  upload after a step and a droplet: %zu bytes\n", st.upload_bytes);
+    CHECK(st.upload_bytes > sizeof(pelt__frame_block) + verts * 3 * sizeof(float));
+
+    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .first_layer = 16});
+    st = pelt_renderer_get_stats(r);
+    CHECK(st.skin_draw_calls == 0 && st.shell_draw_calls == 0 && st.triangles == 0);
+    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_shells = true});
+    st = pelt_renderer_get_stats(r);
+    CHECK(st.skin_draw_calls == 1 && st.shell_draw_calls == 0 && st.triangles == tris);
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+}
+
+/* Checks GL state against the contract of pelt/render.h. */
+static void check_state_contract(const char *after)
+{
+    GLint v;
+#define EXPECT_GL(pname, want)                                                           \
+    do {                                                                                 \
+        glGetIntegerv(pname, &v);                                                        \
+        if (v != (GLint)(want))                                                          \
+            fprintf(stderr, "  after %s: %s = 0x%x, want 0x%x\n", after, #pname, (unsigned)v, \
+                    (unsigned)(want));                                                   \
+        CHECK(v == (GLint)(want));                                                       \
+    } while (0)
+    EXPECT_GL(GL_CURRENT_PROGRAM, 0);
+    EXPECT_GL(GL_VERTEX_ARRAY_BINDING, 0);
+    EXPECT_GL(GL_ARRAY_BUFFER_BINDING, 0);
+    EXPECT_GL(GL_UNIFORM_BUFFER_BINDING, 0);
+    for (GLuint i = 0; i < PELT_BLOCK_COUNT; i++) {
+        glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, i, &v);
+        CHECK(v == 0);
+    }
+    EXPECT_GL(GL_ACTIVE_TEXTURE, GL_TEXTURE0);
+    for (GLenum u = 0; u < PELT_UNIT_COUNT; u++) {
+        glActiveTexture(GL_TEXTURE0 + u);
+        EXPECT_GL(GL_TEXTURE_BINDING_2D, 0);
+        EXPECT_GL(GL_TEXTURE_BINDING_2D_ARRAY, 0);
+    }
+    glActiveTexture(GL_TEXTURE0);
+    CHECK(!glIsEnabled(GL_DEPTH_TEST));
+    EXPECT_GL(GL_DEPTH_FUNC, GL_LESS);
+    EXPECT_GL(GL_DEPTH_WRITEMASK, GL_TRUE);
+    CHECK(!glIsEnabled(GL_BLEND));
+    EXPECT_GL(GL_BLEND_SRC_RGB, GL_ONE);
+    EXPECT_GL(GL_BLEND_SRC_ALPHA, GL_ONE);
+    EXPECT_GL(GL_BLEND_DST_RGB, GL_ZERO);
+    EXPECT_GL(GL_BLEND_DST_ALPHA, GL_ZERO);
+    EXPECT_GL(GL_BLEND_EQUATION_RGB, GL_FUNC_ADD);
+    EXPECT_GL(GL_BLEND_EQUATION_ALPHA, GL_FUNC_ADD);
+    CHECK(!glIsEnabled(GL_CULL_FACE));
+    EXPECT_GL(GL_PIXEL_UNPACK_BUFFER_BINDING, 0);
+    EXPECT_GL(GL_UNPACK_ALIGNMENT, 4);
+    EXPECT_GL(GL_UNPACK_ROW_LENGTH, 0);
+    EXPECT_GL(GL_UNPACK_SKIP_ROWS, 0);
+    EXPECT_GL(GL_UNPACK_SKIP_PIXELS, 0);
+    EXPECT_GL(GL_UNPACK_IMAGE_HEIGHT, 0);
+    EXPECT_GL(GL_UNPACK_SKIP_IMAGES, 0);
+#undef EXPECT_GL
+    CHECK(glGetError() == GL_NO_ERROR);
+}
+
+/* A caller's render loop leaves all kinds of state behind. Objects the
+ * caller owns: a texture, a buffer, a vertex array. */
+typedef struct caller_objects {
+    GLuint texture, buffer, vao;
+} caller_objects;
+
+static void mess_up_state(const caller_objects *o)
+{
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_COLOR);
+    glBindTexture(GL_TEXTURE_2D, o->texture);
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_COUNT + 2); /* a unit pelt leaves alone */
+    glBindTexture(GL_TEXTURE_2D, o->texture);
+    glBindVertexArray(o->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, o->buffer);
+    glBindBufferBase(GL_UNIFORM_BUFFER, PELT_BLOCK_FUR, o->buffer);
+    glBindBuffer(GL_PIXEL_UNPACK_BUFFER, o->buffer);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 8);
+    glPixelStorei(GL_UNPACK_ROW_LENGTH, 3);
+    glPixelStorei(GL_UNPACK_SKIP_ROWS, 2);
+    glPixelStorei(GL_UNPACK_SKIP_PIXELS, 1);
+    glPixelStorei(GL_UNPACK_IMAGE_HEIGHT, 5);
+    glPixelStorei(GL_UNPACK_SKIP_IMAGES, 1);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_FRONT_AND_BACK);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ZERO, GL_ONE);
+    glBlendEquation(GL_FUNC_REVERSE_SUBTRACT);
+    glDisable(GL_DEPTH_TEST);
+    glDepthFunc(GL_NEVER);
+    glDepthMask(GL_FALSE);
+}
+
+/* Wet, spotted fur on the square: every upload path (volume, colour
+ * texture, mask rectangle, tips) has something to send. */
+static uint8_t *render_with_state(bool messy, const caller_objects *o)
+{
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    uint8_t *px = malloc((size_t)W * H * 4);
+    const pelt_camera cam = {0.0f, 35.0f, 2.6f, 45.0f, {0, 0, 0}};
+    CHECK(pelt_fur_create(square, &(pelt_fur_desc){.look.texture_size = 64}, &fur, NULL) == PELT_OK);
+    pelt_headless_bind(gl);
+    if (messy) mess_up_state(o);
+    CHECK(pelt_renderer_create(square, fur, NULL, &r, NULL) == PELT_OK);
+    if (messy) check_state_contract("create");
+    CHECK(pelt_fur_set_color_pattern(fur, PELT_COLOR_PATTERN_SPOTS, 3, NULL) == PELT_OK);
+    wet_left_half(fur, NULL);
+    if (messy) mess_up_state(o);
+    pelt_renderer_upload(r);
+    if (messy) check_state_contract("upload");
+    pelt_fur_step(fur, 1.0f / 60.0f, &(pelt_forces){.wind = {5.0f, 0.0f, 0.0f}});
+    pelt_fur_add_droplet(fur, &(pelt_droplet){{0.8f, 0.3f}, 0.1f, 1.0f}, NULL);
+    pelt_view v;
+    memset(&v, 0, sizeof v);
+    pelt_camera_to_view(&cam, (float)W / H, &v);
+    v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.5f, 1.45f, 1.4f}, 0.25f};
+    glDepthMask(GL_TRUE);
+    glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    if (messy) mess_up_state(o);
+    GLint fb_before = 0, vp_before[4], vp_after[4], fb_after = -1, unit_after = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb_before);
+    glGetIntegerv(GL_VIEWPORT, vp_before);
+    pelt_renderer_draw(r, &v, NULL);
+    if (messy) {
+        check_state_contract("draw");
+        /* What the contract says pelt does not touch, it did not touch. */
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fb_after);
+        glGetIntegerv(GL_VIEWPORT, vp_after);
+        glActiveTexture(GL_TEXTURE0 + PELT_UNIT_COUNT + 2);
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &unit_after);
+        glActiveTexture(GL_TEXTURE0);
+        CHECK(fb_after == fb_before);
+        CHECK(!memcmp(vp_after, vp_before, sizeof vp_after));
+        CHECK(unit_after == (GLint)o->texture);
+        glCullFace(GL_BACK);
+    }
+    if (px) pelt_headless_read_rgba8(gl, px);
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+    return px;
+}
+
+/* pelt/render.h's GL state contract: whatever state the caller left, each
+ * call sets what it needs (the picture is the same bit for bit) and leaves
+ * GL's initial values behind for everything it touches. */
+static void calls_leave_gl_state_as_render_h_states(void)
+{
+    caller_objects o;
+    glGenTextures(1, &o.texture);
+    glBindTexture(GL_TEXTURE_2D, o.texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glGenBuffers(1, &o.buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, o.buffer);
+    glBufferData(GL_ARRAY_BUFFER, 256, NULL, GL_STATIC_DRAW);
+    glGenVertexArrays(1, &o.vao);
+    pelt__gl_state_reset();
+    uint8_t *clean = render_with_state(false, &o);
+    uint8_t *messy = render_with_state(true, &o);
+    CHECK(clean && messy);
+    if (clean && messy) {
+        size_t differ = 0;
+        for (size_t i = 0; i < (size_t)W * H * 4; i++) differ += clean[i] != messy[i];
+        printf("  %zu bytes differ between the clean and the messy start\n", differ);
+        CHECK(differ == 0);
+        CHECK(gl_test_coverage(clean, (size_t)W * H) > (size_t)W * H / 4);
+    }
+    free(clean);
+    free(messy);
+    glDeleteTextures(1, &o.texture);
+    glDeleteBuffers(1, &o.buffer);
+    glDeleteVertexArrays(1, &o.vao);
+    pelt__gl_state_reset();
 }
 
 int main(void)
@@ -296,6 +630,11 @@ int main(void)
         RUN(wet_clumps_show_skin_and_leave_dry_fur_alone);
         RUN(dried_fur_matches_dry_render);
         RUN(clumps_grow_thinner_toward_the_tips);
+        RUN(renderer_allocates_through_its_hooks);
+        RUN(program_errors_reach_the_logger);
+        RUN(uniform_blocks_match_their_c_structs);
+        RUN(stats_count_passes_layers_and_uploads);
+        RUN(calls_leave_gl_state_as_render_h_states);
     }
     pelt_mesh_destroy(torus);
     pelt_mesh_destroy(square);

@@ -5,7 +5,7 @@
 #define PELT_GL_TEST_H
 
 #include "pelt/pelt.h"
-#include "gl/shader.h"
+#include "gl/programs.h"
 #include "support/check.h"
 
 #include <epoxy/gl.h>
@@ -32,9 +32,10 @@ static inline pelt_headless *gl_test_open(unsigned w, unsigned h, bool float_tar
 }
 
 /* Renders `mesh` with fur `d` at w x h; returns malloc'd RGBA8 (top row
- * first) or NULL (and a printed reason). `tweak` may change the view. */
+ * first) or NULL (and a printed reason). `tweak` may change the fur; dd
+ * picks passes and layers (NULL: everything). */
 static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, const pelt_fur_desc *d,
-                               const pelt_camera *cam, const pelt_renderer_desc *rd,
+                               const pelt_camera *cam, const pelt_draw_desc *dd,
                                void (*tweak)(pelt_fur *, void *), void *user)
 {
     pelt_error err = {0};
@@ -45,7 +46,7 @@ static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, 
         return NULL;
     }
     if (tweak) tweak(fur, user);
-    if (pelt_renderer_create(mesh, fur, rd, &r, &err) != PELT_OK) {
+    if (pelt_renderer_create(mesh, fur, NULL, &r, &err) != PELT_OK) {
         fprintf(stderr, "  renderer: %s\n", err.message);
         pelt_fur_destroy(fur);
         return NULL;
@@ -59,7 +60,7 @@ static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, 
     v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.5f, 1.45f, 1.4f}, 0.25f};
     glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    pelt_renderer_draw(r, &v);
+    pelt_renderer_draw(r, &v, dd);
     uint8_t *px = malloc((size_t)vp[2] * (size_t)vp[3] * 4);
     if (px) pelt_headless_read_rgba8(gl, px);
     pelt_renderer_destroy(r);

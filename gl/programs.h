@@ -1,12 +1,14 @@
 /* Building GL programs from the embedded .glsl sources. */
-#ifndef PELT_GL_SHADER_H
-#define PELT_GL_SHADER_H
+#ifndef PELT_GL_PROGRAMS_H
+#define PELT_GL_PROGRAMS_H
 
 #include "pelt/base.h"
 
 #include <epoxy/gl.h>
 
 /* Embedded sources, generated from gl/shaders/NAME.glsl. */
+extern const char pelt__shader_bindings[];
+extern const char pelt__shader_blocks[];
 extern const char pelt__shader_shading[];
 extern const char pelt__shader_fur_shape[];
 extern const char pelt__shader_clump[];
@@ -16,9 +18,10 @@ extern const char pelt__shader_shell_vs[];
 extern const char pelt__shader_shell_fs[];
 
 /* Compiles and links a program. Each stage is a NULL-terminated list of
- * source pieces, concatenated after the version header (GLSL 3.30 core,
- * written so the same pieces compile as GLSL ES 3.00). On failure the
- * error holds the GL info log and `what` names the program. */
+ * at most 12 source pieces, concatenated after the version header (GLSL
+ * 3.30 core, written so the same pieces compile as GLSL ES 3.00) and the
+ * binding table (shaders/bindings.glsl). On failure the error holds the GL
+ * info log and `what` names the program. */
 pelt_status pelt__program_build(const char *what, const char *const *vertex_parts,
                                 const char *const *fragment_parts, GLuint *out,
                                 pelt_error *err);

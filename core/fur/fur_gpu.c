@@ -1,0 +1,48 @@
+/* The renderer's read-only view of a pelt_fur (see fur_gpu.h). */
+#include "core/fur/fur_gpu.h"
+
+#include "core/fur/fur_internal.h"
+
+const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *f) { return f->mesh; }
+
+const uint8_t *pelt__fur_gpu_volume(const pelt_fur *f, unsigned *size, unsigned *slices)
+{
+    *size = f->desc.look.texture_size;
+    *slices = f->texture_slices;
+    return f->texture;
+}
+
+const float *pelt__fur_gpu_uvs(const pelt_fur *f) { return f->fur_uvs; }
+
+void pelt__fur_gpu_per_uv(const pelt_fur *f, float out[2])
+{
+    out[0] = f->fur_per_uv[0];
+    out[1] = f->fur_per_uv[1];
+}
+
+const float *pelt__fur_gpu_tips(const pelt_fur *f, unsigned *version)
+{
+    *version = f->tips_version;
+    return f->tips;
+}
+
+const uint8_t *pelt__fur_gpu_color(const pelt_fur *f, unsigned *width, unsigned *height,
+                                   unsigned *version)
+{
+    *width = f->color_width;
+    *height = f->color_height;
+    *version = f->color_version;
+    return f->color_texture;
+}
+
+const float *pelt__fur_gpu_mask(const pelt_fur *f, unsigned *width, unsigned *height)
+{
+    *width = f->wetness->width;
+    *height = f->wetness->height;
+    return f->wetness->texels;
+}
+
+bool pelt__fur_gpu_take_mask_dirty(pelt_fur *f, unsigned rect[4])
+{
+    return pelt__wetness_take_dirty(f->wetness, rect);
+}

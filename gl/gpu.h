@@ -1,0 +1,119 @@
+/* The GPU objects every pass shares: vertex and index buffers, the fur
+ * textures, the uniform blocks, program building, the GL state contract
+ * and the hooks. Private to gl/ (pelt__ prefix). Numbers that GLSL also
+ * needs come from gl/shaders/bindings.glsl. */
+#ifndef PELT_GL_GPU_H
+#define PELT_GL_GPU_H
+
+#include "pelt/render.h"
+
+#include "gl/shaders/bindings.glsl"
+
+#include <epoxy/gl.h>
+#include <stddef.h>
+
+/* ---- hooks (gl/gl_hooks.c) --------------------------------------------- */
+
+/* hooks->allocator, or malloc/free when neither function is set. alloc
+ * returns NULL when out of memory or when count * size overflows. */
+void *pelt__gl_alloc(const pelt_hooks *hooks, size_t count, size_t size);
+void pelt__gl_free(const pelt_hooks *hooks, void *ptr);
+/* Passes message to hooks->logger when one is set. */
+void pelt__gl_log(const pelt_hooks *hooks, pelt_log_level level, const char *message);
+
+/* ---- the GL state contract of pelt/render.h (gl/gl_state.c) ------------ */
+
+/* Pixel unpack state at GL's initial values and no unpack buffer: what
+ * every texture upload here assumes. */
+void pelt__gl_unpack_defaults(void);
+/* Returns everything the renderer touches to GL's initial values, as
+ * pelt/render.h states. */
+void pelt__gl_state_reset(void);
+
+/* ---- programs (gl/programs.c) ------------------------------------------ */
+
+/* Builds a renderer program: the uniform blocks (shaders/blocks.glsl) go
+ * before each stage's pieces (NULL-terminated), the blocks are bound to
+ * PELT_BLOCK_* and the samplers u_fur, u_color_tex, u_mask to PELT_UNIT_*.
+ * A compile or link error also goes to hooks->logger. Leaves the program
+ * current. */
+pelt_status pelt__gl_program_create(const char *what, const char *const *vertex_parts,
+                                    const char *const *fragment_parts, const pelt_hooks *hooks,
+                                    GLuint *out, pelt_error *err);
+
+/* ---- vertex and index buffers (gl/gpu_mesh.c) -------------------------- */
+
+typedef struct pelt__gpu_mesh {
+    GLuint vao;
+    GLuint vbo_static; /* interleaved, PELT_ATTR_* except the tips */
+    GLuint vbo_tips;   /* PELT_ATTR_TIP, rewritten when the strands move */
+    GLuint ebo;
+    size_t vertex_count;
+    size_t triangle_count;
+    unsigned tips_version;
+} pelt__gpu_mesh;
+
+/* Uploads the mesh's attributes with the fur's uvs and strand tips. The
+ * interleaved array is allocated through hooks and freed before return.
+ * On failure *g holds what was made (free it with pelt__gpu_mesh_destroy). */
+pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, const pelt_fur *fur,
+                                  const pelt_hooks *hooks, pelt_error *err);
+/* Rewrites the tip buffer when the strands moved; returns bytes sent. */
+size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, const pelt_fur *fur);
+void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
+
+/* ---- fur textures (gl/gpu_fur.c) --------------------------------------- */
+
+typedef struct pelt__gpu_fur {
+    GLuint volume; /* 2D array, one slice a layer (Lengyel et al. §2.2) */
+    GLuint color;  /* RGBA8, white 1x1 until the fur has a colour texture */
+    GLuint mask;   /* RGBA32F wetness mask, nearest (Silva et al. §3.1) */
+    unsigned color_version;
+} pelt__gpu_fur;
+
+void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur);
+/* Uploads a new colour texture and the changed rectangle of the mask;
+ * returns bytes sent. */
+size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur);
+/* Binds the textures to their PELT_UNIT_* units. */
+void pelt__gpu_fur_bind(const pelt__gpu_fur *g);
+void pelt__gpu_fur_destroy(pelt__gpu_fur *g);
+
+/* ---- uniform blocks (gl/uniform_blocks.c) ------------------------------ */
+
+/* std140 images of the blocks in shaders/blocks.glsl: a vec3 takes 16
+ * bytes unless a float follows it; offsets are asserted in
+ * gl/uniform_blocks.c. */
+typedef struct pelt__frame_block {
+    float model[16], view_proj[16];
+    float eye[3], ambient;
+    float light_dir[3], pad0_;
+    float light_color[3], pad1_;
+} pelt__frame_block;
+
+typedef struct pelt__fur_block {
+    float color[3], layers;
+    float tip_color[3], length;
+    float specular[3], shininess;
+    float fur_per_uv[2], shadow, curl_frequency;
+    float curl_radius, clump_blend, clump_tightness, wet_darken;
+    float color_scale, slant, pad_[2];
+} pelt__fur_block;
+
+typedef struct pelt__gpu_blocks {
+    GLuint frame, fur;        /* uniform buffers */
+    pelt__fur_block fur_sent; /* what the fur buffer holds, once fur_valid */
+    bool fur_valid;
+} pelt__gpu_blocks;
+
+void pelt__gpu_blocks_create(pelt__gpu_blocks *b);
+/* Uploads the per-frame block; returns bytes sent. */
+size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *view);
+/* Uploads the fur block when the fur's look differs from what was sent;
+ * returns bytes sent. */
+size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur);
+/* Binds the buffers to their PELT_BLOCK_* binding points. */
+void pelt__gpu_blocks_bind(const pelt__gpu_blocks *b);
+void pelt__gpu_blocks_destroy(pelt__gpu_blocks *b);
+
+#endif

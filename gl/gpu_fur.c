@@ -1,0 +1,99 @@
+/* The fur's textures: the hair volume (Lengyel et al. 2001 §2.2), the
+ * colour texture and the wetness mask (Silva et al. §3.1), read through
+ * core/fur/fur_gpu.h. After the first upload only what changed goes up:
+ * a new colour texture, the changed rectangle of the mask. Each texture is
+ * bound on its own unit while it is uploaded, so no other unit is touched. */
+#include "gl/gpu.h"
+
+#include "core/fur/fur_gpu.h"
+
+#include <string.h>
+
+static void bind(GLenum unit, GLenum target, GLuint texture)
+{
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(target, texture);
+}
+
+void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
+{
+    pelt__gl_unpack_defaults();
+    unsigned size, slices;
+    const uint8_t *volume = pelt__fur_gpu_volume(fur, &size, &slices);
+    glGenTextures(1, &g->volume);
+    bind(PELT_UNIT_FUR, GL_TEXTURE_2D_ARRAY, g->volume);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)size, (GLsizei)size, (GLsizei)slices, 0,
+                 GL_RGBA, GL_UNSIGNED_BYTE, volume);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+
+    /* White until the fur has a colour texture: the hair colour alone. */
+    static const uint8_t white[4] = {255, 255, 255, 255};
+    glGenTextures(1, &g->color);
+    bind(PELT_UNIT_COLOR, GL_TEXTURE_2D, g->color);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, white);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    g->color_version = (unsigned)-1;
+
+    /* The wetness mask: float texels, nearest sampling (Silva §3.1). */
+    unsigned w, h;
+    const float *texels = pelt__fur_gpu_mask(fur, &w, &h);
+    glGenTextures(1, &g->mask);
+    bind(PELT_UNIT_MASK, GL_TEXTURE_2D, g->mask);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT, texels);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    unsigned rect[4];
+    pelt__fur_gpu_take_mask_dirty(fur, rect); /* all of it went up just now */
+}
+
+size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur)
+{
+    size_t bytes = 0;
+    unsigned w, h, version;
+    const uint8_t *color = pelt__fur_gpu_color(fur, &w, &h, &version);
+    if (color && version != g->color_version) {
+        bind(PELT_UNIT_COLOR, GL_TEXTURE_2D, g->color);
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)w, (GLsizei)h, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, color);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+        glGenerateMipmap(GL_TEXTURE_2D);
+        g->color_version = version;
+        bytes += (size_t)w * h * 4;
+    }
+    /* Only the rectangle of the mask that changed since the last upload. */
+    unsigned r[4];
+    if (pelt__fur_gpu_take_mask_dirty(fur, r)) {
+        const float *texels = pelt__fur_gpu_mask(fur, &w, &h);
+        bind(PELT_UNIT_MASK, GL_TEXTURE_2D, g->mask);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, (GLint)w);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, (GLint)r[0], (GLint)r[1], (GLsizei)(r[2] - r[0]),
+                        (GLsizei)(r[3] - r[1]), GL_RGBA, GL_FLOAT,
+                        texels + ((size_t)r[1] * w + r[0]) * 4);
+        glPixelStorei(GL_UNPACK_ROW_LENGTH, 0);
+        bytes += (size_t)(r[2] - r[0]) * (r[3] - r[1]) * 4 * sizeof(float);
+    }
+    return bytes;
+}
+
+void pelt__gpu_fur_bind(const pelt__gpu_fur *g)
+{
+    bind(PELT_UNIT_FUR, GL_TEXTURE_2D_ARRAY, g->volume);
+    bind(PELT_UNIT_COLOR, GL_TEXTURE_2D, g->color);
+    bind(PELT_UNIT_MASK, GL_TEXTURE_2D, g->mask);
+}
+
+void pelt__gpu_fur_destroy(pelt__gpu_fur *g)
+{
+    GLuint textures[3] = {g->volume, g->color, g->mask};
+    glDeleteTextures(3, textures);
+    memset(g, 0, sizeof *g);
+}

@@ -1,0 +1,97 @@
+/* Vertex and index buffers: the mesh's attributes (through the public
+ * pelt_mesh_get_data) with the fur's per-vertex data (core/fur/fur_gpu.h),
+ * one VAO that every pass draws. The strand tips change every frame, so
+ * they live in their own buffer, rewritten in place. */
+#include "gl/gpu.h"
+
+#include "core/base/error.h"
+#include "core/fur/fur_gpu.h"
+
+#include <string.h>
+
+/* One interleaved attribute: where it comes from and where it goes. */
+typedef struct attribute {
+    GLuint location;      /* PELT_ATTR_* */
+    unsigned size;        /* floats */
+    const float *source;  /* per vertex, `stride` floats apart */
+    unsigned stride;
+} attribute;
+
+pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, const pelt_fur *fur,
+                                  const pelt_hooks *hooks, pelt_error *err)
+{
+    const pelt_mesh_data m = pelt_mesh_get_data(mesh);
+    const float *tangents = pelt_mesh_tangents(mesh);
+    /* Without a direction field, comb along the fur texture's u axis. */
+    const attribute attrs[] = {
+        {PELT_ATTR_POSITION, 3, m.positions, 3},
+        {PELT_ATTR_NORMAL, 3, m.normals, 3},
+        {PELT_ATTR_UV, 2, m.uvs, 2},
+        {PELT_ATTR_FUR_UV, 2, pelt__fur_gpu_uvs(fur), 2},
+        {PELT_ATTR_TANGENT, 4, tangents, 4},
+        {PELT_ATTR_COMB, 3, m.comb ? m.comb : tangents, m.comb ? 3 : 4},
+    };
+    enum { ATTRS = sizeof attrs / sizeof attrs[0] };
+    unsigned floats = 0;
+    for (int k = 0; k < ATTRS; k++) floats += attrs[k].size;
+
+    g->vertex_count = m.vertex_count;
+    g->triangle_count = m.triangle_count;
+    float *data = pelt__gl_alloc(hooks, m.vertex_count, floats * sizeof(float));
+    if (!data) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex data");
+    for (size_t i = 0; i < m.vertex_count; i++) {
+        float *v = data + i * floats;
+        for (int k = 0; k < ATTRS; k++) {
+            memcpy(v, attrs[k].source + i * attrs[k].stride, attrs[k].size * sizeof(float));
+            v += attrs[k].size;
+        }
+    }
+    glGenVertexArrays(1, &g->vao);
+    glBindVertexArray(g->vao);
+    glGenBuffers(1, &g->vbo_static);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_static);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * floats * sizeof(float)), data,
+                 GL_STATIC_DRAW);
+    pelt__gl_free(hooks, data);
+    size_t offset = 0;
+    for (int k = 0; k < ATTRS; k++) {
+        glEnableVertexAttribArray(attrs[k].location);
+        glVertexAttribPointer(attrs[k].location, (GLint)attrs[k].size, GL_FLOAT, GL_FALSE,
+                              (GLsizei)(floats * sizeof(float)), (const void *)offset);
+        offset += attrs[k].size * sizeof(float);
+    }
+
+    glGenBuffers(1, &g->vbo_tips);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * 3 * sizeof(float)),
+                 pelt__fur_gpu_tips(fur, &g->tips_version), GL_DYNAMIC_DRAW);
+    glEnableVertexAttribArray(PELT_ATTR_TIP);
+    glVertexAttribPointer(PELT_ATTR_TIP, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
+
+    glGenBuffers(1, &g->ebo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m.triangle_count * 3 * sizeof(uint32_t)),
+                 m.indices, GL_STATIC_DRAW);
+    glBindVertexArray(0);
+    return PELT_OK;
+}
+
+size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, const pelt_fur *fur)
+{
+    unsigned version;
+    const float *tips = pelt__fur_gpu_tips(fur, &version);
+    if (version == g->tips_version) return 0;
+    size_t bytes = g->vertex_count * 3 * sizeof(float);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
+    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, tips);
+    g->tips_version = version;
+    return bytes;
+}
+
+void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)
+{
+    GLuint buffers[3] = {g->vbo_static, g->vbo_tips, g->ebo};
+    glDeleteBuffers(3, buffers);
+    if (g->vao) glDeleteVertexArrays(1, &g->vao);
+    memset(g, 0, sizeof *g);
+}

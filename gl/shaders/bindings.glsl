@@ -1,0 +1,27 @@
+// The binding table: every number that C and GLSL must agree on, written
+// once. The C code #includes this file and the renderer prepends it to
+// every shader source, so it holds only #define lines and comments that
+// both languages read. Shaders use the names in layout(location = ...);
+// samplers and uniform blocks are bound from C (glUniform1i,
+// glUniformBlockBinding), since GLSL 3.30 / ES 3.00 have no
+// layout(binding = ...).
+
+// Vertex attribute locations (gl/gpu_mesh.c sets the buffers up).
+#define PELT_ATTR_POSITION 0 // vec3, mesh-local
+#define PELT_ATTR_NORMAL 1   // vec3, unit
+#define PELT_ATTR_UV 2       // vec2, surface (atlas) uv: the mask, the colour
+#define PELT_ATTR_FUR_UV 3   // vec2, fur-texture coordinates in tiles
+#define PELT_ATTR_TANGENT 4  // vec4, unit tangent along +u, w = handedness
+#define PELT_ATTR_TIP 5      // vec3, strand tip offset p - p_root (per frame)
+#define PELT_ATTR_COMB 6     // vec3, comb direction times its weight
+
+// Texture units (gl/gpu_fur.c owns the textures).
+#define PELT_UNIT_FUR 0   // sampler2DArray: the fur volume, one slice a layer
+#define PELT_UNIT_COLOR 1 // sampler2D: the colour texture
+#define PELT_UNIT_MASK 2  // sampler2D: the wetness mask, nearest
+#define PELT_UNIT_COUNT 3 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
+
+// Uniform block binding points (gl/uniform_blocks.c, gl/shaders/blocks.glsl).
+#define PELT_BLOCK_FRAME 0 // pelt_frame_block: matrices, eye, light
+#define PELT_BLOCK_FUR 1   // pelt_fur_block: how the fur looks
+#define PELT_BLOCK_COUNT 2 // points 0 .. PELT_BLOCK_COUNT - 1 are the renderer's

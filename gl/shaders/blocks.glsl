@@ -1,0 +1,33 @@
+// The uniform blocks every renderer program shares, std140 so that the C
+// structs in gl/gpu.h match them byte for byte (checked there and by
+// tests/gl/test_render.c). Members keep their u_ names: a block without an
+// instance name puts them in the global scope. Bound to PELT_BLOCK_* from C.
+
+// Per frame: the camera, the mesh placement and the light.
+layout(std140) uniform pelt_frame_block {
+    mat4 u_model;
+    mat4 u_view_proj;
+    vec3 u_eye;
+    float u_ambient;     // ambient fraction of the hair colour
+    vec3 u_light_dir;    // towards the light, not unit
+    vec3 u_light_color;
+};
+
+// Per fur, uploaded when it changes: the look (Silva et al. Eq. 4-6).
+layout(std140) uniform pelt_fur_block {
+    vec3 u_color;
+    float u_layers;          // N
+    vec3 u_tip_color;
+    float u_length;          // L0
+    vec3 u_specular;         // Kajiya-Kay K_s
+    float u_shininess;       // Kajiya-Kay p
+    vec2 u_fur_per_uv;       // fur tiles per uv unit
+    float u_shadow;          // K_shadow
+    float u_curl_frequency;  // omega
+    float u_curl_radius;     // K_alpha
+    float u_clump_blend;     // w of Eq. 5
+    float u_clump_tightness; // s
+    float u_wet_darken;
+    float u_color_scale;     // colour texture repeats per uv unit
+    float u_slant;           // tan of the comb angle (Lengyel et al. §3)
+};

@@ -1,0 +1,113 @@
+/* The uniform blocks of shaders/blocks.glsl: the frame block goes up once
+ * a draw, the fur block only when the look changed. The C structs in
+ * gl/gpu.h are their std140 images; the asserts below pin the offsets
+ * std140 gives (tests/gl/test_render.c asks GL for them too). */
+#include "gl/gpu.h"
+
+#include "core/base/vec.h"
+#include "core/fur/fur_gpu.h"
+
+#include <math.h>
+#include <string.h>
+
+#define OFFSET(type, field, at) _Static_assert(offsetof(type, field) == (at), #type "." #field)
+OFFSET(pelt__frame_block, model, 0);
+OFFSET(pelt__frame_block, view_proj, 64);
+OFFSET(pelt__frame_block, eye, 128);
+OFFSET(pelt__frame_block, ambient, 140);
+OFFSET(pelt__frame_block, light_dir, 144);
+OFFSET(pelt__frame_block, light_color, 160);
+_Static_assert(sizeof(pelt__frame_block) == 176, "std140 size of pelt_frame_block");
+OFFSET(pelt__fur_block, color, 0);
+OFFSET(pelt__fur_block, layers, 12);
+OFFSET(pelt__fur_block, tip_color, 16);
+OFFSET(pelt__fur_block, length, 28);
+OFFSET(pelt__fur_block, specular, 32);
+OFFSET(pelt__fur_block, shininess, 44);
+OFFSET(pelt__fur_block, fur_per_uv, 48);
+OFFSET(pelt__fur_block, shadow, 56);
+OFFSET(pelt__fur_block, curl_frequency, 60);
+OFFSET(pelt__fur_block, curl_radius, 64);
+OFFSET(pelt__fur_block, clump_blend, 68);
+OFFSET(pelt__fur_block, clump_tightness, 72);
+OFFSET(pelt__fur_block, wet_darken, 76);
+OFFSET(pelt__fur_block, color_scale, 80);
+OFFSET(pelt__fur_block, slant, 84);
+_Static_assert(sizeof(pelt__fur_block) == 96, "std140 size of pelt_fur_block");
+#undef OFFSET
+
+static GLuint make_buffer(size_t bytes)
+{
+    GLuint b;
+    glGenBuffers(1, &b);
+    glBindBuffer(GL_UNIFORM_BUFFER, b);
+    glBufferData(GL_UNIFORM_BUFFER, (GLsizeiptr)bytes, NULL, GL_DYNAMIC_DRAW);
+    return b;
+}
+
+void pelt__gpu_blocks_create(pelt__gpu_blocks *b)
+{
+    b->frame = make_buffer(sizeof(pelt__frame_block));
+    b->fur = make_buffer(sizeof(pelt__fur_block));
+    b->fur_valid = false;
+}
+
+static void send(GLuint buffer, const void *data, size_t bytes)
+{
+    glBindBuffer(GL_UNIFORM_BUFFER, buffer);
+    glBufferSubData(GL_UNIFORM_BUFFER, 0, (GLsizeiptr)bytes, data);
+}
+
+size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v)
+{
+    pelt__frame_block f;
+    memset(&f, 0, sizeof f);
+    memcpy(f.model, v->model, sizeof f.model);
+    pelt__mat4_mul(f.view_proj, v->proj, v->view);
+    memcpy(f.eye, v->eye, sizeof f.eye);
+    f.ambient = v->light.ambient;
+    memcpy(f.light_dir, v->light.direction, sizeof f.light_dir);
+    memcpy(f.light_color, v->light.color, sizeof f.light_color);
+    send(b->frame, &f, sizeof f);
+    return sizeof f;
+}
+
+size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
+{
+    const pelt_fur_desc d = pelt_fur_get_desc(fur);
+    pelt__fur_block k;
+    memset(&k, 0, sizeof k); /* the padding too: the struct is compared bytewise */
+    memcpy(k.color, d.look.color, sizeof k.color);
+    k.layers = (float)d.layers;
+    memcpy(k.tip_color, d.look.tip_color, sizeof k.tip_color);
+    k.length = d.length;
+    memcpy(k.specular, d.look.specular, sizeof k.specular);
+    k.shininess = d.look.shininess;
+    pelt__fur_gpu_per_uv(fur, k.fur_per_uv);
+    k.shadow = d.look.shadow;
+    k.curl_frequency = d.look.curl_frequency;
+    k.curl_radius = d.look.curl_radius;
+    k.clump_blend = d.wet.clump_blend;
+    k.clump_tightness = d.wet.clump_tightness;
+    k.wet_darken = d.wet.darken;
+    k.color_scale = d.look.color_scale;
+    k.slant = tanf(d.comb.slant * 3.14159265f / 180.0f); /* Lengyel et al. §3 */
+    if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
+    send(b->fur, &k, sizeof k);
+    b->fur_sent = k;
+    b->fur_valid = true;
+    return sizeof k;
+}
+
+void pelt__gpu_blocks_bind(const pelt__gpu_blocks *b)
+{
+    glBindBufferBase(GL_UNIFORM_BUFFER, PELT_BLOCK_FRAME, b->frame);
+    glBindBufferBase(GL_UNIFORM_BUFFER, PELT_BLOCK_FUR, b->fur);
+}
+
+void pelt__gpu_blocks_destroy(pelt__gpu_blocks *b)
+{
+    GLuint buffers[2] = {b->frame, b->fur};
+    glDeleteBuffers(2, buffers);
+    memset(b, 0, sizeof *b);
+}
