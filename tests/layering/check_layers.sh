@@ -19,7 +19,7 @@ allowed_local() {
         core/atlas/*) echo '^(pelt/(base|mesh|atlas)\.h|core/(base|mesh|atlas)/)' ;;
         core/wet/*)   echo '^(pelt/(base|mesh|wetness|fur)\.h|core/(base|mesh|wet)/)' ;;
         core/fur/*)   echo '^(pelt/(base|mesh|fur|dynamics|wetness)\.h|core/(base|mesh|wet|fur)/)' ;;
-        gl/*)         echo '^(pelt/(base|camera|mesh|fur|dynamics|wetness|render)\.h|core/|gl/)' ;;
+        gl/*)         echo '^(pelt/(base|camera|mesh|fur|dynamics|wetness|render)\.h|core/base/|core/fur/fur_gpu\.h|gl/)' ;;
         scene/*)      echo '^(pelt/|core/base/)' ;;
         platform/*)   echo '^(pelt/(base|headless|window)\.h|core/base/|platform/)' ;;
         *)            echo '.' ;;
