@@ -44,7 +44,7 @@ if [ -z "$PNG_DIFF" ]; then
     exit 2
   fi
   PNG_DIFF="$TMP/png_diff"
-  gcc -std=c11 -O2 -Wall -Wextra -I/usr/include/stb "$src" -o "$PNG_DIFF" -lm
+  gcc -std=c11 -O2 -Wall -Wextra -I/usr/include/stb "$src" -o "$PNG_DIFF" -lstb -lm
 fi
 read -r -a flags <<<"${PNG_DIFF_FLAGS:-}"
 

@@ -18,11 +18,10 @@
  * tolerance of docs/testing.md), so M = 1.0 and F = 0.01 here: tighter, for
  * "the same picture as before" on the same machine.
  *
- * Build (stb from Debian's libstb-dev):
- *   gcc -std=c11 -O2 -Wall -Wextra -I/usr/include/stb tests/tools/png_diff.c -o png_diff -lm
+ * Built by tests/CMakeLists.txt (target png_diff), or by hand with Debian's
+ * libstb-dev:
+ *   gcc -std=c11 -O2 -Wall -Wextra -I/usr/include/stb tests/tools/png_diff.c -o png_diff -lstb -lm
  */
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
 #include <stb_image.h>
 
 #include <errno.h>
