@@ -7,19 +7,12 @@
 
 #include "pelt/render.h"
 
+#include "core/base/hooks.h"
+
 #include "gl/shaders/bindings.glsl"
 
 #include <epoxy/gl.h>
 #include <stddef.h>
-
-/* ---- hooks (gl/gl_hooks.c) --------------------------------------------- */
-
-/* hooks->allocator, or malloc/free when neither function is set. alloc
- * returns NULL when out of memory or when count * size overflows. */
-void *pelt__gl_alloc(const pelt_hooks *hooks, size_t count, size_t size);
-void pelt__gl_free(const pelt_hooks *hooks, void *ptr);
-/* Passes message to hooks->logger when one is set. */
-void pelt__gl_log(const pelt_hooks *hooks, pelt_log_level level, const char *message);
 
 /* ---- the GL state contract of pelt/render.h (gl/gl_state.c) ------------ */
 

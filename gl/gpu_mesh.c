@@ -37,7 +37,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, cons
 
     g->vertex_count = m.vertex_count;
     g->triangle_count = m.triangle_count;
-    float *data = pelt__gl_alloc(hooks, m.vertex_count, floats * sizeof(float));
+    float *data = pelt__alloc_zero(&hooks->allocator, m.vertex_count, floats * sizeof(float));
     if (!data) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex data");
     for (size_t i = 0; i < m.vertex_count; i++) {
         float *v = data + i * floats;
@@ -52,7 +52,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, cons
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo_static);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * floats * sizeof(float)), data,
                  GL_STATIC_DRAW);
-    pelt__gl_free(hooks, data);
+    pelt__free(&hooks->allocator, data);
     size_t offset = 0;
     for (int k = 0; k < ATTRS; k++) {
         glEnableVertexAttribArray(attrs[k].location);

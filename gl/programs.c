@@ -85,7 +85,7 @@ pelt_status pelt__gl_program_create(const char *what, const char *const *vertex_
     pelt_error e = {0};
     pelt_status st = pelt__program_build(what, vs, fs, out, &e);
     if (st != PELT_OK) {
-        pelt__gl_log(hooks, PELT_LOG_ERROR, e.message);
+        pelt__log(&hooks->logger, PELT_LOG_ERROR, "%s", e.message);
         if (err) *err = e;
         return st;
     }

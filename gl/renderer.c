@@ -35,10 +35,9 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
     if (pelt_mesh_get_data(mesh).triangle_count * 3 > 0x7fffffff)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "mesh too large for one draw call");
     const pelt_hooks hooks = desc ? desc->hooks : (pelt_hooks){0};
-    if (!hooks.allocator.alloc != !hooks.allocator.free)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "pelt_renderer_create: the allocator needs both alloc and free, or neither");
-    pelt_renderer *r = pelt__gl_alloc(&hooks, 1, sizeof *r);
+    pelt_status hst = pelt__hooks_check(&hooks, "pelt_renderer_desc", err);
+    if (hst != PELT_OK) return hst;
+    pelt_renderer *r = pelt__alloc_zero(&hooks.allocator, 1, sizeof *r);
     if (!r) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
     memset(r, 0, sizeof *r);
     r->hooks = hooks;
@@ -71,7 +70,7 @@ void pelt_renderer_destroy(pelt_renderer *r)
     pelt__gpu_fur_destroy(&r->textures);
     pelt__gpu_mesh_destroy(&r->mesh);
     const pelt_hooks hooks = r->hooks;
-    pelt__gl_free(&hooks, r);
+    pelt__free(&hooks.allocator, r);
 }
 
 /* Brings GPU copies up to date with what changed in the fur since the last

@@ -286,11 +286,13 @@ pelt_status pelt_scene_instantiate(const pelt_scene *sc, const pelt_scene_instan
     if (sc->output.width == 0 || sc->output.height == 0)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "output size must not be 0");
     pelt_scene_instance_desc d = desc ? *desc : (pelt_scene_instance_desc){0};
-    pelt_hooks hooks = pelt__hooks_resolve(&d.hooks);
+    pelt_status st = pelt__hooks_check(&d.hooks, "pelt_scene_instance_desc", err);
+    if (st != PELT_OK) return st;
+    pelt_hooks hooks = d.hooks;
     pelt_scene_instance *inst = pelt__alloc_zero(&hooks.allocator, 1, sizeof *inst);
     if (!inst) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
     inst->hooks = hooks;
-    pelt_status st = instantiate(inst, sc, &d, err);
+    st = instantiate(inst, sc, &d, err);
     if (st != PELT_OK) {
         pelt_scene_instance_destroy(inst);
         return st;

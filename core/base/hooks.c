@@ -1,5 +1,7 @@
 #include "core/base/hooks.h"
 
+#include "core/base/error.h"
+
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -41,9 +43,10 @@ void pelt__log(const pelt_logger *l, pelt_log_level level, const char *fmt, ...)
     l->func(level, message, l->user);
 }
 
-pelt_hooks pelt__hooks_resolve(const pelt_hooks *h)
+pelt_status pelt__hooks_check(const pelt_hooks *h, const char *desc, pelt_error *err)
 {
-    pelt_hooks r = h ? *h : (pelt_hooks){0};
-    if (!r.allocator.alloc || !r.allocator.free) r.allocator = (pelt_allocator){0};
-    return r;
+    if (h && !h->allocator.alloc != !h->allocator.free)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "%s.hooks.allocator: set both alloc and free, or neither", desc);
+    return PELT_OK;
 }

@@ -22,8 +22,8 @@ void pelt__log(const pelt_logger *l, pelt_log_level level, const char *fmt, ...)
 #endif
     ;
 
-/* A caller's hooks are used only when both allocator functions are set;
- * one without the other would pair a foreign alloc with free(). */
-pelt_hooks pelt__hooks_resolve(const pelt_hooks *h);
+/* PELT_ERR_INVALID_ARGUMENT, naming `desc`, for an allocator with only
+ * one of alloc and free: it would pair a foreign alloc with free(). */
+pelt_status pelt__hooks_check(const pelt_hooks *h, const char *desc, pelt_error *err);
 
 #endif

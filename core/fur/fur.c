@@ -2,6 +2,7 @@
 #include "core/fur/fur_internal.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/fur/fur_shape.h"
 #include "core/fur/furtex.h"
 #include "core/mesh/mesh_internal.h"
@@ -153,28 +154,30 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     pelt_fur_desc d = desc ? *desc : (pelt_fur_desc){0};
     pelt__fur_desc_defaults(&d, mesh);
     pelt_status st = check_desc(&d, err);
+    if (st == PELT_OK) st = pelt__hooks_check(&d.hooks, "pelt_fur_desc", err);
     if (st != PELT_OK) return st;
 
-    pelt_fur *f = calloc(1, sizeof *f);
+    const pelt_allocator *a = &d.hooks.allocator;
+    pelt_fur *f = pelt__alloc_zero(a, 1, sizeof *f);
     if (!f) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
     f->desc = d;
     f->mesh = mesh;
     f->texture_slices = d.layers + 1;
     pelt__furtex_desc td = {d.look.texture_size, d.layers, d.seed, d.look.density, d.look.strand_radius, d.look.taper};
     size_t bytes = pelt__furtex_bytes(&td);
-    f->texture = bytes ? malloc(bytes) : NULL;
-    f->fur_uvs = pelt__calloc(mesh->vertex_count, 2 * sizeof(float));
+    f->texture = bytes ? pelt__alloc(a, bytes) : NULL;
+    f->fur_uvs = pelt__alloc_zero(a, mesh->vertex_count, 2 * sizeof(float));
     pelt__strand_params sp = {d.length, d.dynamics.spring_k, d.dynamics.mass, d.dynamics.damping, d.seed};
-    st = pelt__strands_create(mesh, &sp, &f->strands, err);
+    st = pelt__strands_create(mesh, &sp, &f->desc.hooks.allocator, &f->strands, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
     }
     f->tips = pelt__strands_tip_offsets(f->strands);
-    st = pelt__wetness_create(d.wet.mask_size, d.wet.mask_size, &f->wetness, err);
-    if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->surface, err);
-    if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->bvh, err);
-    if (st == PELT_OK) st = pelt__rain_create(mesh, &f->rain, err);
+    st = pelt__wetness_create(d.wet.mask_size, d.wet.mask_size, &f->desc.hooks.allocator, &f->wetness, err);
+    if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->desc.hooks.allocator, &f->surface, err);
+    if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
+    if (st == PELT_OK) st = pelt__rain_create(mesh, &f->desc.hooks.allocator, &f->rain, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
@@ -208,15 +211,16 @@ pelt_status pelt_fur_desc_curl_preset(pelt_fur_desc *d, const pelt_mesh *mesh, c
 void pelt_fur_destroy(pelt_fur *f)
 {
     if (!f) return;
-    free(f->texture);
-    free(f->fur_uvs);
-    free(f->color_texture);
+    pelt_allocator a = f->desc.hooks.allocator;
+    pelt__free(&a, f->texture);
+    pelt__free(&a, f->fur_uvs);
+    pelt__free(&a, f->color_texture);
     pelt__strands_destroy(f->strands);
     pelt__wetness_destroy(f->wetness);
     pelt__surface_index_destroy(f->surface);
     pelt__bvh_destroy(f->bvh);
     pelt__rain_destroy(f->rain);
-    free(f);
+    pelt__free(&a, f);
 }
 
 pelt_status pelt_fur_set_transform(pelt_fur *f, const float model[16], pelt_error *err)
@@ -251,10 +255,11 @@ pelt_status pelt_fur_set_color_texture(pelt_fur *f, const uint8_t *rgba, unsigne
 {
     if (!rgba || w == 0 || h == 0 || w > 16384 || h > 16384)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour texture must be 1..16384 texels a side");
-    uint8_t *copy = pelt__calloc((size_t)w * h, 4);
+    const pelt_allocator *a = &f->desc.hooks.allocator;
+    uint8_t *copy = pelt__alloc_zero(a, (size_t)w * h, 4);
     if (!copy) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a %ux%u colour texture", w, h);
     memcpy(copy, rgba, (size_t)w * h * 4);
-    free(f->color_texture);
+    pelt__free(a, f->color_texture);
     f->color_texture = copy;
     f->color_width = w;
     f->color_height = h;
@@ -309,12 +314,13 @@ pelt_status pelt_fur_paint_wetness(pelt_fur *f, const uint8_t *grey, unsigned w,
     if (!grey || w == 0 || h == 0)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness image is empty");
     /* Scale the grey levels by `wetness` into a copy the painter reads. */
-    uint8_t *scaled = pelt__calloc((size_t)w * h, 1);
+    const pelt_allocator *a = &f->desc.hooks.allocator;
+    uint8_t *scaled = pelt__alloc_zero(a, (size_t)w * h, 1);
     if (!scaled) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a %ux%u image", w, h);
     float k = clampf(wetness, 0.0f, 1.0f);
     for (size_t i = 0; i < (size_t)w * h; i++) scaled[i] = (uint8_t)(grey[i] * k + 0.5f);
     pelt_status st = pelt__wetness_paint_image(f->wetness, scaled, w, h, NULL, err);
-    free(scaled);
+    pelt__free(a, scaled);
     return st;
 }
 

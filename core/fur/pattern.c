@@ -1,8 +1,9 @@
 /* Procedural colour patterns for the fur (multiplied with the hair colour):
  * tileable, seeded, white where the colour is unchanged. */
-#include "pelt/fur.h"
+#include "core/fur/fur_internal.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/noise.h"
 #include "core/base/vec.h"
 
@@ -18,7 +19,8 @@ pelt_status pelt_fur_set_color_pattern(pelt_fur *fur, pelt_color_pattern pattern
     }
     if (pattern < PELT_COLOR_PATTERN_NONE || pattern > PELT_COLOR_PATTERN_NOISE)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "unknown colour pattern %d", (int)pattern);
-    uint8_t *rgba = malloc((size_t)SIZE * SIZE * 4);
+    const pelt_allocator *a = &fur->desc.hooks.allocator;
+    uint8_t *rgba = pelt__alloc(a, (size_t)SIZE * SIZE * 4);
     if (!rgba) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a colour pattern");
     const uint32_t noise_seed = seed ^ 0x70617474u; /* "patt": unlike the gusts of the same seed */
     for (int y = 0; y < SIZE; y++)
@@ -57,6 +59,6 @@ pelt_status pelt_fur_set_color_pattern(pelt_fur *fur, pelt_color_pattern pattern
             p[3] = 255;
         }
     pelt_status st = pelt_fur_set_color_texture(fur, rgba, SIZE, SIZE, err);
-    free(rgba);
+    pelt__free(a, rgba);
     return st;
 }

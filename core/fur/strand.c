@@ -4,6 +4,7 @@
 #include "core/fur/strand.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/noise.h"
 #include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
@@ -20,6 +21,7 @@
 #define PELT__STRAND_BLOCK 32
 
 struct pelt__strands {
+    pelt_allocator alloc; /* the fur's: every array below comes from it */
     size_t count;
     pelt__strand_params params;
     float k_per_mass, c_per_mass; /* spring_k / mass, damping / mass, 1/s^2 and 1/s */
@@ -203,7 +205,7 @@ static bool params_valid(const pelt__strand_params *p)
 }
 
 pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_params *p,
-                                 pelt__strands **out, pelt_error *err)
+                                 const pelt_allocator *alloc, pelt__strands **out, pelt_error *err)
 {
     const char *fn = "pelt__strands_create";
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: out is NULL", fn);
@@ -215,9 +217,10 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
                           "%s: length %g, spring_k %g and mass %g must be positive, damping %g >= 0", fn,
                           (double)p->length, (double)p->spring_k, (double)p->mass, (double)p->damping);
 
-    pelt__strands *s = pelt__calloc(1, sizeof *s);
+    pelt__strands *s = pelt__alloc_zero(alloc, 1, sizeof *s);
     if (!s) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", fn);
     size_t n = mesh->vertex_count;
+    if (alloc) s->alloc = *alloc;
     s->count = n;
     s->params = *p;
     s->k_per_mass = fminf(s->params.spring_k / s->params.mass, PELT__RATE_MAX);
@@ -227,12 +230,12 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
      * + 3 (tip) + 3 (vel) + 6 (gust slices) + 3 (offsets) floats per vertex. */
     const size_t per_vertex = 28;
     if (n > (size_t)-1 / per_vertex) {
-        free(s);
+        pelt__free(alloc, s);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: %zu vertices overflow the strand arrays", fn, n);
     }
-    s->block = pelt__calloc(n * per_vertex, sizeof(float));
+    s->block = pelt__alloc_zero(alloc, n * per_vertex, sizeof(float));
     if (!s->block) {
-        free(s);
+        pelt__free(alloc, s);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory for %zu strands", fn, n);
     }
     float *cursor = s->block;
@@ -269,8 +272,9 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
 void pelt__strands_destroy(pelt__strands *s)
 {
     if (!s) return;
-    free(s->block);
-    free(s);
+    pelt_allocator alloc = s->alloc;
+    pelt__free(&alloc, s->block);
+    pelt__free(&alloc, s);
 }
 
 size_t pelt__strands_count(const pelt__strands *s) { return s ? s->count : 0; }

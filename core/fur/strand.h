@@ -42,7 +42,7 @@ typedef struct pelt__strands pelt__strands;
  * PELT_ERR_INVALID_ARGUMENT when p is NULL or a parameter is out of its
  * range or not finite. Free with pelt__strands_destroy. */
 pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_params *p,
-                                 pelt__strands **out, pelt_error *err);
+                                 const pelt_allocator *alloc, pelt__strands **out, pelt_error *err);
 void pelt__strands_destroy(pelt__strands *s);
 
 size_t pelt__strands_count(const pelt__strands *s);

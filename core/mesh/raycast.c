@@ -2,6 +2,7 @@
 #include "core/mesh/raycast.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
 
@@ -27,6 +28,7 @@ typedef struct bvh_tri {
 } bvh_tri;
 
 struct pelt__bvh {
+    pelt_allocator alloc; /* the owner's; every array comes from it */
     bvh_node *nodes;
     size_t node_count;
     bvh_tri *tris;     /* in leaf order */
@@ -210,7 +212,8 @@ static void node_bounds(build_ctx *c, bvh_node *n, uint32_t begin, uint32_t end)
     }
 }
 
-pelt_status pelt__bvh_build(const pelt_mesh *mesh, pelt__bvh **out, pelt_error *err)
+pelt_status pelt__bvh_build(const pelt_mesh *mesh, const pelt_allocator *alloc, pelt__bvh **out,
+                            pelt_error *err)
 {
     if (!mesh || !out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "bvh: NULL argument");
     *out = NULL;
@@ -218,24 +221,25 @@ pelt_status pelt__bvh_build(const pelt_mesh *mesh, pelt__bvh **out, pelt_error *
     if (n == 0) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "bvh: mesh has no triangles");
     if (n > UINT32_MAX / 2)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "bvh: %zu triangles is too many", n);
-    pelt__bvh *bvh = pelt__calloc(1, sizeof *bvh);
-    float *tlo = pelt__calloc(n * 3, sizeof(float));
-    float *thi = pelt__calloc(n * 3, sizeof(float));
-    float *cen = pelt__calloc(n * 3, sizeof(float));
-    uint32_t *idx = pelt__calloc(n, sizeof *idx);
-    build_item *stack = pelt__calloc(n, sizeof *stack);
+    pelt__bvh *bvh = pelt__alloc_zero(alloc, 1, sizeof *bvh);
+    if (bvh && alloc) bvh->alloc = *alloc;
+    float *tlo = pelt__alloc_zero(alloc, n * 3, sizeof(float));
+    float *thi = pelt__alloc_zero(alloc, n * 3, sizeof(float));
+    float *cen = pelt__alloc_zero(alloc, n * 3, sizeof(float));
+    uint32_t *idx = pelt__alloc_zero(alloc, n, sizeof *idx);
+    build_item *stack = pelt__alloc_zero(alloc, n, sizeof *stack);
     if (bvh) {
-        bvh->nodes = pelt__calloc(2 * n, sizeof *bvh->nodes);
-        bvh->tris = pelt__calloc(n, sizeof *bvh->tris);
-        bvh->source = pelt__calloc(n, sizeof *bvh->source);
+        bvh->nodes = pelt__alloc_zero(alloc, 2 * n, sizeof *bvh->nodes);
+        bvh->tris = pelt__alloc_zero(alloc, n, sizeof *bvh->tris);
+        bvh->source = pelt__alloc_zero(alloc, n, sizeof *bvh->source);
     }
     if (!bvh || !tlo || !thi || !cen || !idx || !stack || !bvh->nodes || !bvh->tris ||
         !bvh->source) {
-        free(tlo);
-        free(thi);
-        free(cen);
-        free(idx);
-        free(stack);
+        pelt__free(alloc, tlo);
+        pelt__free(alloc, thi);
+        pelt__free(alloc, cen);
+        pelt__free(alloc, idx);
+        pelt__free(alloc, stack);
         pelt__bvh_destroy(bvh);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "bvh: out of memory for %zu triangles", n);
     }
@@ -280,16 +284,20 @@ pelt_status pelt__bvh_build(const pelt_mesh *mesh, pelt__bvh **out, pelt_error *
         bvh->tris[i] = make_tri(mesh, idx[i]);
     }
     /* 2n nodes was the worst case; give back what the tree did not use. */
-    bvh_node *fit = realloc(bvh->nodes, c.node_count * sizeof *bvh->nodes);
-    if (fit) bvh->nodes = fit;
+    bvh_node *fit = pelt__alloc(alloc, c.node_count * sizeof *bvh->nodes);
+    if (fit) {
+        memcpy(fit, bvh->nodes, c.node_count * sizeof *bvh->nodes);
+        pelt__free(alloc, bvh->nodes);
+        bvh->nodes = fit;
+    }
     bvh->node_count = c.node_count;
     bvh->tri_count = n;
     bvh->depth = depth;
-    free(tlo);
-    free(thi);
-    free(cen);
-    free(idx);
-    free(stack);
+    pelt__free(alloc, tlo);
+    pelt__free(alloc, thi);
+    pelt__free(alloc, cen);
+    pelt__free(alloc, idx);
+    pelt__free(alloc, stack);
     *out = bvh;
     return PELT_OK;
 }
@@ -297,10 +305,11 @@ pelt_status pelt__bvh_build(const pelt_mesh *mesh, pelt__bvh **out, pelt_error *
 void pelt__bvh_destroy(pelt__bvh *bvh)
 {
     if (!bvh) return;
-    free(bvh->nodes);
-    free(bvh->tris);
-    free(bvh->source);
-    free(bvh);
+    pelt_allocator a = bvh->alloc;
+    pelt__free(&a, bvh->nodes);
+    pelt__free(&a, bvh->tris);
+    pelt__free(&a, bvh->source);
+    pelt__free(&a, bvh);
 }
 
 void pelt__bvh_stats(const pelt__bvh *bvh, size_t *nodes, unsigned *depth)

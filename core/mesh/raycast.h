@@ -20,7 +20,7 @@ typedef struct pelt__hit {
 /* Builds the hierarchy over mesh's triangles (positions are copied; the
  * mesh may change or go afterwards, but hits index its triangles). The
  * caller frees *out with pelt__bvh_destroy. */
-pelt_status pelt__bvh_build(const pelt_mesh *mesh, pelt__bvh **out, pelt_error *err);
+pelt_status pelt__bvh_build(const pelt_mesh *mesh, const pelt_allocator *alloc, pelt__bvh **out, pelt_error *err);
 void pelt__bvh_destroy(pelt__bvh *bvh);
 
 /* Closest hit with t in (0, t_max] on either side of the triangles (no

@@ -3,6 +3,7 @@
 #include "core/wet/mask.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/vec.h"
 
 #include <math.h>
@@ -15,12 +16,23 @@
 /* Zeroed texel storage. Droplets land at random places, each touching a
  * few rows that lie a whole row (pages) apart, so on a large mask most of
  * their cost is TLB misses: ask for huge pages there (Linux, where the
- * kernel grants them on request). */
-static float *alloc_texels(size_t bytes)
+ * kernel grants them on request). A caller's allocator is used as it is:
+ * its memory is its own to place. */
+static bool huge_pages(const pelt_allocator *a, size_t bytes)
+{
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+    return !a->alloc && bytes >= ((size_t)4 << 20);
+#else
+    (void)a, (void)bytes;
+    return false;
+#endif
+}
+
+static float *alloc_texels(const pelt_allocator *a, size_t bytes)
 {
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
     const size_t huge = (size_t)2 << 20;
-    if (bytes >= 2 * huge) {
+    if (huge_pages(a, bytes)) {
         void *p = NULL;
         if (posix_memalign(&p, huge, bytes) != 0) return NULL;
         madvise(p, bytes, MADV_HUGEPAGE);
@@ -28,11 +40,20 @@ static float *alloc_texels(size_t bytes)
         return p;
     }
 #endif
-    return pelt__calloc(bytes, 1);
+    return pelt__alloc_zero(a, bytes, 1);
+}
+
+/* posix_memalign memory goes back to free(), the rest to the allocator. */
+static void free_texels(const pelt_allocator *a, pelt__wetness *m)
+{
+    if (huge_pages(a, (size_t)m->width * m->height * 4 * sizeof(float)))
+        free(m->texels);
+    else
+        pelt__free(a, m->texels);
 }
 
 pelt_status pelt__wetness_create(unsigned width, unsigned height,
-                                 pelt__wetness **out, pelt_error *err)
+                                 const pelt_allocator *a, pelt__wetness **out, pelt_error *err)
 {
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness mask: out is NULL");
     *out = NULL;
@@ -42,12 +63,13 @@ pelt_status pelt__wetness_create(unsigned width, unsigned height,
     if (width > 65536u || height > 65536u)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "wetness mask: size %ux%u exceeds 65536", width, height);
-    pelt__wetness *m = pelt__calloc(1, sizeof *m);
+    pelt__wetness *m = pelt__alloc_zero(a, 1, sizeof *m);
     if (!m) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "wetness mask: out of memory");
     size_t count = (size_t)width * height;
-    m->texels = count <= (size_t)-1 / 16 ? alloc_texels(count * 4 * sizeof(float)) : NULL;
+    if (a) m->alloc = *a;
+    m->texels = count <= (size_t)-1 / 16 ? alloc_texels(&m->alloc, count * 4 * sizeof(float)) : NULL;
     if (!m->texels) {
-        free(m);
+        pelt__free(a, m);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY,
                           "wetness mask: out of memory for %ux%u texels", width, height);
     }
@@ -60,8 +82,9 @@ pelt_status pelt__wetness_create(unsigned width, unsigned height,
 void pelt__wetness_destroy(pelt__wetness *m)
 {
     if (!m) return;
-    free(m->texels);
-    free(m);
+    pelt_allocator alloc = m->alloc;
+    free_texels(&alloc, m);
+    pelt__free(&alloc, m);
 }
 
 void pelt__wetness_clear(pelt__wetness *m)

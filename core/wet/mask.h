@@ -18,6 +18,7 @@
  * [j/H,(j+1)/H]; row 0 is v = 0, as glTexImage2D takes it. A texel is
  * dry when rho == 0 (its c and r are then stale and ignored). */
 typedef struct pelt__wetness {
+    pelt_allocator alloc;  /* the owner's; texels and this struct come from it */
     unsigned width, height;
     float *texels;
     /* Bounding box of the wet texels, [x0, x1) x [y0, y1); empty when
@@ -56,7 +57,7 @@ static inline void pelt__rect_add_texel(unsigned r[4], unsigned x, unsigned y)
 /* Makes a dry mask of width x height texels (0 means 256). The caller frees
  * it with pelt__wetness_destroy. */
 pelt_status pelt__wetness_create(unsigned width, unsigned height,
-                                 pelt__wetness **out, pelt_error *err);
+                                 const pelt_allocator *a, pelt__wetness **out, pelt_error *err);
 void pelt__wetness_destroy(pelt__wetness *m);
 
 /* Dries every texel (marks the wet box dirty). */

@@ -2,6 +2,7 @@
 #include "core/wet/paint.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/vec.h"
 
 #include <math.h>
@@ -76,15 +77,15 @@ pelt_status pelt__wetness_paint_image(pelt__wetness *m, const uint8_t *grey,
     float cs = fmaxf(d.clump_size, min_cell);
     size_t count = (size_t)W * H;
 
-    uint32_t *region = pelt__calloc(count, sizeof *region); /* 0 = dry */
-    size_t *queue = pelt__calloc(count, sizeof *queue);
-    paint_key *keys = pelt__calloc(count, sizeof *keys);
-    float *rho = pelt__calloc(count, sizeof *rho);
+    uint32_t *region = pelt__alloc_zero(&m->alloc, count, sizeof *region); /* 0 = dry */
+    size_t *queue = pelt__alloc_zero(&m->alloc, count, sizeof *queue);
+    paint_key *keys = pelt__alloc_zero(&m->alloc, count, sizeof *keys);
+    float *rho = pelt__alloc_zero(&m->alloc, count, sizeof *rho);
     if (!region || !queue || !keys || !rho) {
-        free(region);
-        free(queue);
-        free(keys);
-        free(rho);
+        pelt__free(&m->alloc, region);
+        pelt__free(&m->alloc, queue);
+        pelt__free(&m->alloc, keys);
+        pelt__free(&m->alloc, rho);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY,
                           "wetness image: out of memory for a %ux%u mask", W, H);
     }
@@ -187,9 +188,9 @@ pelt_status pelt__wetness_paint_image(pelt__wetness *m, const uint8_t *grey,
     }
     unsigned all[4] = {0, 0, W, H};
     pelt__rect_union(m->dirty, all);
-    free(region);
-    free(queue);
-    free(keys);
-    free(rho);
+    pelt__free(&m->alloc, region);
+    pelt__free(&m->alloc, queue);
+    pelt__free(&m->alloc, keys);
+    pelt__free(&m->alloc, rho);
     return PELT_OK;
 }

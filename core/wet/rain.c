@@ -4,6 +4,7 @@
 #include "core/wet/rain.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/mesh/mesh_internal.h"
 #include "core/base/rng.h"
 #include "core/base/vec.h"
@@ -11,6 +12,7 @@
 #include <stdlib.h>
 
 struct pelt__rain {
+    pelt_allocator alloc; /* the owner's */
     const pelt_mesh *mesh;
     pelt_rain settings;
     pelt__rng rng;
@@ -22,15 +24,16 @@ struct pelt__rain {
 /* Stream of the rain's generator (pelt__rng_seed). */
 #define RAIN_STREAM 0x7261696eULL
 
-pelt_status pelt__rain_create(const pelt_mesh *m, pelt__rain **out, pelt_error *err)
+pelt_status pelt__rain_create(const pelt_mesh *m, const pelt_allocator *a, pelt__rain **out, pelt_error *err)
 {
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "rain: out is NULL");
     *out = NULL;
     if (!m || !m->positions || !m->uvs || !m->indices || m->triangle_count == 0)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "rain: a mesh with positions, uvs and triangles is required");
-    pelt__rain *r = pelt__calloc(1, sizeof *r);
-    if (r) r->area_cdf = pelt__calloc(m->triangle_count, sizeof *r->area_cdf);
+    pelt__rain *r = pelt__alloc_zero(a, 1, sizeof *r);
+    if (r && a) r->alloc = *a;
+    if (r) r->area_cdf = pelt__alloc_zero(a, m->triangle_count, sizeof *r->area_cdf);
     if (!r || !r->area_cdf) {
         pelt__rain_destroy(r);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur");
@@ -53,8 +56,9 @@ pelt_status pelt__rain_create(const pelt_mesh *m, pelt__rain **out, pelt_error *
 void pelt__rain_destroy(pelt__rain *r)
 {
     if (!r) return;
-    free(r->area_cdf);
-    free(r);
+    pelt_allocator a = r->alloc;
+    pelt__free(&a, r->area_cdf);
+    pelt__free(&a, r);
 }
 
 void pelt__rain_set(pelt__rain *r, const pelt_rain *settings)

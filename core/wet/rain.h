@@ -19,7 +19,7 @@ typedef struct pelt__rain pelt__rain;
 /* Makes the rain of `mesh` (positions, uvs, indices; at least one
  * triangle): rate 0, seed 1. The mesh is not copied: it must outlive the
  * rain. Allocates O(triangles); free with pelt__rain_destroy. */
-pelt_status pelt__rain_create(const pelt_mesh *mesh, pelt__rain **out, pelt_error *err);
+pelt_status pelt__rain_create(const pelt_mesh *mesh, const pelt_allocator *a, pelt__rain **out, pelt_error *err);
 void pelt__rain_destroy(pelt__rain *rain);
 
 /* Takes new settings and restarts the random sequence from settings->seed,

@@ -4,6 +4,7 @@
 #include "core/wet/surface_droplet.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/mesh/mesh_internal.h"
 #include "core/base/raster.h"
 #include "core/base/vec.h"
@@ -21,22 +22,23 @@
 void pelt__surface_index_destroy(pelt__surface_index *index)
 {
     if (!index) return;
-    free(index->welded);
-    free(index->fan_start);
-    free(index->fan);
-    free(index->vert_stamp);
-    free(index->tri_stamp);
-    free(index->tri_dist2);
-    free(index->queue);
-    free(index->group_stamp);
-    free(index->group);
-    free(index->stack);
-    free(index->group_ref);
-    free(index->group_dist2);
-    free(index);
+    pelt_allocator a = index->alloc;
+    pelt__free(&a, index->welded);
+    pelt__free(&a, index->fan_start);
+    pelt__free(&a, index->fan);
+    pelt__free(&a, index->vert_stamp);
+    pelt__free(&a, index->tri_stamp);
+    pelt__free(&a, index->tri_dist2);
+    pelt__free(&a, index->queue);
+    pelt__free(&a, index->group_stamp);
+    pelt__free(&a, index->group);
+    pelt__free(&a, index->stack);
+    pelt__free(&a, index->group_ref);
+    pelt__free(&a, index->group_dist2);
+    pelt__free(&a, index);
 }
 
-pelt_status pelt__surface_index_create(const pelt_mesh *mesh, pelt__surface_index **out,
+pelt_status pelt__surface_index_create(const pelt_mesh *mesh, const pelt_allocator *a, pelt__surface_index **out,
                                        pelt_error *err)
 {
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "surface index: out is NULL");
@@ -54,28 +56,29 @@ pelt_status pelt__surface_index_create(const pelt_mesh *mesh, pelt__surface_inde
             return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                               "surface index: triangle %zu names vertex %u of %zu", i / 3,
                               mesh->indices[i], nv);
-    pelt__surface_index *x = pelt__calloc(1, sizeof *x);
+    pelt__surface_index *x = pelt__alloc_zero(a, 1, sizeof *x);
     if (!x) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "surface index: out of memory");
+    if (a) x->alloc = *a;
     x->mesh = mesh;
     x->triangle_count = nt;
     size_t nt1 = nt ? nt : 1, nv1 = nv ? nv : 1;
-    x->welded = pelt__calloc(nv1, sizeof *x->welded);
-    x->fan = pelt__calloc(nt1, 3 * sizeof *x->fan);
-    x->tri_stamp = pelt__calloc(nt1, sizeof *x->tri_stamp);
-    x->tri_dist2 = pelt__calloc(nt1, sizeof *x->tri_dist2);
-    x->queue = pelt__calloc(nt1, sizeof *x->queue);
-    x->group_stamp = pelt__calloc(nt1, sizeof *x->group_stamp);
-    x->group = pelt__calloc(nt1, sizeof *x->group);
-    x->stack = pelt__calloc(nt1, sizeof *x->stack);
-    x->group_ref = pelt__calloc(nt1, sizeof *x->group_ref);
-    x->group_dist2 = pelt__calloc(nt1, sizeof *x->group_dist2);
+    x->welded = pelt__alloc_zero(&x->alloc, nv1, sizeof *x->welded);
+    x->fan = pelt__alloc_zero(&x->alloc, nt1, 3 * sizeof *x->fan);
+    x->tri_stamp = pelt__alloc_zero(&x->alloc, nt1, sizeof *x->tri_stamp);
+    x->tri_dist2 = pelt__alloc_zero(&x->alloc, nt1, sizeof *x->tri_dist2);
+    x->queue = pelt__alloc_zero(&x->alloc, nt1, sizeof *x->queue);
+    x->group_stamp = pelt__alloc_zero(&x->alloc, nt1, sizeof *x->group_stamp);
+    x->group = pelt__alloc_zero(&x->alloc, nt1, sizeof *x->group);
+    x->stack = pelt__alloc_zero(&x->alloc, nt1, sizeof *x->stack);
+    x->group_ref = pelt__alloc_zero(&x->alloc, nt1, sizeof *x->group_ref);
+    x->group_dist2 = pelt__alloc_zero(&x->alloc, nt1, sizeof *x->group_dist2);
     bool ok = x->welded && x->fan && x->tri_stamp && x->tri_dist2 && x->queue &&
               x->group_stamp && x->group && x->stack && x->group_ref && x->group_dist2 &&
               pelt__weld(mesh->positions, NULL, nv, x->welded);
     if (ok) x->welded_count = pelt__weld_ids(x->welded, nv, x->welded);
     if (ok) {
-        x->fan_start = pelt__calloc(x->welded_count + 1, sizeof *x->fan_start);
-        x->vert_stamp = pelt__calloc(x->welded_count + 1, sizeof *x->vert_stamp);
+        x->fan_start = pelt__alloc_zero(&x->alloc, x->welded_count + 1, sizeof *x->fan_start);
+        x->vert_stamp = pelt__alloc_zero(&x->alloc, x->welded_count + 1, sizeof *x->vert_stamp);
         ok = x->fan_start && x->vert_stamp;
     }
     if (!ok) {
@@ -87,7 +90,7 @@ pelt_status pelt__surface_index_create(const pelt_mesh *mesh, pelt__surface_inde
     for (size_t i = 0; i < 3 * nt; i++) x->fan_start[x->welded[mesh->indices[i]] + 1]++;
     for (size_t w = 0; w < x->welded_count; w++) x->fan_start[w + 1] += x->fan_start[w];
     /* A cursor per row fills it. */
-    uint32_t *cursor = pelt__calloc(x->welded_count ? x->welded_count : 1, sizeof *cursor);
+    uint32_t *cursor = pelt__alloc_zero(&x->alloc, x->welded_count ? x->welded_count : 1, sizeof *cursor);
     if (!cursor) {
         pelt__surface_index_destroy(x);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "surface index: out of memory");
@@ -96,7 +99,7 @@ pelt_status pelt__surface_index_create(const pelt_mesh *mesh, pelt__surface_inde
         uint32_t w = x->welded[mesh->indices[i]];
         x->fan[x->fan_start[w] + cursor[w]++] = (uint32_t)(i / 3);
     }
-    free(cursor);
+    pelt__free(&x->alloc, cursor);
     *out = x;
     return PELT_OK;
 }

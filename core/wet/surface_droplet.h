@@ -17,6 +17,7 @@
  * allocates. The mesh is not copied: it must outlive the index and keep its
  * positions, uvs and indices. */
 typedef struct pelt__surface_index {
+    pelt_allocator alloc; /* the owner's; every array comes from it */
     const pelt_mesh *mesh;
     size_t triangle_count, welded_count;
     uint32_t *welded;     /* per vertex: welded position id */
@@ -38,7 +39,7 @@ typedef struct pelt__surface_index {
 
 /* Builds the index of mesh (positions, uvs and indices needed). Allocates
  * O(vertices + triangles) once; free with pelt__surface_index_destroy. */
-pelt_status pelt__surface_index_create(const pelt_mesh *mesh, pelt__surface_index **out,
+pelt_status pelt__surface_index_create(const pelt_mesh *mesh, const pelt_allocator *a, pelt__surface_index **out,
                                        pelt_error *err);
 void pelt__surface_index_destroy(pelt__surface_index *index);
 

@@ -77,7 +77,12 @@ typedef struct pelt_fur_desc {
     pelt_fur_dynamics dynamics;
     pelt_fur_wet wet;
     pelt_fur_comb comb;
-    pelt_hooks hooks;        /* allocator and logger, kept by the fur */
+    pelt_hooks hooks;        /* allocator and logger, kept by the fur: every
+                                block it owns (texture, strands, mask, BVH,
+                                surface index, rain, colour) and its scratch
+                                comes from the allocator and goes back to it
+                                at pelt_fur_destroy; an allocator with only one
+                                of alloc/free is PELT_ERR_INVALID_ARGUMENT */
 } pelt_fur_desc;
 
 /* One of the curl looks of Silva et al. Fig. 7 by name ("straight",

@@ -55,9 +55,9 @@ static bool sky_make(sky *s, const quad *q, size_t n, unsigned mask_size)
     memset(s, 0, sizeof *s);
     s->mesh = quads_mesh(q, n);
     if (!s->mesh) return false;
-    CHECK(pelt__surface_index_create(s->mesh, &s->index, NULL) == PELT_OK);
-    CHECK(pelt__bvh_build(s->mesh, &s->bvh, NULL) == PELT_OK);
-    CHECK(pelt__wetness_create(mask_size, mask_size, &s->mask, NULL) == PELT_OK);
+    CHECK(pelt__surface_index_create(s->mesh, NULL, &s->index, NULL) == PELT_OK);
+    CHECK(pelt__bvh_build(s->mesh, NULL, &s->bvh, NULL) == PELT_OK);
+    CHECK(pelt__wetness_create(mask_size, mask_size, NULL, &s->mask, NULL) == PELT_OK);
     return s->index && s->bvh && s->mask;
 }
 
@@ -72,7 +72,7 @@ static void sky_free(sky *s)
 static pelt__rain *make_rain(const sky *s, const pelt_rain *settings)
 {
     pelt__rain *r = NULL;
-    CHECK(pelt__rain_create(s->mesh, &r, NULL) == PELT_OK);
+    CHECK(pelt__rain_create(s->mesh, NULL, &r, NULL) == PELT_OK);
     if (r && settings) pelt__rain_set(r, settings);
     return r;
 }
@@ -270,7 +270,7 @@ static void rain_needs_a_mesh(void)
     int dummy = 0;
     pelt__rain *r = (pelt__rain *)(void *)&dummy;
     pelt_error err = {0};
-    CHECK(pelt__rain_create(NULL, &r, &err) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(pelt__rain_create(NULL, NULL, &r, &err) == PELT_ERR_INVALID_ARGUMENT);
     CHECK(r == NULL);
     CHECK(strstr(err.message, "rain") != NULL);
 }
@@ -306,7 +306,7 @@ static void random_drops_are_seeded_and_leave_the_rain_alone(void)
     sky a, b;
     if (!sky_make(&a, &unit_square, 1, 64) || !sky_make(&b, &unit_square, 1, 64)) return;
     pelt__wetness *scratch = NULL;
-    CHECK(pelt__wetness_create(64, 64, &scratch, NULL) == PELT_OK);
+    CHECK(pelt__wetness_create(64, 64, NULL, &scratch, NULL) == PELT_OK);
     if (!scratch) return;
     pelt_rain drops = {.radius_min = 0.02f, .radius_max = 0.04f, .seed = 21};
     pelt_rain rain = {.rate = 10.0f, .seed = 6};

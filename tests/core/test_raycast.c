@@ -69,7 +69,7 @@ static void raycast_matches_brute_force_on_sphere(void)
     CHECK(pelt_mesh_sphere(1.0f, 48, 24, &mesh, NULL) == PELT_OK);
     if (!mesh) return;
     pelt__bvh *bvh = NULL;
-    CHECK(pelt__bvh_build(mesh, &bvh, NULL) == PELT_OK);
+    CHECK(pelt__bvh_build(mesh, NULL, &bvh, NULL) == PELT_OK);
     /* Origins both inside and outside the sphere. */
     int hits = compare_rays(mesh, bvh, 3000, 42, 3.0f, 1.2f);
     CHECK(hits > 1000);
@@ -83,7 +83,7 @@ static void raycast_matches_brute_force_on_torus(void)
     CHECK(pelt_mesh_torus(1.0f, 0.35f, 60, 30, &mesh, NULL) == PELT_OK);
     if (!mesh) return;
     pelt__bvh *bvh = NULL;
-    CHECK(pelt__bvh_build(mesh, &bvh, NULL) == PELT_OK);
+    CHECK(pelt__bvh_build(mesh, NULL, &bvh, NULL) == PELT_OK);
     int hits = compare_rays(mesh, bvh, 3000, 7, 2.5f, 1.4f);
     CHECK(hits > 1000);
     pelt__bvh_destroy(bvh);
@@ -96,7 +96,7 @@ static void raycast_respects_t_max_and_rejects_bad_rays(void)
     CHECK(pelt_mesh_sphere(1.0f, 32, 16, &mesh, NULL) == PELT_OK);
     if (!mesh) return;
     pelt__bvh *bvh = NULL;
-    CHECK(pelt__bvh_build(mesh, &bvh, NULL) == PELT_OK);
+    CHECK(pelt__bvh_build(mesh, NULL, &bvh, NULL) == PELT_OK);
     float o[3] = {0.0f, 0.05f, 5.0f}, d[3] = {0.0f, 0.0f, -1.0f};
     pelt__hit h;
     /* The polygonal sphere's surface is within (0.98, 1] of the centre. */
@@ -125,7 +125,7 @@ static void raycast_large_mesh_agrees_and_reports_time(void)
     if (!mesh) return;
     pelt__bvh *bvh = NULL;
     double t0 = now_s();
-    CHECK(pelt__bvh_build(mesh, &bvh, NULL) == PELT_OK);
+    CHECK(pelt__bvh_build(mesh, NULL, &bvh, NULL) == PELT_OK);
     double t1 = now_s();
     if (!bvh) {
         pelt_mesh_destroy(mesh);

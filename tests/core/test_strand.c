@@ -33,7 +33,7 @@ static pelt__strands *strands_for(const pelt_mesh *m, const pelt__strand_params 
 {
     pelt__strands *s = NULL;
     pelt_error err;
-    if (pelt__strands_create(m, p, &s, &err) != PELT_OK) {
+    if (pelt__strands_create(m, p, NULL, &s, &err) != PELT_OK) {
         fprintf(stderr, "  strands: %s\n", err.message);
         return NULL;
     }
@@ -469,11 +469,11 @@ static void strand_bad_input_is_rejected_or_ignored(void)
 {
     pelt__strands *s = NULL;
     pelt_error err = {0};
-    CHECK(pelt__strands_create(NULL, NULL, &s, &err) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(pelt__strands_create(NULL, NULL, NULL, &s, &err) == PELT_ERR_INVALID_ARGUMENT);
     CHECK(s == NULL);
     CHECK(strstr(err.message, "mesh") != NULL);
     pelt_mesh *m = square(1);
-    CHECK(pelt__strands_create(m, NULL, NULL, NULL) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(pelt__strands_create(m, NULL, NULL, NULL, NULL) == PELT_ERR_INVALID_ARGUMENT);
     s = m ? strands_default(m) : NULL;
     CHECK(s != NULL);
     if (!s) {
@@ -515,7 +515,7 @@ static void strand_params_are_checked_not_defaulted(void)
     if (!m) return;
     pelt__strands *s = NULL;
     pelt_error err = {0};
-    CHECK(pelt__strands_create(m, NULL, &s, &err) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(pelt__strands_create(m, NULL, NULL, &s, &err) == PELT_ERR_INVALID_ARGUMENT);
     CHECK(s == NULL && strstr(err.message, "params") != NULL);
     const pelt__strand_params good = fur_defaults(L0_TEST);
     pelt__strand_params bad[6] = {good, good, good, good, good, good};
@@ -526,14 +526,14 @@ static void strand_params_are_checked_not_defaulted(void)
     bad[4].length = INFINITY;
     memset(&bad[5], 0, sizeof bad[5]);
     for (int i = 0; i < 6; i++) {
-        CHECK(pelt__strands_create(m, &bad[i], &s, &err) == PELT_ERR_INVALID_ARGUMENT);
+        CHECK(pelt__strands_create(m, &bad[i], NULL, &s, &err) == PELT_ERR_INVALID_ARGUMENT);
         CHECK(s == NULL);
     }
     /* No damping at all is allowed; the params come back as given. */
     pelt__strand_params undamped = good;
     undamped.damping = 0.0f;
     undamped.seed = 9;
-    CHECK(pelt__strands_create(m, &undamped, &s, &err) == PELT_OK);
+    CHECK(pelt__strands_create(m, &undamped, NULL, &s, &err) == PELT_OK);
     if (s) {
         pelt__strand_params r = pelt__strands_params(s);
         CHECK(memcmp(&r, &undamped, sizeof r) == 0);

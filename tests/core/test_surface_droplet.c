@@ -77,8 +77,8 @@ static bool fixture_make(fixture *f, pelt_mesh *in)
     f->mesh = pelt_atlas_mesh(f->atlas);
     f->patch = pelt_atlas_triangle_patches(f->atlas);
     unsigned size = pelt_atlas_get_stats(f->atlas)->mask_size;
-    CHECK(pelt__wetness_create(size, size, &f->mask, NULL) == PELT_OK);
-    CHECK(pelt__surface_index_create(f->mesh, &f->index, NULL) == PELT_OK);
+    CHECK(pelt__wetness_create(size, size, NULL, &f->mask, NULL) == PELT_OK);
+    CHECK(pelt__surface_index_create(f->mesh, NULL, &f->index, NULL) == PELT_OK);
     return f->mask && f->index;
 }
 
@@ -350,8 +350,8 @@ static void point_drop_scales_radius_by_uv_area(void)
     pelt__wetness *mask = NULL;
     CHECK(pelt_mesh_create(&md, &m, NULL) == PELT_OK);
     if (!m) return;
-    CHECK(pelt__surface_index_create(m, &index, NULL) == PELT_OK);
-    CHECK(pelt__wetness_create(16, 16, &mask, NULL) == PELT_OK);
+    CHECK(pelt__surface_index_create(m, NULL, &index, NULL) == PELT_OK);
+    CHECK(pelt__wetness_create(16, 16, NULL, &mask, NULL) == PELT_OK);
     const float bary[3] = {0.2f, 0.3f, 0.5f};
     CHECK(pelt__droplet_surface(mask, m, index, 0, bary, 0.4f, 0.6f, NULL) == PELT_OK);
     /* Texel (2, 4) holds uv (0.15, 0.25). */
@@ -375,7 +375,7 @@ static void interior_drop_matches_mask_droplet(void)
 {
     fixture f = sphere_fixture();
     pelt__wetness *ref = NULL;
-    CHECK(pelt__wetness_create(f.mask->width, f.mask->height, &ref, NULL) == PELT_OK);
+    CHECK(pelt__wetness_create(f.mask->width, f.mask->height, NULL, &ref, NULL) == PELT_OK);
     size_t tri = 0;
     float radius = 1.5f * edge_length(f.mesh, 0 + 100);
     CHECK(find_interior(&f, radius, &tri));
@@ -501,8 +501,8 @@ static void drop_on_uv_seam_keeps_each_side_local(void)
     CHECK(pelt_mesh_sphere(1.0f, 48, 24, &s, NULL) == PELT_OK);
     pelt__wetness *mask = NULL;
     pelt__surface_index *index = NULL;
-    CHECK(pelt__wetness_create(256, 256, &mask, NULL) == PELT_OK);
-    CHECK(pelt__surface_index_create(s, &index, NULL) == PELT_OK);
+    CHECK(pelt__wetness_create(256, 256, NULL, &mask, NULL) == PELT_OK);
+    CHECK(pelt__surface_index_create(s, NULL, &index, NULL) == PELT_OK);
     /* A corner at u = 0 near the equator. */
     size_t tri = SIZE_MAX;
     int corner = 0;

@@ -26,7 +26,7 @@ static double now_s(void)
 static pelt__wetness *make_mask(unsigned w, unsigned h)
 {
     pelt__wetness *m = NULL;
-    pelt_status st = pelt__wetness_create(w, h, &m, NULL);
+    pelt_status st = pelt__wetness_create(w, h, NULL, &m, NULL);
     CHECK(st == PELT_OK && m);
     return m;
 }

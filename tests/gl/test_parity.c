@@ -144,7 +144,7 @@ static const char clump_main[] =
 static void clump_glsl_matches_c(void)
 {
     pelt__wetness *m = NULL;
-    CHECK(pelt__wetness_create(64, 64, &m, NULL) == PELT_OK);
+    CHECK(pelt__wetness_create(64, 64, NULL, &m, NULL) == PELT_OK);
     if (!m) return;
     const pelt_droplet drops[] = {{{0.3f, 0.4f}, 0.2f, 0.9f}, {{0.45f, 0.5f}, 0.15f, 0.6f},
                                   {{0.8f, 0.2f}, 0.1f, 1.0f}, {{0.7f, 0.75f}, 0.2f, 0.4f}};
