@@ -82,15 +82,12 @@ static pelt_status build_atlas(pelt_scene_instance *inst, const char *cache_dir,
     ad.seed = sc->fur.seed;
     if (!cache_dir) cache_dir = pelt_atlas_default_cache_dir(cache, sizeof cache) ? cache : NULL;
     ad.cache_dir = cache_dir;
+    ad.hooks = inst->hooks; /* the uv warning reaches our logger from there */
     pelt_atlas *atlas = NULL;
     pelt_error aerr = {0};
     if (pelt_atlas_create(inst->mesh, &ad, &atlas, &aerr) != PELT_OK)
         return pelt__fail(err, aerr.status, "atlas: %s", aerr.message);
     const pelt_atlas_stats *st = pelt_atlas_get_stats(atlas);
-    if (st->uv_warning[0])
-        pelt__log(&inst->hooks.logger, PELT_LOG_WARNING,
-                  "not using the mesh's uvs: %s; grew %zu patches", st->uv_warning,
-                  st->patch_count);
     *mask_size = st->mask_size;
     inst->stats.atlas_seconds = st->build_seconds;
     inst->stats.atlas_from_cache = st->from_cache;

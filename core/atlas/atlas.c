@@ -4,6 +4,7 @@
 #include "core/atlas/atlas_cache.h"
 #include "core/atlas/direction_field.h"
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/weld.h"
 
 #include <math.h>
@@ -20,17 +21,19 @@ static double now_seconds(void)
 
 /* ---- the result object ------------------------------------------------- */
 
-pelt_atlas *pelt__atlas_alloc(size_t vertex_count, size_t triangle_count)
+pelt_atlas *pelt__atlas_alloc(const pelt_allocator *alloc, size_t vertex_count,
+                              size_t triangle_count)
 {
-    pelt_atlas *a = pelt__calloc(1, sizeof *a);
+    pelt_atlas *a = pelt__alloc_zero(alloc, 1, sizeof *a);
     if (!a) return NULL;
+    if (alloc) a->alloc = *alloc;
     a->vertex_count = vertex_count;
     a->triangle_count = triangle_count;
-    a->source_vertex = pelt__calloc(vertex_count, sizeof(uint32_t));
-    a->welded_vertex = pelt__calloc(vertex_count, sizeof(uint32_t));
-    a->triangle_patch = pelt__calloc(triangle_count, sizeof(uint32_t));
-    a->directions = pelt__calloc(vertex_count, 3 * sizeof(float));
-    a->weights = pelt__calloc(vertex_count, sizeof(float));
+    a->source_vertex = pelt__alloc_zero(&a->alloc, vertex_count, sizeof(uint32_t));
+    a->welded_vertex = pelt__alloc_zero(&a->alloc, vertex_count, sizeof(uint32_t));
+    a->triangle_patch = pelt__alloc_zero(&a->alloc, triangle_count, sizeof(uint32_t));
+    a->directions = pelt__alloc_zero(&a->alloc, vertex_count, 3 * sizeof(float));
+    a->weights = pelt__alloc_zero(&a->alloc, vertex_count, sizeof(float));
     if (!a->source_vertex || !a->welded_vertex || !a->triangle_patch || !a->directions ||
         !a->weights) {
         pelt_atlas_destroy(a);
@@ -43,12 +46,13 @@ void pelt_atlas_destroy(pelt_atlas *a)
 {
     if (!a) return;
     pelt_mesh_destroy(a->mesh);
-    free(a->source_vertex);
-    free(a->welded_vertex);
-    free(a->triangle_patch);
-    free(a->directions);
-    free(a->weights);
-    free(a);
+    pelt_allocator al = a->alloc;
+    pelt__free(&al, a->source_vertex);
+    pelt__free(&al, a->welded_vertex);
+    pelt__free(&al, a->triangle_patch);
+    pelt__free(&al, a->directions);
+    pelt__free(&al, a->weights);
+    pelt__free(&al, a);
 }
 
 const pelt_mesh *pelt_atlas_mesh(const pelt_atlas *a) { return a ? a->mesh : NULL; }
@@ -77,46 +81,46 @@ static void builder_free(pelt__atlas_builder *b)
                     b->q, b->s, b->p, b->t, b->colscale, b->claims, b->out_source,
                     b->out_patch, b->out_index, b->vert_stamp, b->vert_out, b->out_local,
                     b->patch_box};
-    for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++) free(ptrs[i]);
+    for (size_t i = 0; i < sizeof ptrs / sizeof ptrs[0]; i++) pelt__free(&b->alloc, ptrs[i]);
 }
 
 static bool builder_alloc(pelt__atlas_builder *b)
 {
     size_t vc = b->vc, tc = b->tc, cap = b->cap, lv = 3 * (size_t)cap;
-    b->canon = pelt__calloc(vc, sizeof(uint32_t));
-    b->adj = pelt__calloc(tc, 3 * sizeof(uint32_t));
-    b->face_patch = pelt__calloc(tc, sizeof(uint32_t));
-    b->dir = pelt__calloc(vc, 3 * sizeof(float));
-    b->weight = pelt__calloc(vc, sizeof(float));
-    b->fnormal = pelt__calloc(tc, 3 * sizeof(float));
-    b->fcent = pelt__calloc(tc, 3 * sizeof(float));
-    b->order = pelt__calloc(cap, sizeof(uint32_t));
-    b->face_stamp = pelt__calloc(tc, sizeof(uint32_t));
-    b->face_done = pelt__calloc(tc, sizeof(uint32_t));
-    b->dist = pelt__calloc(tc, sizeof(float));
-    b->heap = pelt__calloc(lv + 4, sizeof(pelt__atlas_heap_item));
-    b->local_of = pelt__calloc(vc, sizeof(uint32_t));
-    b->local_stamp = pelt__calloc(vc, sizeof(uint32_t));
-    b->lverts = pelt__calloc(lv, sizeof(uint32_t));
-    b->tri_local = pelt__calloc(lv, sizeof(uint32_t));
-    b->coef = pelt__calloc(cap, 6 * sizeof(double));
-    b->frame = pelt__calloc(cap, 3 * sizeof(double));
-    b->X = pelt__calloc(lv, 2 * sizeof(double));
-    b->r = pelt__calloc(cap, 2 * sizeof(double));
-    b->q = pelt__calloc(cap, 2 * sizeof(double));
-    b->s = pelt__calloc(lv, 2 * sizeof(double));
-    b->p = pelt__calloc(lv, 2 * sizeof(double));
-    b->t = pelt__calloc(lv, 2 * sizeof(double));
-    b->colscale = pelt__calloc(lv, 2 * sizeof(double));
+    b->canon = pelt__alloc_zero(&b->alloc, vc, sizeof(uint32_t));
+    b->adj = pelt__alloc_zero(&b->alloc, tc, 3 * sizeof(uint32_t));
+    b->face_patch = pelt__alloc_zero(&b->alloc, tc, sizeof(uint32_t));
+    b->dir = pelt__alloc_zero(&b->alloc, vc, 3 * sizeof(float));
+    b->weight = pelt__alloc_zero(&b->alloc, vc, sizeof(float));
+    b->fnormal = pelt__alloc_zero(&b->alloc, tc, 3 * sizeof(float));
+    b->fcent = pelt__alloc_zero(&b->alloc, tc, 3 * sizeof(float));
+    b->order = pelt__alloc_zero(&b->alloc, cap, sizeof(uint32_t));
+    b->face_stamp = pelt__alloc_zero(&b->alloc, tc, sizeof(uint32_t));
+    b->face_done = pelt__alloc_zero(&b->alloc, tc, sizeof(uint32_t));
+    b->dist = pelt__alloc_zero(&b->alloc, tc, sizeof(float));
+    b->heap = pelt__alloc_zero(&b->alloc, lv + 4, sizeof(pelt__atlas_heap_item));
+    b->local_of = pelt__alloc_zero(&b->alloc, vc, sizeof(uint32_t));
+    b->local_stamp = pelt__alloc_zero(&b->alloc, vc, sizeof(uint32_t));
+    b->lverts = pelt__alloc_zero(&b->alloc, lv, sizeof(uint32_t));
+    b->tri_local = pelt__alloc_zero(&b->alloc, lv, sizeof(uint32_t));
+    b->coef = pelt__alloc_zero(&b->alloc, cap, 6 * sizeof(double));
+    b->frame = pelt__alloc_zero(&b->alloc, cap, 3 * sizeof(double));
+    b->X = pelt__alloc_zero(&b->alloc, lv, 2 * sizeof(double));
+    b->r = pelt__alloc_zero(&b->alloc, cap, 2 * sizeof(double));
+    b->q = pelt__alloc_zero(&b->alloc, cap, 2 * sizeof(double));
+    b->s = pelt__alloc_zero(&b->alloc, lv, 2 * sizeof(double));
+    b->p = pelt__alloc_zero(&b->alloc, lv, 2 * sizeof(double));
+    b->t = pelt__alloc_zero(&b->alloc, lv, 2 * sizeof(double));
+    b->colscale = pelt__alloc_zero(&b->alloc, lv, 2 * sizeof(double));
     b->claims_res = 1024;
-    b->claims = pelt__calloc((size_t)b->claims_res * b->claims_res, 1);
-    b->out_source = pelt__calloc(tc, 3 * sizeof(uint32_t));
-    b->out_patch = pelt__calloc(tc, 3 * sizeof(uint32_t));
-    b->out_index = pelt__calloc(tc, 3 * sizeof(uint32_t));
-    b->vert_stamp = pelt__calloc(vc, sizeof(uint32_t));
-    b->vert_out = pelt__calloc(vc, sizeof(uint32_t));
-    b->out_local = pelt__calloc(tc, 6 * sizeof(float));
-    b->patch_box = pelt__calloc(tc, 4 * sizeof(float));
+    b->claims = pelt__alloc_zero(&b->alloc, (size_t)b->claims_res * b->claims_res, 1);
+    b->out_source = pelt__alloc_zero(&b->alloc, tc, 3 * sizeof(uint32_t));
+    b->out_patch = pelt__alloc_zero(&b->alloc, tc, 3 * sizeof(uint32_t));
+    b->out_index = pelt__alloc_zero(&b->alloc, tc, 3 * sizeof(uint32_t));
+    b->vert_stamp = pelt__alloc_zero(&b->alloc, vc, sizeof(uint32_t));
+    b->vert_out = pelt__alloc_zero(&b->alloc, vc, sizeof(uint32_t));
+    b->out_local = pelt__alloc_zero(&b->alloc, tc, 6 * sizeof(float));
+    b->patch_box = pelt__alloc_zero(&b->alloc, tc, 4 * sizeof(float));
     return b->canon && b->adj && b->face_patch && b->dir && b->weight && b->fnormal &&
            b->fcent && b->order && b->face_stamp && b->face_done && b->dist && b->heap &&
            b->local_of && b->local_stamp && b->lverts && b->tri_local && b->coef &&
@@ -145,10 +149,10 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
     size_t nv = a->vertex_count, tc = a->triangle_count;
     /* 3 + 3 + 3 + 2 + 2 + 3 (directions) + 1 (weight) floats and 2 + 1
      * (old index) indices per vertex, 3 indices per triangle. */
-    float *fbuf = pelt__calloc(nv, 17 * sizeof(float));
-    uint32_t *ibuf = pelt__calloc(3 * nv + 3 * tc, sizeof(uint32_t));
+    float *fbuf = pelt__alloc_zero(&a->alloc, nv, 17 * sizeof(float));
+    uint32_t *ibuf = pelt__alloc_zero(&a->alloc, 3 * nv + 3 * tc, sizeof(uint32_t));
     if (!fbuf || !ibuf) {
-        free(fbuf), free(ibuf);
+        pelt__free(&a->alloc, fbuf), pelt__free(&a->alloc, ibuf);
         return pelt__atlas_fail_oom(err, "output mesh");
     }
     float *positions = fbuf, *normals = fbuf + 3 * nv, *comb = fbuf + 6 * nv;
@@ -189,7 +193,7 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
     pelt_error merr = {0};
     pelt_mesh *m = NULL;
     pelt_status st = pelt_mesh_create(&d, &m, &merr);
-    free(fbuf), free(ibuf);
+    pelt__free(&a->alloc, fbuf), pelt__free(&a->alloc, ibuf);
     if (st != PELT_OK) return pelt__fail(err, st, "pelt_atlas_create: output mesh: %s", merr.message);
     const pelt_mesh_data out = pelt_mesh_get_data(m);
     if (out.vertex_count != vc || out.triangle_count != tc) {
@@ -226,16 +230,17 @@ static pelt_status finish_output(pelt_atlas *a, const pelt_mesh *in, const float
 
 /* The mesh's own uvs, one fur density in world units:
  * fur_uvs = uvs * density * sqrt(world area / uv area). */
-static pelt_status build_mesh_uvs(const pelt_mesh *in, float density, const float *dir,
+static pelt_status build_mesh_uvs(const pelt_allocator *al, const pelt_mesh *in, float density,
+                                  const float *dir,
                                   const float *weight, const uint32_t *canon, pelt_atlas **out,
                                   pelt_error *err)
 {
     const pelt_mesh_data m = pelt_mesh_get_data(in);
-    pelt_atlas *a = pelt__atlas_alloc(m.vertex_count, m.triangle_count);
-    float *fur_uvs = pelt__calloc(m.vertex_count, 2 * sizeof(float));
+    pelt_atlas *a = pelt__atlas_alloc(al, m.vertex_count, m.triangle_count);
+    float *fur_uvs = pelt__alloc_zero(al, m.vertex_count, 2 * sizeof(float));
     if (!a || !fur_uvs) {
         pelt_atlas_destroy(a);
-        free(fur_uvs);
+        pelt__free(al, fur_uvs);
         return pelt__atlas_fail_oom(err, "atlas arrays");
     }
     double tot_uv, tot_w;
@@ -252,7 +257,7 @@ static pelt_status build_mesh_uvs(const pelt_mesh *in, float density, const floa
     a->stats.fur_per_atlas = k;
     a->stats.fill = 1.0f;
     pelt_status st = finish_output(a, in, dir, weight, canon, m.uvs, fur_uvs, m.indices, err);
-    free(fur_uvs);
+    pelt__free(al, fur_uvs);
     if (st != PELT_OK) {
         pelt_atlas_destroy(a);
         return st;
@@ -267,11 +272,11 @@ static pelt_status build_patches(const pelt_mesh *in, pelt__atlas_builder *b, un
 {
     pelt_status st = pelt__atlas_grow_patches(b, seed, err);
     if (st != PELT_OK) return st;
-    pelt_atlas *a = pelt__atlas_alloc(b->out_count, b->tc);
-    float *uvs = pelt__calloc(b->out_count, 4 * sizeof(float));
+    pelt_atlas *a = pelt__atlas_alloc(&b->alloc, b->out_count, b->tc);
+    float *uvs = pelt__alloc_zero(&b->alloc, b->out_count, 4 * sizeof(float));
     if (!a || !uvs) {
         pelt_atlas_destroy(a);
-        free(uvs);
+        pelt__free(&b->alloc, uvs);
         return pelt__atlas_fail_oom(err, "output arrays");
     }
     float *fur_uvs = uvs + 2 * b->out_count;
@@ -290,7 +295,7 @@ static pelt_status build_patches(const pelt_mesh *in, pelt__atlas_builder *b, un
         a->stats.fill = (float)(used / ((double)mask * mask));
         st = finish_output(a, in, b->dir, b->weight, b->canon, uvs, fur_uvs, b->out_index, err);
     }
-    free(uvs);
+    pelt__free(&b->alloc, uvs);
     if (st != PELT_OK) {
         pelt_atlas_destroy(a);
         return st;
@@ -333,10 +338,11 @@ uint64_t pelt__atlas_key(const pelt_mesh *in, const pelt_atlas_desc *d, unsigned
 
 /* An atlas from a cached record: its arrays copied, its mesh made again
  * from `in` (the record was checked against in's counts). */
-static pelt_status atlas_from_record(const pelt_mesh *in, const pelt__atlas_record *r,
+static pelt_status atlas_from_record(const pelt_allocator *al, const pelt_mesh *in,
+                                     const pelt__atlas_record *r,
                                      pelt_atlas **out, pelt_error *err)
 {
-    pelt_atlas *a = pelt__atlas_alloc(r->vertex_count, r->triangle_count);
+    pelt_atlas *a = pelt__atlas_alloc(al, r->vertex_count, r->triangle_count);
     if (!a) return pelt__atlas_fail_oom(err, "atlas arrays");
     size_t vc = r->vertex_count, tc = r->triangle_count;
     memcpy(a->source_vertex, r->source_vertex, vc * sizeof(uint32_t));
@@ -408,6 +414,8 @@ pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
     *out = NULL;
     pelt_atlas_desc d = {0};
     if (desc) d = *desc;
+    pelt_status hst = pelt__hooks_check(&d.hooks, "pelt_atlas_desc", err);
+    if (hst != PELT_OK) return hst;
     const pelt_mesh_data m = pelt_mesh_get_data(in);
     if (m.triangle_count == 0 || m.vertex_count == 0)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_atlas_create: the mesh has no triangles");
@@ -451,7 +459,7 @@ pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
         pelt__atlas_record r;
         if (pelt__atlas_cache_load(d.cache_dir, key, m.vertex_count, m.triangle_count, &r)) {
             pelt_atlas *cached = NULL;
-            pelt_status st = atlas_from_record(in, &r, &cached, err);
+            pelt_status st = atlas_from_record(&d.hooks.allocator, in, &r, &cached, err);
             pelt__atlas_record_free(&r);
             if (st != PELT_OK) return st;
             cached->stats.from_cache = true;
@@ -462,6 +470,7 @@ pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
     }
 
     pelt__atlas_builder b = {0};
+    b.alloc = d.hooks.allocator;
     b.in = m;
     b.vc = m.vertex_count, b.tc = m.triangle_count, b.cap = cap, b.max_stretch = ms;
     if (!builder_alloc(&b)) {
@@ -480,12 +489,17 @@ pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
     if (d.mode != PELT_ATLAS_PATCHES) mesh_uv_problem(in, mask, why, sizeof why, &uvs_ok);
     pelt_atlas *a = NULL;
     if (d.mode == PELT_ATLAS_MESH_UVS || (d.mode == PELT_ATLAS_AUTO && uvs_ok))
-        st = build_mesh_uvs(in, density, b.dir, b.weight, b.canon, &a, err);
+        st = build_mesh_uvs(&d.hooks.allocator, in, density, b.dir, b.weight, b.canon, &a, err);
     else
         st = build_patches(in, &b, mask, density, d.seed, &a, err);
     builder_free(&b);
     if (st != PELT_OK) return st;
     snprintf(a->stats.uv_warning, sizeof a->stats.uv_warning, "%s", uvs_ok ? "" : why);
+    if (!uvs_ok && d.mode == PELT_ATLAS_AUTO)
+        pelt__log(&d.hooks.logger, PELT_LOG_WARNING, "not using the mesh's uvs: %s; grew %zu patches",
+                  why, a->stats.patch_count);
+    else if (!uvs_ok && d.mode == PELT_ATLAS_MESH_UVS)
+        pelt__log(&d.hooks.logger, PELT_LOG_WARNING, "using the mesh's uvs although %s", why);
     a->stats.mask_size = mask;
     a->stats.texel_density = density;
     a->stats.build_seconds = now_seconds() - t0;

@@ -2,6 +2,7 @@
 #include "core/atlas/atlas_internal.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/rng.h"
 #include "core/base/vec.h"
 
@@ -27,10 +28,11 @@ static int compare_half_edge(const void *pa, const void *pb)
 
 /* adj[3f+k] = the face across edge (k, k+1) of f, or NONE on a border, a
  * non-manifold edge or an orientation flip (patches never cross those). */
-static bool face_adjacency(const pelt_mesh_data *m, const uint32_t *canon, uint32_t *adj)
+static bool face_adjacency(const pelt_allocator *alloc, const pelt_mesh_data *m,
+                           const uint32_t *canon, uint32_t *adj)
 {
     size_t n = m->triangle_count * 3;
-    half_edge *h = pelt__calloc(n, sizeof *h);
+    half_edge *h = pelt__alloc_zero(alloc, n, sizeof *h);
     if (!h) return false;
     for (size_t c = 0; c < n; c++) {
         size_t f = c / 3, k = c % 3;
@@ -54,7 +56,7 @@ static bool face_adjacency(const pelt_mesh_data *m, const uint32_t *canon, uint3
         }
         b = e;
     }
-    free(h);
+    pelt__free(alloc, h);
     return true;
 }
 
@@ -173,9 +175,9 @@ pelt_status pelt__atlas_grow_patches(pelt__atlas_builder *b, uint32_t seed, pelt
         v3_store(b->fcent + 3 * f, v3_scale(v3_add(v3_add(p0, p1), p2), 1.0f / 3.0f));
         b->face_patch[f] = NONE;
     }
-    if (!face_adjacency(in, b->canon, b->adj)) return pelt__atlas_fail_oom(err, "face adjacency");
+    if (!face_adjacency(&b->alloc, in, b->canon, b->adj)) return pelt__atlas_fail_oom(err, "face adjacency");
     /* Seeds: uncovered faces in a seeded random order (Lengyel §2.1). */
-    uint32_t *perm = pelt__calloc(b->tc, sizeof(uint32_t));
+    uint32_t *perm = pelt__alloc_zero(&b->alloc, b->tc, sizeof(uint32_t));
     if (!perm) return pelt__atlas_fail_oom(err, "seed order");
     pelt__rng rng = pelt__rng_seed(seed, 0x61746c6173u);
     for (size_t f = 0; f < b->tc; f++) perm[f] = (uint32_t)f;
@@ -210,6 +212,6 @@ pelt_status pelt__atlas_grow_patches(pelt__atlas_builder *b, uint32_t seed, pelt
             if (n < 1) n = 1;
         }
     }
-    free(perm);
+    pelt__free(&b->alloc, perm);
     return PELT_OK;
 }

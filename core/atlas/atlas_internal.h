@@ -20,6 +20,7 @@
 #define PELT__ATLAS_NONE UINT32_MAX
 
 struct pelt_atlas {
+    pelt_allocator alloc;     /* desc.hooks's: the arrays below come from it */
     pelt_mesh *mesh;          /* output, NULL once taken */
     size_t vertex_count, triangle_count;
     uint32_t *source_vertex;  /* per output vertex */
@@ -30,9 +31,10 @@ struct pelt_atlas {
     pelt_atlas_stats stats;
 };
 
-/* Allocates an atlas with arrays for the counts (mesh left NULL). Free with
- * pelt_atlas_destroy. */
-pelt_atlas *pelt__atlas_alloc(size_t vertex_count, size_t triangle_count);
+/* Allocates an atlas with arrays for the counts (mesh left NULL) through
+ * `alloc` (NULL: malloc), which it keeps. Free with pelt_atlas_destroy. */
+pelt_atlas *pelt__atlas_alloc(const pelt_allocator *alloc, size_t vertex_count,
+                              size_t triangle_count);
 
 static inline pelt_status pelt__atlas_fail_oom(pelt_error *err, const char *what)
 {
@@ -61,6 +63,7 @@ size_t pelt__raster_overlaps(const float *uvs, const uint32_t *indices, size_t t
 typedef struct pelt__atlas_heap_item { float d; uint32_t f; } pelt__atlas_heap_item;
 
 typedef struct pelt__atlas_builder {
+    pelt_allocator alloc;      /* every array of the builder comes from it */
     pelt_mesh_data in;
     size_t vc, tc;
     unsigned cap;

@@ -2,6 +2,7 @@
 #include "core/atlas/atlas_internal.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -38,17 +39,17 @@ pelt_status pelt__atlas_pack(const pelt__atlas_builder *b, unsigned mask, float 
         const float *box = b->patch_box + 4 * p;
         total += (double)(box[2] - box[0]) * (box[3] - box[1]);
     }
-    stbrp_node *nodes = pelt__calloc(mask, sizeof(stbrp_node));
-    stbrp_rect *rects = pelt__calloc(b->patch_count, sizeof(stbrp_rect));
+    stbrp_node *nodes = pelt__alloc_zero(&b->alloc, mask, sizeof(stbrp_node));
+    stbrp_rect *rects = pelt__alloc_zero(&b->alloc, b->patch_count, sizeof(stbrp_rect));
     if (!nodes || !rects) {
-        free(nodes);
-        free(rects);
+        pelt__free(&b->alloc, nodes);
+        pelt__free(&b->alloc, rects);
         return pelt__atlas_fail_oom(err, "packing");
     }
     double lo = 0.0, hi = total > 0 ? (double)mask / sqrt(total) : 1.0;
     if (!try_pack(b, 0.0, mask, nodes, rects)) {
-        free(nodes);
-        free(rects);
+        pelt__free(&b->alloc, nodes);
+        pelt__free(&b->alloc, rects);
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "pelt_atlas_create: mask_size %u is too small for %zu patches with "
                           "their gutters; use a larger mask_size",
@@ -61,7 +62,7 @@ pelt_status pelt__atlas_pack(const pelt__atlas_builder *b, unsigned mask, float 
         if (lo > 0 && hi / lo < 1.002) break;
     }
     try_pack(b, lo, mask, nodes, rects);
-    free(nodes);
+    pelt__free(&b->alloc, nodes);
     double area = 0;
     for (size_t p = 0; p < b->patch_count; p++) area += (double)rects[p].w * rects[p].h;
     for (size_t o = 0; o < b->out_count; o++) {
@@ -72,7 +73,7 @@ pelt_status pelt__atlas_pack(const pelt__atlas_builder *b, unsigned mask, float 
         uvs[2 * o] = (float)(((double)rc->x + PELT__ATLAS_GUTTER + (lx - box[0]) * lo) / mask);
         uvs[2 * o + 1] = (float)(((double)rc->y + PELT__ATLAS_GUTTER + (ly - box[1]) * lo) / mask);
     }
-    free(rects);
+    pelt__free(&b->alloc, rects);
     *scale = lo;
     *used = area;
     return PELT_OK;

@@ -34,6 +34,9 @@ typedef struct pelt_atlas_desc {
     const char *cache_dir; /* NULL or "" = no cache; see pelt_atlas_default_cache_dir */
     unsigned max_patch_faces;     /* size cap of one patch; 0 = 1500 */
     unsigned smoothing_iterations; /* direction-field smoothing; 0 = 4 */
+    pelt_hooks hooks;     /* allocator (the atlas, its arrays and the builder's
+                             scratch; kept, pelt_atlas_destroy frees through it)
+                             and logger (why the mesh's uvs were not used) */
 } pelt_atlas_desc;
 
 typedef struct pelt_atlas_stats {

@@ -1,5 +1,6 @@
 /* Allocator and logger hooks (pelt_hooks): an object made with them
  * allocates everything it owns through them and frees it all back. */
+#include "pelt/atlas.h"
 #include "pelt/pelt.h"
 #include "support/check.h"
 
@@ -127,10 +128,41 @@ static void half_an_allocator_is_refused(void)
     pelt_mesh_destroy(mesh);
 }
 
+typedef struct log_seen { int warnings; char last[512]; } log_seen;
+static void keep_log(pelt_log_level level, const char *msg, void *user)
+{
+    log_seen *l = user;
+    if (level == PELT_LOG_WARNING) l->warnings++;
+    snprintf(l->last, sizeof l->last, "%s", msg);
+}
+
+static void atlas_allocates_through_its_hooks_and_warns_to_the_logger(void)
+{
+    pelt_mesh *mesh = NULL;
+    pelt_error err = {0};
+    CHECK(pelt_mesh_load(PELT_TEST_DATA "/meshes/cube_quads.obj", &mesh, &err) == PELT_OK);
+    if (!mesh) return;
+    counter c = {0};
+    log_seen l = {0};
+    pelt_atlas_desc d = {.hooks = {{count_alloc, count_free, &c}, {keep_log, &l}}};
+    pelt_atlas *atlas = NULL;
+    CHECK(pelt_atlas_create(mesh, &d, &atlas, &err) == PELT_OK);
+    printf("  %zu allocations; warning: %s\n", c.allocs, l.last);
+    CHECK(c.allocs >= 20); /* the atlas's arrays and the builder's */
+    CHECK(l.warnings == 1 && strstr(l.last, "not using the mesh's uvs") != NULL);
+    pelt_atlas_destroy(atlas);
+    CHECK(c.frees == c.allocs && c.live_bytes == 0);
+    d.hooks.allocator.alloc = NULL;
+    CHECK(pelt_atlas_create(mesh, &d, &atlas, &err) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(err.message, "pelt_atlas_desc.hooks.allocator") != NULL);
+    pelt_mesh_destroy(mesh);
+}
+
 int main(void)
 {
     RUN(fur_allocates_everything_through_its_hooks);
     RUN(failed_allocation_cleans_up);
     RUN(half_an_allocator_is_refused);
+    RUN(atlas_allocates_through_its_hooks_and_warns_to_the_logger);
     return check_summary();
 }
