@@ -4,7 +4,6 @@
 #include "pelt/scene.h"
 
 #include "support/check.h"
-#include "core/fur/fur_shape.h"
 
 #include <dirent.h>
 #include <math.h>
@@ -666,7 +665,7 @@ static void shipped_presets_give_four_different_fig7_looks(void)
         pelt_error err = {0};
         CHECK(pelt_scene_load(path, &s, &err) == PELT_OK);
         /* the stored name is one the preset table knows */
-        CHECK(pelt__curl_preset(s.fur_preset, &omega[i], &radius[i]));
+        CHECK(pelt_fur_curl_look(s.fur_preset, &omega[i], &radius[i]));
         pelt_scene_free(&s);
     }
     for (int i = 0; i < 4; i++)
@@ -687,7 +686,7 @@ static void preset_accepts_both_spellings(void)
         pelt_scene_defaults(&s);
         CHECK(pelt_scene_set(&s, "fur.preset", names[i], &err) == PELT_OK);
         float omega, radius;
-        CHECK(pelt__curl_preset(s.fur_preset, &omega, &radius));
+        CHECK(pelt_fur_curl_look(s.fur_preset, &omega, &radius));
     }
 }
 
