@@ -3,6 +3,7 @@
 #include "pelt/scene.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/vec.h"
 
 #include <cjson/cJSON.h>

@@ -3,6 +3,7 @@
 #include "core/atlas/atlas_cache.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 
 #include <errno.h>
 #include <math.h>

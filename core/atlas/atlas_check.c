@@ -2,6 +2,7 @@
 #include "core/atlas/atlas_internal.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/raster.h"
 
 #include <math.h>

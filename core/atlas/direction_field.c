@@ -2,6 +2,7 @@
 #include "core/atlas/direction_field.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/vec.h"
 
 #include <stdlib.h>

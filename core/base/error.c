@@ -2,7 +2,6 @@
 
 #include <stdarg.h>
 #include <stdio.h>
-#include <stdlib.h>
 
 static const char *const status_text[] = {
 #define PELT__TEXT(name, text) text,
@@ -26,11 +25,4 @@ pelt_status pelt__fail(pelt_error *err, pelt_status status, const char *fmt, ...
         va_end(ap);
     }
     return status;
-}
-
-void *pelt__calloc(size_t count, size_t size)
-{
-    if (size != 0 && count > (size_t)-1 / size) return NULL;
-    if (count == 0 || size == 0) return calloc(1, 1);
-    return calloc(count, size);
 }

@@ -12,7 +12,4 @@ pelt_status pelt__fail(pelt_error *err, pelt_status status, const char *fmt, ...
 #endif
     ;
 
-/* calloc(count, size) that returns NULL when count * size overflows. */
-void *pelt__calloc(size_t count, size_t size);
-
 #endif

@@ -23,6 +23,8 @@ void *pelt__alloc_zero(const pelt_allocator *a, size_t count, size_t size)
     return p;
 }
 
+void *pelt__calloc(size_t count, size_t size) { return pelt__alloc_zero(NULL, count, size); }
+
 void pelt__free(const pelt_allocator *a, void *ptr)
 {
     if (!ptr) return;

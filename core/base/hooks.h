@@ -12,6 +12,9 @@ void *pelt__alloc(const pelt_allocator *a, size_t size);
 /* count * size zeroed bytes, NULL when out of memory or when the product
  * overflows. */
 void *pelt__alloc_zero(const pelt_allocator *a, size_t count, size_t size);
+/* pelt__alloc_zero without hooks, for memory freed with free(): objects
+ * that take no hooks (meshes) and scratch inside one call. */
+void *pelt__calloc(size_t count, size_t size);
 /* Frees what pelt__alloc / pelt__alloc_zero returned; NULL is allowed. */
 void pelt__free(const pelt_allocator *a, void *ptr);
 

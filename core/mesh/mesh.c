@@ -3,6 +3,7 @@
 #include "core/mesh/mesh_internal.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 #include "core/base/vec.h"
 #include "core/base/weld.h"
 

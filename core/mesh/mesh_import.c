@@ -6,6 +6,7 @@
 #include "core/mesh/mesh_internal.h"
 
 #include "core/base/error.h"
+#include "core/base/hooks.h"
 
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
