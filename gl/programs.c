@@ -19,7 +19,7 @@ static GLuint compile(GLenum stage, const char *const *parts, const char *what, 
     int n = 0;
     sources[n++] = version_header;
     sources[n++] = pelt__shader_bindings;
-    for (int i = 0; parts[i] && i < MAX_PARTS; i++) sources[n++] = parts[i];
+    for (int i = 0; i < MAX_PARTS && parts[i]; i++) sources[n++] = parts[i];
     GLuint s = glCreateShader(stage);
     glShaderSource(s, n, sources, NULL);
     glCompileShader(s);

@@ -43,14 +43,6 @@ static pelt_status load_mesh(const pelt_scene_mesh *m, pelt_mesh **mesh, pelt_er
     return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "mesh.shape: unknown shape %d", (int)m->shape);
 }
 
-static float mesh_diagonal(const pelt_mesh *mesh)
-{
-    float lo[3], hi[3];
-    pelt_mesh_bounds(mesh, lo, hi);
-    float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
-    return sqrtf(dx * dx + dy * dy + dz * dz);
-}
-
 /* Gives a mesh file an atlas (Lengyel §2.1): its own uvs when they are a
  * valid injective map, else patches; procedural shapes keep their uvs
  * unless the scene asks for patches. Replaces inst->mesh with the atlas
@@ -66,7 +58,7 @@ static pelt_status build_atlas(pelt_scene_instance *inst, const char *cache_dir,
     ad.mode = (int)sc->atlas.mode;
     ad.mask_size = sc->fur.wet.mask_size; /* 0: the atlas picks, growing with the mesh */
     /* The same fur density as pelt_fur_create's default: 5 tiles per diagonal. */
-    float diag = mesh_diagonal(inst->mesh);
+    float diag = pelt_mesh_diagonal(inst->mesh);
     ad.texel_density = sc->atlas.texel_density > 0.0f ? sc->atlas.texel_density
                        : diag > 0.0f                  ? 5.0f / diag
                                                       : 0.0f;
@@ -100,23 +92,22 @@ static pelt_status build_atlas(pelt_scene_instance *inst, const char *cache_dir,
     return PELT_OK;
 }
 
-/* Loads an image with stb_image; errors name the scene key and the file,
- * with the system's reason when the file cannot be opened. */
-static uint8_t *load_image(const char *key, const char *path, int channels, int *w, int *h,
-                           pelt_error *err)
+/* Loads an image with stb_image into *px (free with stbi_image_free);
+ * errors name the scene key and the file, with the system's reason when the
+ * file cannot be opened. */
+static pelt_status load_image(const char *key, const char *path, int channels, uint8_t **px,
+                              int *w, int *h, pelt_error *err)
 {
+    *px = NULL;
     FILE *f = fopen(path, "rb");
-    if (!f) {
-        pelt__fail(err, PELT_ERR_IO, "%s: cannot open '%s': %s", key, path, strerror(errno));
-        return NULL;
-    }
+    if (!f) return pelt__fail(err, PELT_ERR_IO, "%s: cannot open '%s': %s", key, path, strerror(errno));
     int n;
-    uint8_t *px = stbi_load_from_file(f, w, h, &n, channels);
+    *px = stbi_load_from_file(f, w, h, &n, channels);
     fclose(f);
-    if (!px)
-        pelt__fail(err, PELT_ERR_FORMAT, "%s: '%s' is not a readable image (%s)", key, path,
-                   stbi_failure_reason());
-    return px;
+    if (!*px)
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: '%s' is not a readable image (%s)", key, path,
+                          stbi_failure_reason());
+    return PELT_OK;
 }
 
 /* The colour texture: an image file or a procedural pattern. */
@@ -126,9 +117,10 @@ static pelt_status apply_color(pelt_scene_instance *inst, pelt_error *err)
     pelt_error e = {0};
     if (sc->texture.image[0]) {
         int w, h;
-        uint8_t *rgba = load_image("texture.image", sc->texture.image, 4, &w, &h, err);
-        if (!rgba) return err ? err->status : PELT_ERR_IO;
-        pelt_status st = pelt_fur_set_color_texture(inst->fur, rgba, (unsigned)w, (unsigned)h, &e);
+        uint8_t *rgba;
+        pelt_status st = load_image("texture.image", sc->texture.image, 4, &rgba, &w, &h, err);
+        if (st != PELT_OK) return st;
+        st = pelt_fur_set_color_texture(inst->fur, rgba, (unsigned)w, (unsigned)h, &e);
         stbi_image_free(rgba);
         if (st != PELT_OK)
             return pelt__fail(err, st, "texture.image '%s': %s", sc->texture.image, e.message);
@@ -156,10 +148,11 @@ static pelt_status apply_water(pelt_scene_instance *inst, const pelt_scene *sc, 
     }
     if (w->mask_image[0]) {
         int iw, ih;
-        uint8_t *grey = load_image("wetness.mask_image", w->mask_image, 1, &iw, &ih, err);
-        if (!grey) return err ? err->status : PELT_ERR_IO;
-        pelt_status st = pelt_fur_paint_wetness(inst->fur, grey, (unsigned)iw, (unsigned)ih,
-                                                w->mask_image_wetness, &e);
+        uint8_t *grey;
+        pelt_status st = load_image("wetness.mask_image", w->mask_image, 1, &grey, &iw, &ih, err);
+        if (st != PELT_OK) return st;
+        st = pelt_fur_paint_wetness(inst->fur, grey, (unsigned)iw, (unsigned)ih,
+                                    w->mask_image_wetness, &e);
         stbi_image_free(grey);
         if (st != PELT_OK)
             return pelt__fail(err, st, "wetness.mask_image '%s': %s", w->mask_image, e.message);

@@ -439,10 +439,7 @@ pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
     }
     float density = d.texel_density;
     if (density == 0.0f) {
-        float lo[3], hi[3], diag = 0;
-        pelt_mesh_bounds(in, lo, hi);
-        for (int k = 0; k < 3; k++) diag += (hi[k] - lo[k]) * (hi[k] - lo[k]);
-        diag = sqrtf(diag);
+        float diag = pelt_mesh_diagonal(in);
         density = diag > 0 ? 8.0f / diag : 1.0f;
     }
     float ms = d.max_stretch == 0.0f ? 2.0f : d.max_stretch;

@@ -15,14 +15,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static float bbox_diagonal(const pelt_mesh *m)
-{
-    return v3_len(v3_sub(v3_load(m->bounds_max), v3_load(m->bounds_min)));
-}
-
 void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
 {
-    float diag = mesh ? bbox_diagonal(mesh) : 1.0f;
+    float diag = mesh ? pelt_mesh_diagonal(mesh) : 1.0f;
     if (!(diag > 0.0f)) diag = 1.0f;
     if (d->layers == 0) d->layers = 16;
     if (d->length == 0.0f) d->length = 0.03f * diag;

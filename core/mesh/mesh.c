@@ -86,6 +86,13 @@ void pelt_mesh_bounds(const pelt_mesh *mesh, float min[3], float max[3])
     }
 }
 
+float pelt_mesh_diagonal(const pelt_mesh *mesh)
+{
+    float lo[3], hi[3];
+    pelt_mesh_bounds(mesh, lo, hi);
+    return v3_len(v3_sub(v3_load(hi), v3_load(lo)));
+}
+
 /* ---- normals ----------------------------------------------------------- */
 
 /* 1 / the largest bbox extent: frames are computed on the mesh scaled to

@@ -86,6 +86,10 @@ const float *pelt_mesh_tangents(const pelt_mesh *mesh);
 /* Axis-aligned bounds of the positions. */
 void pelt_mesh_bounds(const pelt_mesh *mesh, float min[3], float max[3]);
 
+/* Length of the bounds' diagonal: the mesh's size, which the fur's default
+ * length and tiling and the atlas's default density scale with. */
+float pelt_mesh_diagonal(const pelt_mesh *mesh);
+
 #ifdef __cplusplus
 }
 #endif
