@@ -13,6 +13,43 @@ void cli_error(const char *cmd, const char *fmt, ...)
 #endif
     ;
 
+/* One flag of a command as help, the manual page and shell completion show
+ * it: all three read the same tables, so they cannot drift apart. */
+typedef struct cli_flag_doc {
+    const char *name;    /* "--output" */
+    const char *alias;   /* "-o", or NULL */
+    const char *metavar; /* "FILE"; NULL for a flag without a value */
+    const char *help;
+    const char *values;  /* words a completion offers as the value, or NULL */
+} cli_flag_doc;
+
+/* The i-th flag of a command, NULL past the last. */
+typedef const cli_flag_doc *(*cli_flag_list)(size_t i);
+
+/* A subcommand of pelt. */
+typedef struct cli_command {
+    const char *name;
+    const char *args;        /* "[SCENE.json] [flags]" */
+    const char *summary;     /* one line for `pelt --help` */
+    const char *description; /* what `pelt NAME --help` and the manual say */
+    cli_flag_list flags;     /* NULL: no flags but -h */
+    int (*run)(int argc, char **argv);
+    const char *arg_files;   /* completion: a glob of files for the argument, or NULL */
+    const char *arg_words;   /* completion: words for the argument, or NULL */
+    bool hidden;             /* run by the build, not listed */
+} cli_command;
+
+/* Every subcommand, NULL-named last (apps/commands.c). */
+extern const cli_command cli_commands[];
+const cli_command *cli_find_command(const char *name);
+
+/* Prints `pelt NAME --help` from the command's table entry. */
+void cli_print_help(FILE *f, const cli_command *c);
+
+/* The flags of render and bench (apps/options.c) and of atlas. */
+const cli_flag_doc *cli_scene_flag(size_t i);
+const cli_flag_doc *cli_atlas_flag(size_t i);
+
 #define CLI_MAX_DROPS 64
 
 /* Options shared by render and bench, parsed into a scene. */
@@ -72,5 +109,7 @@ int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_atlas(int argc, char **argv);
+int cmd_completion(int argc, char **argv); /* apps/completion.c */
+int cmd_manpage(int argc, char **argv);    /* apps/manpage.c */
 
 #endif

@@ -10,25 +10,23 @@
 
 static const char *const CMD = "atlas";
 
-static void atlas_usage(FILE *f)
+static const cli_flag_doc atlas_flags[] = {
+    {"-o", NULL, "FILE", "output PNG (default atlas.png)", NULL},
+    {"--size", NULL, "N", "image side in pixels (default 1024)", NULL},
+    {"--mode", NULL, "M", "auto | mesh-uvs | patches (default auto)", "auto mesh-uvs patches"},
+    {"--direction", NULL, "X,Y,Z", "global hair direction (default 0,-1,0: combed down)", NULL},
+    {"--density", NULL, "D", "fur-texture tiles per world unit (default 8 / bbox diagonal)", NULL},
+    {"--mask-size", NULL, "N", "atlas side in texels (default from the triangle count)", NULL},
+    {"--seed", NULL, "S", "patch seeds and colours (default 0)", NULL},
+    {"--no-cache", NULL, NULL, "always rebuild, never read or write the cache", NULL},
+    {"--cache-dir", NULL, "DIR", "cache directory (default $XDG_CACHE_HOME/pelt or ~/.cache/pelt)",
+     NULL},
+};
+#define ATLAS_FLAG_COUNT (sizeof atlas_flags / sizeof atlas_flags[0])
+
+const cli_flag_doc *cli_atlas_flag(size_t i)
 {
-    fprintf(f,
-            "usage: pelt atlas MESH [flags]\n"
-            "\n"
-            "Builds the surface atlas of MESH (a file, or torus / sphere / square) and draws\n"
-            "its patches and hair direction field to a PNG; prints the atlas statistics.\n"
-            "\n"
-            "flags:\n"
-            "  -o FILE            output PNG (default atlas.png)\n"
-            "  --size N           image side in pixels (default 1024)\n"
-            "  --mode M           auto | mesh-uvs | patches (default auto)\n"
-            "  --direction X,Y,Z  global hair direction (default 0,-1,0: combed down)\n"
-            "  --density D        fur-texture tiles per world unit (default 8 / bbox diagonal)\n"
-            "  --mask-size N      atlas side in texels (default from the triangle count)\n"
-            "  --seed S           patch seeds and colours (default 0)\n"
-            "  --no-cache         always rebuild, never read or write the cache\n"
-            "  --cache-dir DIR    cache directory (default $XDG_CACHE_HOME/pelt or ~/.cache/pelt)\n"
-            "  -h, --help         this text\n");
+    return i < ATLAS_FLAG_COUNT ? &atlas_flags[i] : NULL;
 }
 
 static bool parse_uint(const char *s, unsigned long lo, unsigned long hi, unsigned *out)
@@ -95,7 +93,7 @@ int cmd_atlas(int argc, char **argv)
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
         if (!strcmp(a, "-h") || !strcmp(a, "--help")) {
-            atlas_usage(stdout);
+            cli_print_help(stdout, cli_find_command(CMD));
             return 0;
         }
         if (!strcmp(a, "--no-cache")) {
@@ -103,12 +101,9 @@ int cmd_atlas(int argc, char **argv)
             continue;
         }
         if (a[0] == '-' && a[1] != '\0') {
-            static const char *const with_value[] = {"-o", "--size", "--mode", "--direction",
-                                                     "--density", "--mask-size", "--seed",
-                                                     "--cache-dir"};
-            bool known = false;
-            for (size_t k = 0; k < sizeof with_value / sizeof with_value[0]; k++)
-                if (!strcmp(a, with_value[k])) known = true;
+            bool known = false; /* a flag of the table that takes a value */
+            for (size_t k = 0; k < ATLAS_FLAG_COUNT; k++)
+                if (!strcmp(a, atlas_flags[k].name) && atlas_flags[k].metavar) known = true;
             if (!known) {
                 cli_error(CMD, "unknown flag '%s' (see pelt atlas --help)", a);
                 return 2;

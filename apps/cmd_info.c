@@ -6,8 +6,7 @@
 int cmd_info(int argc, char **argv)
 {
     if (argc >= 1 && (!strcmp(argv[0], "-h") || !strcmp(argv[0], "--help"))) {
-        printf("usage: pelt info MESH\n\nLoads a mesh (OBJ, PLY, OFF, STL, glTF/GLB...), validates it\n"
-               "and prints its counts, bounds and what validation changed.\n");
+        cli_print_help(stdout, cli_find_command("info"));
         return 0;
     }
     if (argc != 1) {

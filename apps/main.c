@@ -1,4 +1,4 @@
-/* pelt — command-line front end: render, bench, info. */
+/* pelt — command-line front end: the subcommands of apps/commands.c. */
 #include "apps/cli.h"
 
 #include <string.h>
@@ -10,14 +10,15 @@ static void usage(FILE *f)
             "\n"
             "usage: pelt COMMAND [ARGS]\n"
             "\n"
-            "commands:\n"
-            "  render [SCENE.json] [flags]  render a scene (default: the Table 1 torus) to PNG\n"
-            "  bench  [SCENE.json] [flags]  time frames: median, min, max ms per frame\n"
-            "  info   MESH                  load and validate a mesh, print what was found\n"
-            "  atlas  MESH [-o atlas.png]   build a mesh's atlas, draw patches + direction field\n"
-            "\n"
-            "Run 'pelt COMMAND --help' for the flags of a command.\n",
+            "commands:\n",
             PELT_VERSION_STRING);
+    for (const cli_command *c = cli_commands; c->name; c++) {
+        if (c->hidden) continue;
+        char left[64];
+        snprintf(left, sizeof left, "%s %s", c->name, c->args);
+        fprintf(f, "  %-28s %s\n", left, c->summary);
+    }
+    fprintf(f, "\nRun 'pelt COMMAND --help' for the flags of a command; 'man pelt' for all.\n");
 }
 
 int main(int argc, char **argv)
@@ -35,10 +36,8 @@ int main(int argc, char **argv)
         printf("pelt %s\n", PELT_VERSION_STRING);
         return 0;
     }
-    if (!strcmp(cmd, "render")) return cmd_render(argc - 2, argv + 2);
-    if (!strcmp(cmd, "bench")) return cmd_bench(argc - 2, argv + 2);
-    if (!strcmp(cmd, "info")) return cmd_info(argc - 2, argv + 2);
-    if (!strcmp(cmd, "atlas")) return cmd_atlas(argc - 2, argv + 2);
+    const cli_command *c = cli_find_command(cmd);
+    if (c) return c->run(argc - 2, argv + 2);
     fprintf(stderr, "pelt: unknown command '%s'\n\n", cmd);
     usage(stderr);
     return 2;

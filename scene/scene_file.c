@@ -959,3 +959,8 @@ void pelt_scene_model_at(const pelt_scene *s, float t, float model[16])
     model[12] += x;
     model[13] += y;
 }
+
+const char *pelt_scene_key_name(size_t i)
+{
+    return i < scene_table.count ? scene_table.keys[i].path : NULL;
+}

@@ -199,6 +199,11 @@ pelt_status pelt_scene_set(pelt_scene *s, const char *key_path, const char *valu
 /* Frees the arrays *s owns and sets them to NULL/0. NULL is allowed. */
 void pelt_scene_free(pelt_scene *s);
 
+/* The i-th key a scene file and pelt_scene_set accept, as a dotted path
+ * ("fur.layers"), in the order of the key table; NULL past the last. For
+ * help text and shell completion. */
+const char *pelt_scene_key_name(size_t i);
+
 /* Wind at time t in seconds: forces.wind when there are no keyframes, else
  * the keyframes linearly interpolated, held constant before the first and
  * after the last. No allocation. */

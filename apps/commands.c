@@ -1,0 +1,73 @@
+/* The table of pelt's subcommands: `pelt --help`, `pelt CMD --help`, the
+ * manual page (apps/manpage.c) and shell completion (apps/completion.c)
+ * all print from it. */
+#include "apps/cli.h"
+
+#include <string.h>
+
+const cli_command cli_commands[] = {
+    {"render", "[SCENE.json] [flags]",
+     "render a scene (default: the Table 1 torus) to PNG or video",
+     "Renders the scene (default: the paper's Table 1 torus, 16 layers, 800x600)\n"
+     "headless to a PNG, a PNG sequence (-o out_%04d.png) or a video: -o out.mp4,\n"
+     "out.webm or out.gif pipes the frames into ffmpeg (Debian package ffmpeg).\n"
+     "Flags override keys of the scene file. On a terminal an animation shows\n"
+     "its progress: frames, frames per second and the time left.",
+     cli_scene_flag, cmd_render, "*.json", NULL, false},
+    {"bench", "[SCENE.json] [flags]", "time frames: median, min, max ms per frame",
+     "Renders frames after a warm-up, glFinish after each, and prints the median,\n"
+     "minimum and maximum milliseconds per frame for each part of the frame.\n"
+     "Takes the flags of render.",
+     cli_scene_flag, cmd_bench, "*.json", NULL, false},
+    {"info", "MESH", "load and validate a mesh, print what was found",
+     "Loads a mesh (OBJ, PLY, OFF, STL, glTF/GLB...), validates it\n"
+     "and prints its counts, bounds and what validation changed.",
+     NULL, cmd_info, "*", NULL, false},
+    {"atlas", "MESH [flags]", "build a mesh's atlas, draw patches + direction field",
+     "Builds the surface atlas of MESH (a file, or torus / sphere / square) and draws\n"
+     "its patches and hair direction field to a PNG; prints the atlas statistics.",
+     cli_atlas_flag, cmd_atlas, "*", "torus sphere square", false},
+    {"completion", "bash", "print the bash completion script",
+     "Prints a bash completion script for pelt's commands, flags and scene keys.\n"
+     "Try it with: source <(pelt completion bash)",
+     NULL, cmd_completion, NULL, "bash", false},
+    {"manpage", "", "print the manual page pelt(1) as roff",
+     "Prints the manual page pelt(1) as roff; the build writes it to pelt.1.",
+     NULL, cmd_manpage, NULL, NULL, true},
+    {NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, false},
+};
+
+const cli_command *cli_find_command(const char *name)
+{
+    for (const cli_command *c = cli_commands; c->name; c++)
+        if (!strcmp(c->name, name)) return c;
+    return NULL;
+}
+
+/* "-o, --output FILE" */
+static void flag_left(const cli_flag_doc *d, char *out, size_t size)
+{
+    snprintf(out, size, "%s%s%s%s%s", d->alias ? d->alias : "", d->alias ? ", " : "", d->name,
+             d->metavar ? " " : "", d->metavar ? d->metavar : "");
+}
+
+void cli_print_help(FILE *f, const cli_command *c)
+{
+    fprintf(f, "usage: pelt %s%s%s\n\n%s\n\n", c->name, c->args[0] ? " " : "", c->args,
+            c->description);
+    static const cli_flag_doc help = {"--help", "-h", NULL, "this help", NULL};
+    size_t width = strlen("-h, --help");
+    char left[96];
+    for (size_t i = 0; c->flags && c->flags(i); i++) {
+        flag_left(c->flags(i), left, sizeof left);
+        if (strlen(left) > width) width = strlen(left);
+    }
+    fprintf(f, "flags:\n");
+    for (size_t i = 0;; i++) {
+        const cli_flag_doc *d = c->flags ? c->flags(i) : NULL;
+        if (!d) d = &help;
+        flag_left(d, left, sizeof left);
+        fprintf(f, "  %-*s  %s\n", (int)width, left, d->help);
+        if (d == &help) break;
+    }
+}
