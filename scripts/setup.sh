@@ -3,14 +3,14 @@
 #   scripts/setup.sh          build and render
 #   scripts/setup.sh --tests  also what the tests use: Debian's libcgal-demo meshes,
 #                             ffmpeg (video output), man-db (the manual page) and
-#                             dpkg-dev (the .deb: dpkg-deb, dpkg-shlibdeps)
+#                             dpkg-dev and file (the .deb: dpkg-deb, dpkg-shlibdeps)
 set -euo pipefail
 
 packages=(build-essential cmake pkg-config
           libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
           libglfw3-dev libassimp-dev libstb-dev libcjson-dev)
 if [ "${1:-}" = "--tests" ]; then
-  packages+=(libcgal-demo ffmpeg man-db dpkg-dev)
+  packages+=(libcgal-demo ffmpeg man-db dpkg-dev file)
 fi
 
 missing=()
