@@ -19,6 +19,7 @@ check no_ffmpeg_says_what_to_install $? "exit $rc: $err"
 if ! command -v ffmpeg >/dev/null || ! command -v ffprobe >/dev/null; then
   echo "SKIP: ffmpeg and ffprobe are not installed (Debian package ffmpeg; scripts/setup.sh --tests installs it)"
   echo "$passes passed, $fails failed"
+  [ $fails -eq 0 ] || exit 1
   exit 77
 fi
 # stream fields of the first video stream, as "codec,width,height,frames"
