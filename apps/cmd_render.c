@@ -106,6 +106,7 @@ int cmd_render(int argc, char **argv)
     cli_session_drop_at(&s, &o);
     bool show_progress = frames > 1 && !o.quiet && isatty(2);
     double start = seconds_now();
+    unsigned shown = 0; /* frames the progress line has counted */
     char path[4096];
     rc = 0;
     for (unsigned i = 0; i < frames && rc == 0; i++) {
@@ -119,8 +120,9 @@ int cmd_render(int argc, char **argv)
             if (!cli_write_png("render", path, s.pixels, sc->output.width, sc->output.height))
                 rc = 1;
         }
-        if (show_progress && rc == 0) progress(i + 1, frames, seconds_now() - start);
+        if (show_progress && rc == 0) progress(++shown, frames, seconds_now() - start);
     }
+    if (shown > 0 && shown < frames) fputc('\n', stderr); /* a message after the bar */
     if (video && !cli_video_close(&v)) rc = 1;
     if (rc == 0 && o.mask_out && !write_mask(&s, o.mask_out)) rc = 1;
     if (rc == 0 && !o.quiet && video)
