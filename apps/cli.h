@@ -23,8 +23,8 @@ typedef struct cli_flag_doc {
     const char *values;  /* words a completion offers as the value, or NULL */
 } cli_flag_doc;
 
-/* The i-th flag of a command, NULL past the last. */
-typedef const cli_flag_doc *(*cli_flag_list)(size_t i);
+/* Fills *out with the i-th flag of a command; false past the last. */
+typedef bool (*cli_flag_list)(size_t i, cli_flag_doc *out);
 
 /* A subcommand of pelt. */
 typedef struct cli_command {
@@ -47,8 +47,8 @@ const cli_command *cli_find_command(const char *name);
 void cli_print_help(FILE *f, const cli_command *c);
 
 /* The flags of render and bench (apps/options.c) and of atlas. */
-const cli_flag_doc *cli_scene_flag(size_t i);
-const cli_flag_doc *cli_atlas_flag(size_t i);
+bool cli_scene_flag(size_t i, cli_flag_doc *out);
+bool cli_atlas_flag(size_t i, cli_flag_doc *out);
 
 #define CLI_MAX_DROPS 64
 

@@ -24,9 +24,11 @@ static const cli_flag_doc atlas_flags[] = {
 };
 #define ATLAS_FLAG_COUNT (sizeof atlas_flags / sizeof atlas_flags[0])
 
-const cli_flag_doc *cli_atlas_flag(size_t i)
+bool cli_atlas_flag(size_t i, cli_flag_doc *out)
 {
-    return i < ATLAS_FLAG_COUNT ? &atlas_flags[i] : NULL;
+    if (i >= ATLAS_FLAG_COUNT) return false;
+    *out = atlas_flags[i];
+    return true;
 }
 
 static bool parse_uint(const char *s, unsigned long lo, unsigned long hi, unsigned *out)

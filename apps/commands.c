@@ -56,18 +56,19 @@ void cli_print_help(FILE *f, const cli_command *c)
     fprintf(f, "usage: pelt %s%s%s\n\n%s\n\n", c->name, c->args[0] ? " " : "", c->args,
             c->description);
     static const cli_flag_doc help = {"--help", "-h", NULL, "this help", NULL};
+    cli_flag_doc d;
     size_t width = strlen("-h, --help");
     char left[96];
-    for (size_t i = 0; c->flags && c->flags(i); i++) {
-        flag_left(c->flags(i), left, sizeof left);
+    for (size_t i = 0; c->flags && c->flags(i, &d); i++) {
+        flag_left(&d, left, sizeof left);
         if (strlen(left) > width) width = strlen(left);
     }
     fprintf(f, "flags:\n");
     for (size_t i = 0;; i++) {
-        const cli_flag_doc *d = c->flags ? c->flags(i) : NULL;
-        if (!d) d = &help;
-        flag_left(d, left, sizeof left);
-        fprintf(f, "  %-*s  %s\n", (int)width, left, d->help);
-        if (d == &help) break;
+        bool last = !c->flags || !c->flags(i, &d);
+        if (last) d = help;
+        flag_left(&d, left, sizeof left);
+        fprintf(f, "  %-*s  %s\n", (int)width, left, d.help);
+        if (last) break;
     }
 }

@@ -10,17 +10,17 @@
 static bool value_flags(FILE *f, cli_flag_list flags, const char *kind)
 {
     bool any = false;
-    for (size_t i = 0; flags(i); i++) {
-        const cli_flag_doc *d = flags(i);
-        if (!d->metavar) continue;
-        bool file = strstr(d->metavar, "FILE") || strstr(d->metavar, "DIR");
-        bool word = d->values != NULL;
+    cli_flag_doc d;
+    for (size_t i = 0; flags(i, &d); i++) {
+        if (!d.metavar) continue;
+        bool file = strstr(d.metavar, "FILE") || strstr(d.metavar, "DIR");
+        bool word = d.values != NULL;
         if (!strcmp(kind, "file") ? !file || word
             : !strcmp(kind, "word") ? !word
-                                    : file || word || !strcmp(d->name, "--set"))
+                                    : file || word || !strcmp(d.name, "--set"))
             continue;
-        fprintf(f, "%s%s", any ? "|" : "        ", d->name);
-        if (d->alias) fprintf(f, "|%s", d->alias);
+        fprintf(f, "%s%s", any ? "|" : "        ", d.name);
+        if (d.alias) fprintf(f, "|%s", d.alias);
         any = true;
     }
     return any;
@@ -29,28 +29,24 @@ static bool value_flags(FILE *f, cli_flag_list flags, const char *kind)
 static void command_case(FILE *f, const cli_command *c)
 {
     fprintf(f, "    %s)\n", c->name);
+    cli_flag_doc d;
     if (c->flags) {
         fputs("        case $prev in\n", f);
-        for (size_t i = 0; c->flags(i); i++) {
-            const cli_flag_doc *d = c->flags(i);
-            if (!d->values) continue;
-            bool file = strstr(d->metavar, "FILE") != NULL;
-            fprintf(f, "        %s%s%s) _pelt_words \"%s\"; %sreturn ;;\n", d->name,
-                    d->alias ? "|" : "", d->alias ? d->alias : "", d->values,
+        for (size_t i = 0; c->flags(i, &d); i++) {
+            if (!d.values) continue;
+            bool file = strstr(d.metavar, "FILE") != NULL;
+            fprintf(f, "        %s%s%s) _pelt_words \"%s\"; %sreturn ;;\n", d.name,
+                    d.alias ? "|" : "", d.alias ? d.alias : "", d.values,
                     file ? "_pelt_files '*'; " : "");
         }
-        for (size_t i = 0; c->flags(i); i++)
-            if (!strcmp(c->flags(i)->name, "--set"))
-                fputs("        --set) _pelt_keys; return ;;\n", f);
+        for (size_t i = 0; c->flags(i, &d); i++)
+            if (!strcmp(d.name, "--set")) fputs("        --set) _pelt_keys; return ;;\n", f);
         if (value_flags(f, c->flags, "file")) fputs(") _pelt_files '*'; return ;;\n", f);
         if (value_flags(f, c->flags, "other")) fputs(") return ;;\n", f);
         fputs("        esac\n", f);
         fputs("        if [[ $cur == -* ]]; then\n            _pelt_words \"", f);
-        for (size_t i = 0; c->flags(i); i++) {
-            const cli_flag_doc *d = c->flags(i);
-            fprintf(f, "%s%s%s%s", i ? " " : "", d->name, d->alias ? " " : "",
-                    d->alias ? d->alias : "");
-        }
+        for (size_t i = 0; c->flags(i, &d); i++)
+            fprintf(f, "%s%s%s%s", i ? " " : "", d.name, d.alias ? " " : "", d.alias ? d.alias : "");
         fputs(" --help -h\"\n            return\n        fi\n", f);
     } else {
         fputs("        [[ $cur == -* ]] && { _pelt_words \"--help -h\"; return; }\n", f);

@@ -63,7 +63,8 @@ static void flag_sections(FILE *f)
             for (const char *p = b->name; *p; p++) fputc(*p >= 'a' && *p <= 'z' ? *p - 32 : *p, f);
         }
         fputs(" FLAGS\"\n", f);
-        for (size_t i = 0; c->flags(i); i++) flag_tag(f, c->flags(i));
+        cli_flag_doc d;
+        for (size_t i = 0; c->flags(i, &d); i++) flag_tag(f, &d);
         flag_tag(f, &(cli_flag_doc){"--help", "-h", NULL, "print the flags of the command", NULL});
     }
 }

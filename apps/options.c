@@ -33,73 +33,74 @@ typedef enum flag_kind {
     FLAG_QUIET
 } flag_kind;
 
-/* A flag: how help shows it, what it sets. */
 typedef struct flag {
-    cli_flag_doc doc;
+    const char *name, *alias, *metavar;
     flag_kind kind;
     const char *key;
+    const char *help;
+    const char *values; /* words shell completion offers as the value */
 } flag;
 
-#define F(name, alias, metavar, kind, key, help) {{name, alias, metavar, help, NULL}, kind, key}
-/* ... with the words shell completion offers as its value */
-#define FV(name, alias, metavar, kind, key, help, values) \
-    {{name, alias, metavar, help, values}, kind, key}
-
 static const flag flags[] = {
-    F("--output", "-o", "FILE", FLAG_OUTPUT, NULL,
-      "PNG; for --frames > 1 a pattern like out_%04d.png, or a video "
-      "out.mp4/.webm/.gif through ffmpeg (default pelt.png)"),
-    FV("--mesh", NULL, "FILE|torus|sphere|square", FLAG_MESH, NULL,
-       "mesh file (OBJ, PLY, OFF, STL, glTF...) or a procedural shape", "torus sphere square"),
-    F("--layers", NULL, "N", FLAG_KEY, "fur.layers", "shell layers (default 16)"),
-    F("--length", NULL, "L", FLAG_KEY, "fur.length", "fur length in world units (default 3% of the mesh diagonal)"),
-    F("--density", NULL, "D", FLAG_KEY, "fur.density", "strands per fur-texture tile (default 3000)"),
-    F("--texture-size", NULL, "N", FLAG_KEY, "fur.texture_size", "fur texture size (default 256)"),
-    F("--seed", NULL, "S", FLAG_KEY, "fur.seed", "seed of the fur texture and dynamics (default 1)"),
-    F("--size", NULL, "WxH", FLAG_SIZE, NULL, "image size in pixels (default 800x600)"),
-    F("--msaa", NULL, "N", FLAG_KEY, "output.msaa", "multisample anti-aliasing samples (default 0)"),
-    F("--texture", NULL, "FILE", FLAG_KEY, "texture.image", "colour texture image (PNG, JPEG...)"),
-    FV("--pattern", NULL, "NAME", FLAG_KEY, "texture.pattern",
-       "procedural colour: none, spots, stripes, noise", "none spots stripes noise"),
-    F("--yaw", NULL, "DEG", FLAG_KEY, "camera.yaw", "orbit camera yaw"),
-    F("--pitch", NULL, "DEG", FLAG_KEY, "camera.pitch", "orbit camera pitch"),
-    F("--distance", NULL, "D", FLAG_KEY, "camera.distance", "orbit camera distance"),
-    F("--fov", NULL, "DEG", FLAG_KEY, "camera.fov_y", "vertical field of view"),
-    F("--light", NULL, "X,Y,Z", FLAG_VEC3, "light.direction", "direction towards the light"),
-    F("--frames", NULL, "N", FLAG_KEY, "animation.frames", "frames to render (bench: frames to time)"),
-    F("--fps", NULL, "F", FLAG_KEY, "animation.fps", "frames per second of the animation (default 30)"),
-    F("--turntable", NULL, "DEG/S", FLAG_KEY, "animation.turntable", "spin the mesh about +Y"),
-    F("--wind", NULL, "X,Y,Z", FLAG_VEC3, "forces.wind", "wind (acceleration, world units/s^2)"),
-    F("--gravity", NULL, "X,Y,Z", FLAG_VEC3, "forces.gravity", "gravity (default 0,-9.81,0)"),
-    F("--curl-frequency", NULL, "W", FLAG_KEY, "fur.curl_frequency", "curl frequency omega (Silva Eq. 4)"),
-    F("--curl-radius", NULL, "K", FLAG_KEY, "fur.curl_radius", "curl radius K_alpha in world units (Silva Eq. 4)"),
-    FV("--preset", NULL, "NAME", FLAG_KEY, "fur.preset",
-       "straight, wavy, few-large-curls, many-small-curls",
-       "straight wavy few-large-curls many-small-curls"),
-    F("--drops", NULL, "N", FLAG_KEY, "wetness.drops.count", "N random droplets at the start"),
-    F("--rain", NULL, "RATE", FLAG_KEY, "wetness.rain.rate", "droplets per second"),
-    F("--dry-rate", NULL, "R", FLAG_KEY, "wetness.dry_rate", "wetness lost per second"),
-    F("--mask-image", NULL, "FILE", FLAG_KEY, "wetness.mask_image", "greyscale image painted as water"),
-    F("--mask-out", NULL, "FILE", FLAG_MASK_OUT, NULL, "write the wetness mask as a PNG"),
-    F("--drop-at", NULL, "X,Y,R", FLAG_DROP_AT, NULL,
-     "a droplet where the ray through pixel (X, Y) hits, radius R in world units (repeatable)"),
-    F("--set", NULL, "KEY=VALUE", FLAG_SET, NULL, "set any scene key (see docs/scene-format.md)"),
-    F("--warmup", NULL, "N", FLAG_WARMUP, NULL, "bench: untimed frames first (default 5)"),
-    F("--clumps", NULL, NULL, FLAG_CLUMPS, NULL,
-     "bench: also time the scene with 50 clumps over a third of the surface"),
-    F("--droplets", NULL, NULL, FLAG_DROPLETS, NULL,
-     "bench: time 10,000 droplets into a 2048^2 mask against one whole-mask upload"),
-    F("--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"),
+    {"--output", "-o", "FILE", FLAG_OUTPUT, NULL,
+     "PNG; for --frames > 1 a pattern like out_%04d.png, or a video "
+     "out.mp4/.webm/.gif through ffmpeg (default pelt.png)"},
+    {"--mesh", NULL, "FILE|torus|sphere|square", FLAG_MESH, NULL, "mesh file (OBJ, PLY, OFF, STL, glTF...) or a procedural shape",
+     "torus sphere square"},
+    {"--layers", NULL, "N", FLAG_KEY, "fur.layers", "shell layers (default 16)"},
+    {"--length", NULL, "L", FLAG_KEY, "fur.length", "fur length in world units (default 3% of the mesh diagonal)"},
+    {"--density", NULL, "D", FLAG_KEY, "fur.density", "strands per fur-texture tile (default 3000)"},
+    {"--texture-size", NULL, "N", FLAG_KEY, "fur.texture_size", "fur texture size (default 256)"},
+    {"--seed", NULL, "S", FLAG_KEY, "fur.seed", "seed of the fur texture and dynamics (default 1)"},
+    {"--size", NULL, "WxH", FLAG_SIZE, NULL, "image size in pixels (default 800x600)"},
+    {"--msaa", NULL, "N", FLAG_KEY, "output.msaa", "multisample anti-aliasing samples (default 0)"},
+    {"--texture", NULL, "FILE", FLAG_KEY, "texture.image", "colour texture image (PNG, JPEG...)"},
+    {"--pattern", NULL, "NAME", FLAG_KEY, "texture.pattern", "procedural colour: none, spots, stripes, noise",
+     "none spots stripes noise"},
+    {"--yaw", NULL, "DEG", FLAG_KEY, "camera.yaw", "orbit camera yaw"},
+    {"--pitch", NULL, "DEG", FLAG_KEY, "camera.pitch", "orbit camera pitch"},
+    {"--distance", NULL, "D", FLAG_KEY, "camera.distance", "orbit camera distance"},
+    {"--fov", NULL, "DEG", FLAG_KEY, "camera.fov_y", "vertical field of view"},
+    {"--light", NULL, "X,Y,Z", FLAG_VEC3, "light.direction", "direction towards the light"},
+    {"--frames", NULL, "N", FLAG_KEY, "animation.frames", "frames to render (bench: frames to time)"},
+    {"--fps", NULL, "F", FLAG_KEY, "animation.fps", "frames per second of the animation (default 30)"},
+    {"--turntable", NULL, "DEG/S", FLAG_KEY, "animation.turntable", "spin the mesh about +Y"},
+    {"--wind", NULL, "X,Y,Z", FLAG_VEC3, "forces.wind", "wind (acceleration, world units/s^2)"},
+    {"--gravity", NULL, "X,Y,Z", FLAG_VEC3, "forces.gravity", "gravity (default 0,-9.81,0)"},
+    {"--curl-frequency", NULL, "W", FLAG_KEY, "fur.curl_frequency", "curl frequency omega (Silva Eq. 4)"},
+    {"--curl-radius", NULL, "K", FLAG_KEY, "fur.curl_radius", "curl radius K_alpha in world units (Silva Eq. 4)"},
+    {"--preset", NULL, "NAME", FLAG_KEY, "fur.preset", "straight, wavy, few-large-curls, many-small-curls",
+     "straight wavy few-large-curls many-small-curls"},
+    {"--drops", NULL, "N", FLAG_KEY, "wetness.drops.count", "N random droplets at the start"},
+    {"--rain", NULL, "RATE", FLAG_KEY, "wetness.rain.rate", "droplets per second"},
+    {"--dry-rate", NULL, "R", FLAG_KEY, "wetness.dry_rate", "wetness lost per second"},
+    {"--mask-image", NULL, "FILE", FLAG_KEY, "wetness.mask_image", "greyscale image painted as water"},
+    {"--mask-out", NULL, "FILE", FLAG_MASK_OUT, NULL, "write the wetness mask as a PNG"},
+    {"--drop-at", NULL, "X,Y,R", FLAG_DROP_AT, NULL,
+     "a droplet where the ray through pixel (X, Y) hits, radius R in world units (repeatable)"},
+    {"--set", NULL, "KEY=VALUE", FLAG_SET, NULL, "set any scene key (see docs/scene-format.md)"},
+    {"--warmup", NULL, "N", FLAG_WARMUP, NULL, "bench: untimed frames first (default 5)"},
+    {"--clumps", NULL, NULL, FLAG_CLUMPS, NULL,
+     "bench: also time the scene with 50 clumps over a third of the surface"},
+    {"--droplets", NULL, NULL, FLAG_DROPLETS, NULL,
+     "bench: time 10,000 droplets into a 2048^2 mask against one whole-mask upload"},
+    {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
 };
 
 #define FLAG_COUNT (sizeof flags / sizeof flags[0])
 
-const cli_flag_doc *cli_scene_flag(size_t i) { return i < FLAG_COUNT ? &flags[i].doc : NULL; }
+bool cli_scene_flag(size_t i, cli_flag_doc *out)
+{
+    if (i >= FLAG_COUNT) return false;
+    const flag *f = &flags[i];
+    *out = (cli_flag_doc){f->name, f->alias, f->metavar, f->help, f->values};
+    return true;
+}
 
 static const flag *find_flag(const char *arg)
 {
     for (size_t i = 0; i < FLAG_COUNT; i++)
-        if (!strcmp(arg, flags[i].doc.name) || (flags[i].doc.alias && !strcmp(arg, flags[i].doc.alias)))
+        if (!strcmp(arg, flags[i].name) || (flags[i].alias && !strcmp(arg, flags[i].alias)))
             return &flags[i];
     return NULL;
 }
@@ -131,7 +132,7 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     char buf[2048];
     switch (f->kind) {
     case FLAG_KEY:
-        return set_key(cmd, f->doc.name, &o->scene, f->key, value);
+        return set_key(cmd, f->name, &o->scene, f->key, value);
     case FLAG_VEC3: {
         /* Exactly three comma-separated numbers. */
         char *end;
@@ -141,13 +142,13 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
             errno = 0;
             v[i] = strtof(p, &end);
             if (end == p || errno || !isfinite(v[i]) || (i < 2 && *end != ',') || (i == 2 && *end)) {
-                cli_error(cmd, "%s '%s': expected three numbers X,Y,Z", f->doc.name, value);
+                cli_error(cmd, "%s '%s': expected three numbers X,Y,Z", f->name, value);
                 return false;
             }
             p = end + 1;
         }
         snprintf(buf, sizeof buf, "[%.9g,%.9g,%.9g]", (double)v[0], (double)v[1], (double)v[2]);
-        return set_key(cmd, f->doc.name, &o->scene, f->key, buf);
+        return set_key(cmd, f->name, &o->scene, f->key, buf);
     }
     case FLAG_SIZE: {
         unsigned w, h;
@@ -169,13 +170,13 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     }
     case FLAG_MESH:
         if (!strcmp(value, "torus") || !strcmp(value, "sphere") || !strcmp(value, "square"))
-            return set_key(cmd, f->doc.name, &o->scene, "mesh.shape", value);
+            return set_key(cmd, f->name, &o->scene, "mesh.shape", value);
         if (strlen(value) >= PELT_SCENE_PATH_MAX) {
             cli_error(cmd, "--mesh: path too long");
             return false;
         }
-        return set_key(cmd, f->doc.name, &o->scene, "mesh.file", value) &&
-               set_key(cmd, f->doc.name, &o->scene, "mesh.shape", "file");
+        return set_key(cmd, f->name, &o->scene, "mesh.file", value) &&
+               set_key(cmd, f->name, &o->scene, "mesh.shape", "file");
     case FLAG_SET: {
         const char *eq = strchr(value, '=');
         if (!eq || eq == value || (size_t)(eq - value) >= 256) {
@@ -185,7 +186,7 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
         char key[256];
         memcpy(key, value, (size_t)(eq - value));
         key[eq - value] = '\0';
-        return set_key(cmd, f->doc.name, &o->scene, key, eq + 1);
+        return set_key(cmd, f->name, &o->scene, key, eq + 1);
     }
     case FLAG_OUTPUT:
         o->output = value;
@@ -264,9 +265,9 @@ int cli_parse(const char *cmd, int argc, char **argv, cli_options *o)
             return 2;
         }
         const char *value = NULL;
-        if (f->doc.metavar) {
+        if (f->metavar) {
             if (i + 1 >= argc) {
-                cli_error(cmd, "%s needs a value (%s)", f->doc.name, f->doc.metavar);
+                cli_error(cmd, "%s needs a value (%s)", f->name, f->metavar);
                 return 2;
             }
             value = argv[++i];
