@@ -20,6 +20,7 @@ typedef struct cli_options {
     pelt_scene scene;
     const char *output;    /* -o FILE or pattern with %d / %0Nd */
     const char *mask_out;  /* --mask-out FILE */
+    const char *groom_out; /* --save-groom FILE */
     unsigned warmup;       /* bench */
     unsigned repeats;      /* bench: measured frames */
     float drops[CLI_MAX_DROPS][3];    /* --drop-at: pixel x, pixel y, world radius */

@@ -26,6 +26,7 @@ typedef enum flag_kind {
     FLAG_SET,     /* key=value */
     FLAG_OUTPUT,  /* -o */
     FLAG_MASK_OUT,
+    FLAG_GROOM_OUT,
     FLAG_WARMUP,
     FLAG_DROP_AT,
     FLAG_CLUMPS,
@@ -71,6 +72,9 @@ static const flag flags[] = {
     {"--dry-rate", NULL, "R", FLAG_KEY, "wetness.dry_rate", "wetness lost per second"},
     {"--mask-image", NULL, "FILE", FLAG_KEY, "wetness.mask_image", "greyscale image painted as water"},
     {"--mask-out", NULL, "FILE", FLAG_MASK_OUT, NULL, "write the wetness mask as a PNG"},
+    {"--groom", NULL, "FILE", FLAG_KEY, "fur.groom", "a groom file (PLY) to load (docs/grooming.md)"},
+    {"--save-groom", NULL, "FILE", FLAG_GROOM_OUT, NULL,
+     "write the groom (maps, vertex colours, groom file and strokes applied) as a PLY"},
     {"--drop-at", NULL, "X,Y,R", FLAG_DROP_AT, NULL,
      "a droplet where the ray through pixel (X, Y) hits, radius R in world units (repeatable)"},
     {"--set", NULL, "KEY=VALUE", FLAG_SET, NULL, "set any scene key (see docs/scene-format.md)"},
@@ -196,6 +200,9 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
         return true;
     case FLAG_MASK_OUT:
         o->mask_out = value;
+        return true;
+    case FLAG_GROOM_OUT:
+        o->groom_out = value;
         return true;
     case FLAG_WARMUP:
         if (!parse_uint(value, 100000, &o->warmup)) {

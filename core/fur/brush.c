@@ -122,12 +122,8 @@ pelt_status pelt_fur_brush(pelt_fur *f, const float center[3], const pelt_brush 
 bool pelt_fur_brush_ray(pelt_fur *f, const float origin[3], const float direction[3],
                         const pelt_brush *b, float hit[3])
 {
-    pelt__hit h;
-    if (!f || !origin || !direction || check_brush(b, NULL) != PELT_OK ||
-        !pelt__bvh_raycast(f->bvh, origin, direction, INFINITY, &h))
-        return false;
     float p[3];
-    for (int k = 0; k < 3; k++) p[k] = origin[k] + h.t * direction[k];
+    if (check_brush(b, NULL) != PELT_OK || !pelt_fur_pick(f, origin, direction, p)) return false;
     if (hit)
         for (int k = 0; k < 3; k++) hit[k] = p[k];
     return pelt_fur_brush(f, p, b, NULL, NULL) == PELT_OK;

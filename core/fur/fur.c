@@ -250,6 +250,16 @@ void pelt_fur_reset(pelt_fur *f)
 
 pelt_fur_desc pelt_fur_get_desc(const pelt_fur *f) { return f->desc; }
 
+bool pelt_fur_pick(const pelt_fur *f, const float origin[3], const float direction[3], float hit[3])
+{
+    pelt__hit h;
+    if (!f || !origin || !direction || !pelt__bvh_raycast(f->bvh, origin, direction, INFINITY, &h))
+        return false;
+    if (hit)
+        for (int k = 0; k < 3; k++) hit[k] = origin[k] + h.t * direction[k];
+    return true;
+}
+
 pelt_status pelt_fur_set_color_texture(pelt_fur *f, const uint8_t *rgba, unsigned w, unsigned h,
                                        pelt_error *err)
 {

@@ -110,6 +110,12 @@ void pelt_fur_destroy(pelt_fur *fur);
 /* The desc with every default filled in. */
 pelt_fur_desc pelt_fur_get_desc(const pelt_fur *fur);
 
+/* Where a ray (mesh-local origin and direction) first meets the mesh:
+ * the point into hit (may be NULL). False on a miss or non-finite input.
+ * No allocation: cheap enough to run under a moving cursor. */
+bool pelt_fur_pick(const pelt_fur *fur, const float origin[3], const float direction[3],
+                   float hit[3]);
+
 /* A colour texture that modulates the hair colour (uv space of the mesh).
  * RGBA8, width * height * 4 bytes, copied. */
 pelt_status pelt_fur_set_color_texture(pelt_fur *fur, const uint8_t *rgba,
