@@ -27,6 +27,7 @@ typedef struct cli_options {
     int drop_count;
     bool bench_clumps;     /* bench --clumps */
     bool bench_droplets;   /* bench --droplets */
+    bool bench_brush;      /* bench --brush */
     bool quiet;
 } cli_options;
 

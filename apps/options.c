@@ -31,6 +31,7 @@ typedef enum flag_kind {
     FLAG_DROP_AT,
     FLAG_CLUMPS,
     FLAG_DROPLETS,
+    FLAG_BRUSH,
     FLAG_QUIET
 } flag_kind;
 
@@ -83,6 +84,8 @@ static const flag flags[] = {
      "bench: also time the scene with 50 clumps over a third of the surface"},
     {"--droplets", NULL, NULL, FLAG_DROPLETS, NULL,
      "bench: time 10,000 droplets into a 2048^2 mask against one whole-mask upload"},
+    {"--brush", NULL, NULL, FLAG_BRUSH, NULL,
+     "bench: time 200 comb strokes (radius 2% and 5% of the mesh diagonal) and their uploads"},
     {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
 };
 
@@ -233,6 +236,9 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     }
     case FLAG_CLUMPS:
         o->bench_clumps = true;
+        return true;
+    case FLAG_BRUSH:
+        o->bench_brush = true;
         return true;
     case FLAG_DROPLETS:
         o->bench_droplets = true;
