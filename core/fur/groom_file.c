@@ -314,8 +314,8 @@ pelt_status pelt_fur_load_groom_memory(pelt_fur *f, const void *data, size_t siz
     for (size_t i = 0; i < h.vertices; i++)
         for (int k = 0; k < 7; k++)
             if (!isfinite(get_f32(verts + i * VERTEX_BYTES + 4 * (size_t)k)))
-                return pelt__fail(err, PELT_ERR_FORMAT, "%s: vertex %zu: value %d is not finite", name,
-                                  i, k + 1);
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: vertex %zu: %s is not finite", name, i,
+                                  vertex_properties[k] + 6 /* past "float " */);
     const pelt_mesh *m = f->mesh;
     uint32_t *of = pelt__calloc(m->vertex_count ? m->vertex_count : 1, sizeof *of);
     if (!of) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", name);
