@@ -50,7 +50,7 @@ pelt_status pelt_fur_save_groom(const pelt_fur *f, const char *path, pelt_error 
     if (snprintf(tmp, sizeof tmp, "%s.tmp", path) >= (int)sizeof tmp)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: path too long", path);
     FILE *out = fopen(tmp, "wb");
-    if (!out) return pelt__fail(err, PELT_ERR_IO, "%s: cannot write: %s", tmp, strerror(errno));
+    if (!out) return pelt__fail(err, PELT_ERR_IO, "%s: cannot write (through %s): %s", path, tmp, strerror(errno));
     fprintf(out, "ply\nformat binary_little_endian 1.0\ncomment " GROOM_MAGIC "\n"
                  "comment per vertex: length (x fur length), density, lean (tangent frame), "
                  "hair colour (alpha = its weight)\n"
