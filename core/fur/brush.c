@@ -20,13 +20,15 @@ typedef struct stroke {
 } stroke;
 
 
-/* One vertex under the brush with weight w in (0, 1]. */
+
+/* One vertex under the brush with weight w in (0, 1]. The stored record is
+ * changed in place (a stroke over a big mesh touches thousands). */
 static void apply(stroke *s, size_t i, float w)
 {
     pelt_fur *f = s->fur;
     const pelt_brush *b = s->brush;
     const pelt_mesh *m = f->mesh;
-    pelt_groom_value v = pelt__groom_get(&f->groom, i);
+    pelt__groom_vertex *g = &f->groom.v[i];
     switch (b->tool) {
     case PELT_BRUSH_COMB: {
         /* The tangential part of the delta, in the tangent frame (u, v) the
@@ -36,25 +38,33 @@ static void apply(stroke *s, size_t i, float w)
         pelt_vec3 bt = v3_scale(v3_cross(n, u), m->tangents[4 * i + 3]);
         pelt_vec3 d = v3_load(b->delta);
         d = v3_sub(d, v3_scale(n, v3_dot(d, n)));
-        float len = f->desc.length * fmaxf(v.length, 0.05f);
-        v.lean[0] += w * v3_dot(d, u) / len;
-        v.lean[1] += w * v3_dot(d, bt) / len;
+        float k = w / (f->desc.length * fmaxf(g->length, 0.05f));
+        float a = g->lean[0] + k * v3_dot(d, u), c = g->lean[1] + k * v3_dot(d, bt);
+        float len = sqrtf(a * a + c * c);
+        float shrink = len > PELT_GROOM_MAX_LEAN ? PELT_GROOM_MAX_LEAN / len : 1.0f;
+        g->lean[0] = a * shrink;
+        g->lean[1] = c * shrink;
         break;
     }
-    case PELT_BRUSH_LENGTH: v.length += w * b->amount; break;
-    case PELT_BRUSH_DENSITY: v.density += w * (b->amount - v.density); break;
+    case PELT_BRUSH_LENGTH:
+        g->length = clampf(g->length + w * b->amount, 0.0f, PELT_GROOM_MAX_LENGTH);
+        break;
+    case PELT_BRUSH_DENSITY:
+        g->density = clampf(g->density + w * (clampf(b->amount, 0.0f, 1.0f) - g->density), 0.0f, 1.0f);
+        break;
     case PELT_BRUSH_COLOR: {
         /* Paint over: the new colour covers w of what shows, so the weight
          * grows as a' = a + w (1 - a) and the stored colour is the mix of
          * the old one (weight (1 - w) a) and the paint (weight w). */
+        pelt_groom_value v = pelt__groom_get(&f->groom, i);
         float a = v.color[3], a2 = a + w * (1.0f - a);
         for (int k = 0; k < 3; k++)
             v.color[k] = a2 > 0.0f ? ((1.0f - w) * a * v.color[k] + w * b->color[k]) / a2 : b->color[k];
         v.color[3] = a2;
+        pelt__groom_pack(&v, g);
         break;
     }
     }
-    pelt__groom_pack(&v, &f->groom.v[i]);
     s->touched++;
     if (i < s->lo) s->lo = i;
     if (i + 1 > s->hi) s->hi = i + 1;
