@@ -57,12 +57,14 @@ typedef struct cli_options {
     pelt_scene scene;
     const char *output;    /* -o FILE or pattern with %d / %0Nd */
     const char *mask_out;  /* --mask-out FILE */
+    const char *groom_out; /* --save-groom FILE */
     unsigned warmup;       /* bench */
     unsigned repeats;      /* bench: measured frames */
     float drops[CLI_MAX_DROPS][3];    /* --drop-at: pixel x, pixel y, world radius */
     int drop_count;
     bool bench_clumps;     /* bench --clumps */
     bool bench_droplets;   /* bench --droplets */
+    bool bench_brush;      /* bench --brush */
     bool quiet;
 } cli_options;
 

@@ -141,6 +141,47 @@ static int bench_droplets(const pelt_mesh *mesh)
     return 0;
 }
 
+/* Comb strokes centred on vertices picked off the clock, at two radii:
+ * the stroke alone (CPU) and the upload of the vertices it changed, each
+ * the median over STROKES strokes. */
+static int bench_brush(cli_session *s)
+{
+    enum { STROKES = 200 };
+    pelt_fur *fur = pelt_scene_instance_fur(s->instance);
+    const pelt_mesh *mesh = pelt_scene_instance_mesh(s->instance);
+    const pelt_mesh_data md = pelt_mesh_get_data(mesh);
+    const float diag = pelt_mesh_diagonal(mesh);
+    double stroke[STROKES], upload[STROKES];
+    printf("brush strokes on %zu vertices (median of %d strokes each):\n", md.vertex_count, STROKES);
+    const float fractions[2] = {0.02f, 0.05f};
+    for (int r = 0; r < 2; r++) {
+        pelt_brush b = {.tool = PELT_BRUSH_COMB, .radius = fractions[r] * diag};
+        size_t touched_sum = 0;
+        uint32_t x = 88675123u; /* xorshift: centres chosen off the clock */
+        for (int i = 0; i < STROKES; i++) {
+            x ^= x << 13, x ^= x >> 17, x ^= x << 5;
+            const float *c = md.positions + 3 * (size_t)(x % md.vertex_count);
+            b.delta[0] = 0.01f * diag * ((i & 1) ? 1.0f : -1.0f);
+            size_t touched = 0;
+            double t0 = now_ms();
+            pelt_fur_brush(fur, c, &b, &touched, NULL);
+            double t1 = now_ms();
+            pelt_renderer_upload(s->renderer);
+            glFinish();
+            stroke[i] = t1 - t0;
+            upload[i] = now_ms() - t1;
+            touched_sum += touched;
+        }
+        char name[32];
+        snprintf(name, sizeof name, "r=%.0f%% stroke", 100.0 * fractions[r]);
+        print_stats(name, summarize(stroke, STROKES));
+        snprintf(name, sizeof name, "r=%.0f%% upload", 100.0 * fractions[r]);
+        print_stats(name, summarize(upload, STROKES));
+        printf("  %.0f vertices touched per stroke on average\n", (double)touched_sum / STROKES);
+    }
+    return 0;
+}
+
 int cmd_bench(int argc, char **argv)
 {
     cli_options o;
@@ -192,6 +233,7 @@ int cmd_bench(int argc, char **argv)
                100.0 * (wet[PART_DRAW].median / plain[PART_DRAW].median - 1.0));
     }
     if (o.bench_droplets) rc = bench_droplets(mesh);
+    if (rc == 0 && o.bench_brush) rc = bench_brush(&s);
     free(t);
     cli_session_close(&s);
     cli_options_free(&o);

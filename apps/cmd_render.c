@@ -104,6 +104,15 @@ int cmd_render(int argc, char **argv)
         return 1;
     }
     cli_session_drop_at(&s, &o);
+    if (o.groom_out) {
+        pelt_error gerr = {0};
+        if (pelt_fur_save_groom(pelt_scene_instance_fur(s.instance), o.groom_out, &gerr) != PELT_OK) {
+            cli_error("render", "--save-groom: %s", gerr.message);
+            cli_session_close(&s);
+            cli_options_free(&o);
+            return 1;
+        }
+    }
     bool show_progress = frames > 1 && !o.quiet && isatty(2);
     double start = seconds_now();
     unsigned shown = 0; /* frames the progress line has counted */

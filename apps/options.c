@@ -26,10 +26,12 @@ typedef enum flag_kind {
     FLAG_SET,     /* key=value */
     FLAG_OUTPUT,  /* -o */
     FLAG_MASK_OUT,
+    FLAG_GROOM_OUT,
     FLAG_WARMUP,
     FLAG_DROP_AT,
     FLAG_CLUMPS,
     FLAG_DROPLETS,
+    FLAG_BRUSH,
     FLAG_QUIET
 } flag_kind;
 
@@ -76,6 +78,9 @@ static const flag flags[] = {
     {"--dry-rate", NULL, "R", FLAG_KEY, "wetness.dry_rate", "wetness lost per second"},
     {"--mask-image", NULL, "FILE", FLAG_KEY, "wetness.mask_image", "greyscale image painted as water"},
     {"--mask-out", NULL, "FILE", FLAG_MASK_OUT, NULL, "write the wetness mask as a PNG"},
+    {"--groom", NULL, "FILE", FLAG_KEY, "fur.groom", "a groom file (PLY) to load (docs/grooming.md)"},
+    {"--save-groom", NULL, "FILE", FLAG_GROOM_OUT, NULL,
+     "write the groom (maps, vertex colours, groom file and strokes applied) as a PLY"},
     {"--drop-at", NULL, "X,Y,R", FLAG_DROP_AT, NULL,
      "a droplet where the ray through pixel (X, Y) hits, radius R in world units (repeatable)"},
     {"--set", NULL, "KEY=VALUE", FLAG_SET, NULL, "set any scene key (see docs/scene-format.md)"},
@@ -84,6 +89,8 @@ static const flag flags[] = {
      "bench: also time the scene with 50 clumps over a third of the surface"},
     {"--droplets", NULL, NULL, FLAG_DROPLETS, NULL,
      "bench: time 10,000 droplets into a 2048^2 mask against one whole-mask upload"},
+    {"--brush", NULL, NULL, FLAG_BRUSH, NULL,
+     "bench: time 200 comb strokes (radius 2% and 5% of the mesh diagonal) and their uploads"},
     {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
 };
 
@@ -194,6 +201,9 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     case FLAG_MASK_OUT:
         o->mask_out = value;
         return true;
+    case FLAG_GROOM_OUT:
+        o->groom_out = value;
+        return true;
     case FLAG_WARMUP:
         if (!parse_uint(value, 100000, &o->warmup)) {
             cli_error(cmd, "--warmup '%s': expected a whole number 0..100000", value);
@@ -223,6 +233,9 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     }
     case FLAG_CLUMPS:
         o->bench_clumps = true;
+        return true;
+    case FLAG_BRUSH:
+        o->bench_brush = true;
         return true;
     case FLAG_DROPLETS:
         o->bench_droplets = true;

@@ -40,6 +40,8 @@ typedef struct pelt__gpu_mesh {
     GLuint vao;
     GLuint vbo_static; /* interleaved, PELT_ATTR_* except the tips */
     GLuint vbo_tips;   /* PELT_ATTR_TIP, rewritten when the strands move */
+    GLuint vbo_groom;  /* PELT_ATTR_GROOM and PELT_ATTR_HAIR_COLOR, the
+                          changed range rewritten after a brush or a map */
     GLuint ebo;
     size_t vertex_count;
     size_t triangle_count;
@@ -49,10 +51,11 @@ typedef struct pelt__gpu_mesh {
 /* Uploads the mesh's attributes with the fur's uvs and strand tips. The
  * interleaved array is allocated through hooks and freed before return.
  * On failure *g holds what was made (free it with pelt__gpu_mesh_destroy). */
-pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, const pelt_fur *fur,
+pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt_fur *fur,
                                   const pelt_hooks *hooks, pelt_error *err);
-/* Rewrites the tip buffer when the strands moved; returns bytes sent. */
-size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, const pelt_fur *fur);
+/* Rewrites the tip buffer when the strands moved and the changed range of
+ * the groom buffer; returns bytes sent. */
+size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
 
 /* ---- fur textures (gl/gpu_fur.c) --------------------------------------- */
@@ -91,6 +94,7 @@ typedef struct pelt__fur_block {
     float fur_per_uv[2], shadow, curl_frequency;
     float curl_radius, clump_blend, clump_tightness, wet_darken;
     float color_scale, slant, pad_[2];
+    float skin_color[3], pad1_;
 } pelt__fur_block;
 
 typedef struct pelt__gpu_blocks {

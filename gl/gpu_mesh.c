@@ -17,7 +17,7 @@ typedef struct attribute {
     unsigned stride;
 } attribute;
 
-pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, const pelt_fur *fur,
+pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt_fur *fur,
                                   const pelt_hooks *hooks, pelt_error *err)
 {
     const pelt_mesh_data m = pelt_mesh_get_data(mesh);
@@ -68,6 +68,21 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, cons
     glEnableVertexAttribArray(PELT_ATTR_TIP);
     glVertexAttribPointer(PELT_ATTR_TIP, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
 
+    /* The groom: one 20-byte record per vertex (core/fur/groom.h), lean,
+     * length and density as floats, the hair colour as 4 normalised bytes. */
+    size_t stride;
+    const void *groom = pelt__fur_gpu_groom(fur, &stride);
+    glGenBuffers(1, &g->vbo_groom);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_groom);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * stride), groom, GL_DYNAMIC_DRAW);
+    glEnableVertexAttribArray(PELT_ATTR_GROOM);
+    glVertexAttribPointer(PELT_ATTR_GROOM, 4, GL_FLOAT, GL_FALSE, (GLsizei)stride, NULL);
+    glEnableVertexAttribArray(PELT_ATTR_HAIR_COLOR);
+    glVertexAttribPointer(PELT_ATTR_HAIR_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, (GLsizei)stride,
+                          (const void *)(4 * sizeof(float)));
+    size_t all[2];
+    pelt__fur_gpu_take_groom_dirty(fur, all); /* all of it went up just now */
+
     glGenBuffers(1, &g->ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m.triangle_count * 3 * sizeof(uint32_t)),
@@ -76,22 +91,34 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, cons
     return PELT_OK;
 }
 
-size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, const pelt_fur *fur)
+size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
 {
+    size_t bytes = 0;
     unsigned version;
     const float *tips = pelt__fur_gpu_tips(fur, &version);
-    if (version == g->tips_version) return 0;
-    size_t bytes = g->vertex_count * 3 * sizeof(float);
-    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
-    glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, tips);
-    g->tips_version = version;
+    if (version != g->tips_version) {
+        bytes = g->vertex_count * 3 * sizeof(float);
+        glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, tips);
+        g->tips_version = version;
+    }
+    /* Only the vertices a brush or a map changed. */
+    size_t range[2], stride;
+    if (pelt__fur_gpu_take_groom_dirty(fur, range)) {
+        const uint8_t *groom = pelt__fur_gpu_groom(fur, &stride);
+        size_t n = (range[1] - range[0]) * stride;
+        glBindBuffer(GL_ARRAY_BUFFER, g->vbo_groom);
+        glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(range[0] * stride), (GLsizeiptr)n,
+                        groom + range[0] * stride);
+        bytes += n;
+    }
     return bytes;
 }
 
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)
 {
-    GLuint buffers[3] = {g->vbo_static, g->vbo_tips, g->ebo};
-    glDeleteBuffers(3, buffers);
+    GLuint buffers[4] = {g->vbo_static, g->vbo_tips, g->vbo_groom, g->ebo};
+    glDeleteBuffers(4, buffers);
     if (g->vao) glDeleteVertexArrays(1, &g->vao);
     memset(g, 0, sizeof *g);
 }

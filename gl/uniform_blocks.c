@@ -33,7 +33,8 @@ OFFSET(pelt__fur_block, clump_tightness, 72);
 OFFSET(pelt__fur_block, wet_darken, 76);
 OFFSET(pelt__fur_block, color_scale, 80);
 OFFSET(pelt__fur_block, slant, 84);
-_Static_assert(sizeof(pelt__fur_block) == 96, "std140 size of pelt_fur_block");
+OFFSET(pelt__fur_block, skin_color, 96);
+_Static_assert(sizeof(pelt__fur_block) == 112, "std140 size of pelt_fur_block");
 #undef OFFSET
 
 static GLuint make_buffer(size_t bytes)
@@ -92,6 +93,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
     k.wet_darken = d.wet.darken;
     k.color_scale = d.look.color_scale;
     k.slant = tanf(d.comb.slant * 3.14159265f / 180.0f); /* Lengyel et al. §3 */
+    memcpy(k.skin_color, d.look.skin_color, sizeof k.skin_color);
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

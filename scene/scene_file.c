@@ -19,6 +19,8 @@
 _Static_assert(sizeof(pelt_scene_shape) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_color_pattern) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_atlas_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_vertex_colors_use) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_brush_tool) == sizeof(int), "enum size");
 
 #define PI_F 3.14159265358979f
 
@@ -91,6 +93,10 @@ void pelt_scene_defaults(pelt_scene *s)
 
     s->atlas.mode = PELT_ATLAS_AUTO;
     s->atlas.direction[1] = -1.0f;
+
+    s->groom.length_range[1] = 1.0f;
+    s->groom.density_range[1] = 1.0f;
+    s->groom.flow_strength = 1.0f;
 }
 
 void pelt_scene_free(pelt_scene *s)
@@ -102,6 +108,9 @@ void pelt_scene_free(pelt_scene *s)
     free(s->animation.wind_keys);
     s->animation.wind_keys = NULL;
     s->animation.wind_key_count = 0;
+    free(s->groom.strokes);
+    s->groom.strokes = NULL;
+    s->groom.stroke_count = 0;
 }
 
 /* -------------------------------------------------------------- key table */
@@ -116,7 +125,8 @@ typedef enum kind {
     K_ENUM,     /* one of names[], stored as its index in an int */
     K_PRESET,   /* a curl preset name or "", stored as the string */
     K_DROPLETS, /* array of droplet objects: pointer at off, count at off2 */
-    K_WINDKEYS  /* array of wind keyframes: pointer at off, count at off2 */
+    K_WINDKEYS, /* array of wind keyframes: pointer at off, count at off2 */
+    K_STROKES   /* array of brush strokes: pointer at off, count at off2 */
 } kind;
 
 enum {
@@ -140,6 +150,8 @@ static const char *const shape_names[] = {"torus", "sphere", "square", "file", N
 static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
 static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
+static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
+static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
 /* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
  * The scene format names them as the issue does; the preset table spells two
  * of them differently, so both spellings are accepted (same index). */
@@ -190,6 +202,17 @@ static const key_def scene_keys[] = {
     FLT("fur.curl_frequency", fur.look.curl_frequency, 0, BIG, 0),
     FLT("fur.curl_radius", fur.look.curl_radius, 0, BIG, 0),
     FLT("fur.slant", fur.comb.slant, 0, 60, 0),
+    VEC("fur.skin_color", fur.look.skin_color, 3, 0, 1, 0),
+    PATH("fur.groom", groom.file),
+    PATH("fur.length_map", groom.length_map),
+    RANGE("fur.length_range", groom.length_range[0], groom.length_range[1], 0, PELT_GROOM_MAX_LENGTH),
+    PATH("fur.density_map", groom.density_map),
+    RANGE("fur.density_range", groom.density_range[0], groom.density_range[1], 0, 1),
+    PATH("fur.flow_map", groom.flow_map),
+    FLT("fur.flow_strength", groom.flow_strength, 0, PELT_GROOM_MAX_LEAN, 0),
+    PATH("fur.color_map", groom.color_map),
+    ENUM("fur.vertex_colors", groom.vertex_colors, vertex_colors_names),
+    {"strokes", K_STROKES, OFF(groom.strokes), OFF(groom.stroke_count), 0, 0, 0, 0, NULL},
 
     PATH("texture.image", texture.image),
     ENUM("texture.pattern", texture.pattern, pattern_names),
@@ -271,6 +294,19 @@ static const key_def wind_key_keys[] = {
     {"wind", K_VEC, OFF(wind), 0, -BIG, BIG, 0, 3, NULL},
 };
 #undef OFF
+#define OFF(field) offsetof(pelt_scene_stroke, field)
+static const key_def stroke_keys[] = {
+    {"tool", K_ENUM, OFF(brush.tool), 0, 0, 0, 0, 0, tool_names},
+    {"radius", K_FLOAT, OFF(brush.radius), 0, 0, BIG, F_LO_OPEN, 0, NULL},
+    {"strength", K_FLOAT, OFF(brush.strength), 0, 0, 1, F_LO_OPEN, 0, NULL},
+    {"delta", K_VEC, OFF(brush.delta), 0, -BIG, BIG, 0, 3, NULL},
+    {"amount", K_FLOAT, OFF(brush.amount), 0, -PELT_GROOM_MAX_LENGTH, PELT_GROOM_MAX_LENGTH, 0, 0, NULL},
+    {"color", K_VEC, OFF(brush.color), 0, 0, 1, 0, 3, NULL},
+    {"pixel", K_VEC, OFF(pixel), 0, -BIG, BIG, 0, 2, NULL},
+    {"at", K_VEC, OFF(at), 0, -BIG, BIG, 0, 3, NULL},
+    {"drag", K_VEC, OFF(drag), 0, -BIG, BIG, 0, 2, NULL},
+};
+#undef OFF
 
 typedef struct table {
     const key_def *keys;
@@ -281,6 +317,7 @@ typedef struct table {
 static const table scene_table = TABLE(scene_keys);
 static const table droplet_table = TABLE(droplet_keys);
 static const table wind_key_table = TABLE(wind_key_keys);
+static const table stroke_table = TABLE(stroke_keys);
 
 /* ------------------------------------------------------------ the parser */
 
@@ -555,6 +592,31 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
                 free(items);
                 return st;
             }
+        memcpy(field, &items, sizeof items);
+        memcpy((unsigned char *)base + d->off2, &n, sizeof n);
+        break;
+    }
+    case K_STROKES: {
+        static const char *const required[] = {"tool", "radius", NULL};
+        pelt_scene_stroke init;
+        memset(&init, 0, sizeof init);
+        init.at[0] = init.at[1] = init.at[2] = NAN;
+        init.brush.strength = 1.0f;
+        void *items = NULL;
+        size_t n = 0;
+        st = read_list(c, key, v, &stroke_table, sizeof(pelt_scene_stroke), &init, required,
+                       PELT_SCENE_MAX_STROKES, &items, &n);
+        if (st != PELT_OK) break;
+        /* Where it lands: a pixel or a point, exactly one of them. */
+        size_t i = 0;
+        for (const cJSON *e = v->child; e; e = e->next, i++) {
+            bool px = cJSON_GetObjectItemCaseSensitive(e, "pixel") != NULL;
+            bool at = cJSON_GetObjectItemCaseSensitive(e, "at") != NULL;
+            if (px != at) continue;
+            free(items);
+            return pelt__fail(c->err, PELT_ERR_FORMAT, "%s: %s[%zu]: give either 'pixel' or 'at'%s",
+                              c->name, key, i, px ? ", not both" : "");
+        }
         memcpy(field, &items, sizeof items);
         memcpy((unsigned char *)base + d->off2, &n, sizeof n);
         break;
@@ -891,10 +953,12 @@ pelt_status pelt_scene_set(pelt_scene *s, const char *key_path, const char *valu
     if (st == PELT_OK) {
         if (tmp.wetness.droplets != s->wetness.droplets) free(s->wetness.droplets);
         if (tmp.animation.wind_keys != s->animation.wind_keys) free(s->animation.wind_keys);
+        if (tmp.groom.strokes != s->groom.strokes) free(s->groom.strokes);
         *s = tmp;
     } else {
         if (tmp.wetness.droplets != s->wetness.droplets) free(tmp.wetness.droplets);
         if (tmp.animation.wind_keys != s->animation.wind_keys) free(tmp.animation.wind_keys);
+        if (tmp.groom.strokes != s->groom.strokes) free(tmp.groom.strokes);
     }
     return st;
 }

@@ -4,10 +4,12 @@
 
 #include "pelt/atlas.h"
 #include "pelt/dynamics.h"
+#include "pelt/groom.h"
 #include "pelt/wetness.h"
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
+#include "core/base/vec.h"
 
 #include <errno.h>
 #include <math.h>
@@ -160,6 +162,48 @@ static pelt_status apply_water(pelt_scene_instance *inst, const pelt_scene *sc, 
     return PELT_OK;
 }
 
+/* One groom map: an image file read as RGBA into one field. */
+static pelt_status apply_map(pelt_scene_instance *inst, const char *key, const char *path,
+                             pelt_groom_field field, float lo, float hi, pelt_error *err)
+{
+    if (!path[0]) return PELT_OK;
+    int w, h;
+    uint8_t *rgba;
+    pelt_status st = load_image(key, path, 4, &rgba, &w, &h, err);
+    if (st != PELT_OK) return st;
+    pelt_error e = {0};
+    st = pelt_fur_groom_from_image(inst->fur, field, rgba, (unsigned)w, (unsigned)h, lo, hi, &e);
+    stbi_image_free(rgba);
+    if (st != PELT_OK) return pelt__fail(err, st, "%s '%s': %s", key, path, e.message);
+    return PELT_OK;
+}
+
+/* Grooming (Lengyel et al. §3): maps, vertex colours, the groom file, in
+ * that order; the strokes come once the camera is placed. */
+static pelt_status apply_groom(pelt_scene_instance *inst, pelt_error *err)
+{
+    const pelt_scene_groom *g = &inst->scene.groom;
+    pelt_status st = apply_map(inst, "fur.length_map", g->length_map, PELT_GROOM_LENGTH,
+                               g->length_range[0], g->length_range[1], err);
+    if (st == PELT_OK)
+        st = apply_map(inst, "fur.density_map", g->density_map, PELT_GROOM_DENSITY,
+                       g->density_range[0], g->density_range[1], err);
+    if (st == PELT_OK)
+        st = apply_map(inst, "fur.flow_map", g->flow_map, PELT_GROOM_FLOW, 0.0f, g->flow_strength, err);
+    if (st == PELT_OK)
+        st = apply_map(inst, "fur.color_map", g->color_map, PELT_GROOM_COLOR, 0.0f, 1.0f, err);
+    if (st != PELT_OK) return st;
+    pelt_error e = {0};
+    if (g->vertex_colors == PELT_VERTEX_COLORS_HAIR &&
+        pelt_fur_groom_from_vertex_colors(inst->fur, &e) != PELT_OK)
+        return pelt__fail(err, e.status, "fur.vertex_colors is \"hair\" but %s has no vertex colours",
+                          inst->scene.mesh.shape == PELT_SHAPE_FILE ? inst->scene.mesh.file
+                                                                    : "a procedural mesh");
+    if (g->file[0] && pelt_fur_load_groom(inst->fur, g->file, &e) != PELT_OK)
+        return pelt__fail(err, e.status, "fur.groom: %s", e.message);
+    return PELT_OK;
+}
+
 /* A mesh file seen through the default camera is framed: the camera aims
  * at the middle of its bounds from a distance that fits it. */
 static void frame_camera(pelt_scene_instance *inst)
@@ -197,8 +241,59 @@ static void step_at(pelt_scene_instance *inst, float t, float dt)
     pelt_fur_step(inst->fur, dt, &forces);
 }
 
+/* World units to mesh units: the model matrix's scale (uniform). */
+static float mesh_units(const pelt_view *v)
+{
+    float s = sqrtf(v->model[0] * v->model[0] + v->model[1] * v->model[1] + v->model[2] * v->model[2]);
+    return s > 0.0f && isfinite(s) ? 1.0f / s : 1.0f;
+}
+
+/* A brush where the ray through pixel (px, py) meets the mesh: radius
+ * and delta in world units, plus a drag in pixels turned into a delta
+ * across the view plane at the hit's distance from the eye. */
+static bool brush_at_pixel(pelt_scene_instance *inst, float px, float py, const pelt_brush *b,
+                           const float drag[2])
+{
+    const pelt_view *v = &inst->view;
+    float o[3], d[3], p[3];
+    if (!pelt_view_pixel_ray(v, px, py, o, d) || !pelt_fur_pick(inst->fur, o, d, p)) return false;
+    float scale = mesh_units(v);
+    pelt_brush local = *b;
+    local.radius = b->radius * scale;
+    for (int k = 0; k < 3; k++) local.delta[k] = b->delta[k] * scale;
+    if (drag && (drag[0] != 0.0f || drag[1] != 0.0f)) {
+        float o2[3], d2[3];
+        if (!pelt_view_pixel_ray(v, px + drag[0], py + drag[1], o2, d2)) return false;
+        pelt_vec3 to_hit = v3_sub(v3_load(p), v3_load(o));
+        pelt_vec3 dir2 = v3_norm_or(v3_load(d2), v3(0.0f, 0.0f, 0.0f));
+        pelt_vec3 q = v3_mad(v3_load(o2), dir2, v3_len(to_hit));
+        for (int k = 0; k < 3; k++) local.delta[k] += (&q.x)[k] - p[k];
+    }
+    return pelt_fur_brush(inst->fur, p, &local, NULL, NULL) == PELT_OK;
+}
+
+/* The scene's strokes, on the first frame's view. */
+static pelt_status apply_strokes(pelt_scene_instance *inst, const pelt_scene *sc, pelt_error *err)
+{
+    for (size_t i = 0; i < sc->groom.stroke_count; i++) {
+        const pelt_scene_stroke *s = &sc->groom.strokes[i];
+        if (isfinite(s->at[0])) {
+            pelt_error e = {0};
+            if (pelt_fur_brush(inst->fur, s->at, &s->brush, NULL, &e) != PELT_OK)
+                return pelt__fail(err, e.status, "strokes[%zu]: %s", i, e.message);
+            continue;
+        }
+        if (!brush_at_pixel(inst, s->pixel[0], s->pixel[1], &s->brush, s->drag))
+            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                              "strokes[%zu]: pixel (%g, %g) does not see the mesh", i,
+                              (double)s->pixel[0], (double)s->pixel[1]);
+    }
+    return PELT_OK;
+}
+
 /* The copy keeps the wind keys (advance reads them) and drops the
- * droplets (used once, at instantiation, from the caller's scene). */
+ * droplets and strokes (used once, at instantiation, from the caller's
+ * scene). */
 static pelt_status copy_scene(pelt_scene_instance *inst, const pelt_scene *sc, pelt_error *err)
 {
     inst->scene = *sc;
@@ -206,6 +301,8 @@ static pelt_status copy_scene(pelt_scene_instance *inst, const pelt_scene *sc, p
     inst->scene.wetness.droplet_count = 0;
     inst->scene.animation.wind_keys = NULL;
     inst->scene.animation.wind_key_count = 0;
+    inst->scene.groom.strokes = NULL;
+    inst->scene.groom.stroke_count = 0;
     size_t n = sc->animation.wind_key_count;
     if (n && sc->animation.wind_keys) {
         pelt_wind_key *keys = pelt__alloc_zero(&inst->hooks.allocator, n, sizeof *keys);
@@ -247,6 +344,7 @@ static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
     st = pelt_fur_create(inst->mesh, &fd, &inst->fur, err);
     if (st == PELT_OK) st = apply_color(inst, err);
     if (st == PELT_OK) st = apply_water(inst, sc, err);
+    if (st == PELT_OK) st = apply_groom(inst, err);
     if (st != PELT_OK) return st;
 
     frame_camera(inst);
@@ -255,6 +353,9 @@ static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
     inst->view.light = sc->light;
     inst->view.width = o->width;
     inst->view.height = o->height;
+    pelt_scene_model_at(sc, 0.0f, inst->view.model);
+    st = apply_strokes(inst, sc, err);
+    if (st != PELT_OK) return st;
 
     /* Settle under the forces of time 0, so a still shows the fur bent by
      * gravity rather than mid-spring; rain and drying start afterwards. */
@@ -322,6 +423,12 @@ bool pelt_scene_instance_drop_at_pixel(pelt_scene_instance *inst, float px, floa
     float origin[3], dir[3];
     return pelt_view_pixel_ray(&inst->view, px, py, origin, dir) &&
            pelt_fur_add_droplet_ray(inst->fur, origin, dir, radius, wetness);
+}
+
+bool pelt_scene_instance_brush_at_pixel(pelt_scene_instance *inst, float px, float py,
+                                        const pelt_brush *brush, const float drag[2])
+{
+    return inst && brush && brush_at_pixel(inst, px, py, brush, drag);
 }
 
 pelt_scene_instance_stats pelt_scene_instance_get_stats(const pelt_scene_instance *inst)

@@ -147,9 +147,10 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
 {
     const pelt_mesh_data src = pelt_mesh_get_data(in);
     size_t nv = a->vertex_count, tc = a->triangle_count;
-    /* 3 + 3 + 3 + 2 + 2 + 3 (directions) + 1 (weight) floats and 2 + 1
-     * (old index) indices per vertex, 3 indices per triangle. */
-    float *fbuf = pelt__alloc_zero(&a->alloc, nv, 17 * sizeof(float));
+    /* 3 + 3 + 3 + 2 + 2 + 3 (directions) + 1 (weight) + 4 (colours)
+     * floats and 2 + 1 (old index) indices per vertex, 3 indices per
+     * triangle. */
+    float *fbuf = pelt__alloc_zero(&a->alloc, nv, 21 * sizeof(float));
     uint32_t *ibuf = pelt__alloc_zero(&a->alloc, 3 * nv + 3 * tc, sizeof(uint32_t));
     if (!fbuf || !ibuf) {
         pelt__free(&a->alloc, fbuf), pelt__free(&a->alloc, ibuf);
@@ -157,7 +158,7 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
     }
     float *positions = fbuf, *normals = fbuf + 3 * nv, *comb = fbuf + 6 * nv;
     float *ord_uvs = fbuf + 9 * nv, *ord_fur = fbuf + 11 * nv, *dirs = fbuf + 13 * nv,
-          *wts = fbuf + 16 * nv;
+          *wts = fbuf + 16 * nv, *colors = src.colors ? fbuf + 17 * nv : NULL;
     uint32_t *old_of = ibuf, *source = ibuf + nv, *welded = ibuf + 2 * nv,
              *ord_indices = ibuf + 3 * nv;
     uint32_t *new_of = source; /* scratch until the gather below: new index + 1, 0 = unused */
@@ -181,6 +182,7 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
         memcpy(positions + 3 * o, src.positions + 3 * source[o], 3 * sizeof(float));
         memcpy(normals + 3 * o, src.normals + 3 * source[o], 3 * sizeof(float));
         for (int k = 0; k < 3; k++) comb[3 * o + k] = dirs[3 * o + k] * wts[o];
+        if (colors) memcpy(colors + 4 * o, src.colors + 4 * source[o], 4 * sizeof(float));
     }
     a->vertex_count = vc;
     memcpy(a->source_vertex, source, vc * sizeof(uint32_t));
@@ -189,7 +191,7 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
     memcpy(a->weights, wts, vc * sizeof(float));
     pelt_mesh_data d = {.positions = positions, .normals = normals, .uvs = ord_uvs,
                         .vertex_count = vc, .indices = ord_indices, .triangle_count = tc,
-                        .fur_uvs = ord_fur, .comb = comb};
+                        .fur_uvs = ord_fur, .comb = comb, .colors = colors};
     pelt_error merr = {0};
     pelt_mesh *m = NULL;
     pelt_status st = pelt_mesh_create(&d, &m, &merr);

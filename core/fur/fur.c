@@ -34,6 +34,9 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->look.tip_color[0] == 0.0f && d->look.tip_color[1] == 0.0f && d->look.tip_color[2] == 0.0f) {
         d->look.tip_color[0] = 1.0f; d->look.tip_color[1] = 0.82f; d->look.tip_color[2] = 0.58f;
     }
+    if (d->look.skin_color[0] == 0.0f && d->look.skin_color[1] == 0.0f && d->look.skin_color[2] == 0.0f) {
+        d->look.skin_color[0] = 0.78f; d->look.skin_color[1] = 0.56f; d->look.skin_color[2] = 0.47f;
+    }
     if (d->look.specular[0] == 0.0f && d->look.specular[1] == 0.0f && d->look.specular[2] == 0.0f)
         d->look.specular[0] = 0.9f, d->look.specular[1] = 0.85f, d->look.specular[2] = 0.8f;
     if (d->look.shininess == 0.0f) d->look.shininess = 20.0f;
@@ -173,6 +176,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->desc.hooks.allocator, &f->surface, err);
     if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
     if (st == PELT_OK) st = pelt__rain_create(mesh, &f->desc.hooks.allocator, &f->rain, err);
+    if (st == PELT_OK) st = pelt__groom_init(&f->groom, mesh->vertex_count, &f->desc.hooks.allocator, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
@@ -215,6 +219,7 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__surface_index_destroy(f->surface);
     pelt__bvh_destroy(f->bvh);
     pelt__rain_destroy(f->rain);
+    pelt__groom_free(&f->groom);
     pelt__free(&a, f);
 }
 
@@ -244,6 +249,16 @@ void pelt_fur_reset(pelt_fur *f)
 }
 
 pelt_fur_desc pelt_fur_get_desc(const pelt_fur *f) { return f->desc; }
+
+bool pelt_fur_pick(const pelt_fur *f, const float origin[3], const float direction[3], float hit[3])
+{
+    pelt__hit h;
+    if (!f || !origin || !direction || !pelt__bvh_raycast(f->bvh, origin, direction, INFINITY, &h))
+        return false;
+    if (hit)
+        for (int k = 0; k < 3; k++) hit[k] = origin[k] + h.t * direction[k];
+    return true;
+}
 
 pelt_status pelt_fur_set_color_texture(pelt_fur *f, const uint8_t *rgba, unsigned w, unsigned h,
                                        pelt_error *err)

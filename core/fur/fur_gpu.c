@@ -46,3 +46,14 @@ bool pelt__fur_gpu_take_mask_dirty(pelt_fur *f, unsigned rect[4])
 {
     return pelt__wetness_take_dirty(f->wetness, rect);
 }
+
+const void *pelt__fur_gpu_groom(const pelt_fur *f, size_t *stride)
+{
+    *stride = sizeof(pelt__groom_vertex);
+    return f->groom.v;
+}
+
+bool pelt__fur_gpu_take_groom_dirty(pelt_fur *f, size_t range[2])
+{
+    return pelt__groom_take_dirty(&f->groom, range);
+}

@@ -26,6 +26,14 @@ void pelt__fur_gpu_per_uv(const pelt_fur *fur, float out[2]);
  * changes whenever they change. */
 const float *pelt__fur_gpu_tips(const pelt_fur *fur, unsigned *version);
 
+/* The groom (core/fur/groom.h): one pelt__groom_vertex per mesh vertex,
+ * *stride bytes apart. */
+const void *pelt__fur_gpu_groom(const pelt_fur *fur, size_t *stride);
+
+/* Takes the range of vertices [range[0], range[1]) whose groom changed
+ * since the last take; false when nothing changed. */
+bool pelt__fur_gpu_take_groom_dirty(pelt_fur *fur, size_t range[2]);
+
 /* The colour texture, RGBA8 width x height, or NULL when none was set;
  * *version changes whenever it is set. */
 const uint8_t *pelt__fur_gpu_color(const pelt_fur *fur, unsigned *width, unsigned *height,

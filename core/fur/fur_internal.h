@@ -5,6 +5,7 @@
 #include "pelt/fur.h"
 
 #include "core/mesh/raycast.h"
+#include "core/fur/groom.h"
 #include "core/fur/strand.h"
 #include "core/wet/mask.h"
 #include "core/wet/rain.h"
@@ -30,6 +31,7 @@ struct pelt_fur {
     pelt__bvh *bvh;          /* droplets by a ray */
     pelt__rain *rain;        /* rain and random drops (core/wet/rain.h) */
     float dry_rate;
+    pelt__groom groom;       /* per-vertex colour, length, density, lean */
 };
 
 /* Fills the zero fields of `d` with defaults for `mesh`. */

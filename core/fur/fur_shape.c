@@ -34,6 +34,12 @@ pelt_vec3 pelt__fur_comb(pelt_vec3 u, float L0, float slant, float h)
     return v3_scale(u, h * L0 * slant);
 }
 
+pelt_vec3 pelt__fur_groom_shear(pelt_vec3 comb, float slant, pelt_vec3 u, pelt_vec3 v,
+                                const float lean[2])
+{
+    return v3_add(v3_scale(comb, slant), v3_add(v3_scale(u, lean[0]), v3_scale(v, lean[1])));
+}
+
 pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
                                    pelt_vec3 comb, float omega, float K, float rho, float slant,
                                    float h)

@@ -41,6 +41,15 @@ pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_ve
                                    pelt_vec3 comb, float omega, float K, float rho, float slant,
                                    float h);
 
+/* Grooming (Lengyel et al. §3): the shear per unit length of a groomed
+ * strand, the comb direction times the global slant plus the groomed lean
+ * (lean[0], lean[1]) along the vertex's tangent frame (u, v). The shells
+ * then take pelt__fur_comb(shear, L, 1, h) with L = L0 times the vertex's
+ * length scale s, and the strand's tip and curl radius scale by s too (a
+ * short strand is a scaled-down long one). */
+pelt_vec3 pelt__fur_groom_shear(pelt_vec3 comb, float slant, pelt_vec3 u, pelt_vec3 v,
+                                const float lean[2]);
+
 /* The four looks of Silva Fig. 7 by name: "straight", "wavy",
  * "few-large-curls", "many-small-curls".
  * omega in radians over the full length, radius as a fraction of L0

@@ -22,15 +22,17 @@ typedef struct strand {
     float lean_x, lean_y; /* texels of drift over the full height */
     float length;      /* fraction of the full height, 0..1 */
     float shade;       /* 0..1 */
+    float id;          /* 0..1, uniform: grooming's density keeps strands with id < density */
 } strand;
 
 enum { SUBSAMPLES = 4 };
 
 /* Adds a soft-edged disc of radius r at (cx, cy) to a slice, wrapping
  * toroidally. Coverage is accumulated as a union in the alpha byte; the
- * strand covering a texel most sets its shade and height along the strand. */
+ * strand covering a texel most sets its shade, height along the strand and
+ * id (red, green, blue). */
 static void splat(uint8_t *slice, unsigned size, float cx, float cy, float r, float weight,
-                  float shade, float along)
+                  float shade, float along, float id)
 {
     int x0 = (int)floorf(cx - r - 1.0f), x1 = (int)ceilf(cx + r + 1.0f);
     int y0 = (int)floorf(cy - r - 1.0f), y1 = (int)ceilf(cy + r + 1.0f);
@@ -47,8 +49,8 @@ static void splat(uint8_t *slice, unsigned size, float cx, float cy, float r, fl
             if (c >= old) {
                 t[0] = (uint8_t)(shade * 255.0f + 0.5f);
                 t[1] = (uint8_t)(along * 255.0f + 0.5f);
+                t[2] = (uint8_t)(id * 255.0f + 0.5f);
             }
-            t[2] = 255;
             t[3] = (uint8_t)((old + c * (1.0f - old)) * 255.0f + 0.5f);
         }
     }
@@ -82,6 +84,7 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
         float z_hi = (float)(layer + 1) / (float)d->layers;
         /* The same strands for every slice: re-seed per slice. */
         pelt__rng srng = pelt__rng_seed(d->seed, 0x73747261ULL);
+        pelt__rng idrng = pelt__rng_seed(d->seed, 0x69647321ULL);
         for (size_t s = 0; s < count; s++) {
             strand st;
             st.x = pelt__rng_float(&srng) * size;
@@ -90,6 +93,8 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
             st.lean_y = pelt__rng_range(&srng, -1.0f, 1.0f) * d->strand_radius * 2.0f;
             st.length = pelt__rng_range(&srng, 0.6f, 1.0f);
             st.shade = pelt__rng_range(&srng, 0.65f, 1.0f);
+            /* Drawn from its own stream, so the strands above stay as they were. */
+            st.id = pelt__rng_float(&idrng);
             if (z_lo >= st.length) continue;
             for (int k = 0; k < SUBSAMPLES; k++) {
                 float z = z_lo + (z_hi - z_lo) * ((float)k + 0.5f) / SUBSAMPLES;
@@ -101,7 +106,7 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
                 /* Thin discs still cover a fraction of a texel. */
                 float weight = r < 0.5f ? r * 2.0f : 1.0f;
                 /* Sub-samples of the tall filter each add a share. */
-                splat(slice, d->size, cx, cy, r, weight * (2.0f / SUBSAMPLES), st.shade, along);
+                splat(slice, d->size, cx, cy, r, weight * (2.0f / SUBSAMPLES), st.shade, along, st.id);
             }
         }
         /* Premultiply by coverage so mipmaps average colour correctly (a
@@ -110,7 +115,7 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
             uint8_t *t = slice + i * 4;
             t[0] = (uint8_t)((t[0] * t[3] + 127) / 255);
             t[1] = (uint8_t)((t[1] * t[3] + 127) / 255);
-            t[2] = t[3];
+            t[2] = (uint8_t)((t[2] * t[3] + 127) / 255);
         }
     }
 }

@@ -22,8 +22,8 @@ size_t pelt__furtex_bytes(const pelt__furtex_desc *d);
  * the skin, fully opaque; slice n + 1 holds the hair at the height of
  * shell n, h = (1 + n) / N. Channels, premultiplied by coverage A: R =
  * strand shade (0..1), G = height along the strand relative to its
- * length, B = 1; A = coverage. The
- * volume tiles in both texture axes. Deterministic for a seed. */
+ * length, B = the strand's id, uniform in [0,1] (grooming's density
+ * keeps strands whose id is below it); A = coverage. The volume tiles in both texture axes. Deterministic for a seed. */
 void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba);
 
 #endif

@@ -14,3 +14,21 @@ void pelt__kajiya_kay(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p, float *dif
 
 /* Silva et al. Eq. 6: darkens the lower part of the fur. */
 float pelt__shadow_factor(float k_shadow, float h) { return (k_shadow - 1.0f + h) / k_shadow; }
+
+static float mixf(float a, float b, float t) { return a * (1.0f - t) + b * t; }
+
+pelt_vec3 pelt__groom_root_color(pelt_vec3 color, const float c[4])
+{
+    return v3(mixf(color.x, c[0], c[3]), mixf(color.y, c[1], c[3]), mixf(color.z, c[2], c[3]));
+}
+
+pelt_vec3 pelt__groom_tip_color(pelt_vec3 color, pelt_vec3 tip, const float c[4])
+{
+    const float col[3] = {color.x, color.y, color.z}, tp[3] = {tip.x, tip.y, tip.z};
+    float r[3];
+    for (int k = 0; k < 3; k++)
+        r[k] = mixf(tp[k], fminf(c[k] * tp[k] / fmaxf(col[k], 0.01f), 1.0f), c[3]);
+    return v3(r[0], r[1], r[2]);
+}
+
+bool pelt__groom_keeps(float id, float density) { return density >= 1.0f || id < density; }

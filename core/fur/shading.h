@@ -6,6 +6,8 @@
 
 #include "core/base/vec.h"
 
+#include <stdbool.h>
+
 /* Silva et al. Eq. 6, Kajiya-Kay: T strand tangent, L towards the light,
  * E camera direction (from the eye towards the point), all unit.
  * Returns (C_d, C_s) factors: diffuse = |T x L|, specular =
@@ -15,5 +17,15 @@ void pelt__kajiya_kay(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p, float *dif
 
 /* Silva et al. Eq. 6 shadow factor gamma = (K - 1 + h) / K, K >= 1. */
 float pelt__shadow_factor(float k_shadow, float h);
+
+/* Grooming (Lengyel et al. §3): the hair colour c (rgb, weight c[3]) over
+ * the look's root colour, and the tip colour brightened by the look's own
+ * tip / root ratio (per channel, root at least 0.01, result at most 1). */
+pelt_vec3 pelt__groom_root_color(pelt_vec3 color, const float c[4]);
+pelt_vec3 pelt__groom_tip_color(pelt_vec3 color, pelt_vec3 tip, const float c[4]);
+
+/* Grooming's density keeps a strand of the fur volume when its id is below
+ * the density (all of them at density 1). */
+bool pelt__groom_keeps(float id, float density);
 
 #endif

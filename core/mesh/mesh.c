@@ -57,16 +57,19 @@ void pelt_mesh_destroy(pelt_mesh *mesh)
     free(mesh->tangents);
     free(mesh->comb);
     free(mesh->directions);
+    free(mesh->colors);
     free(mesh->indices);
     free(mesh);
 }
 
 const float *pelt_mesh_directions(const pelt_mesh *mesh) { return mesh ? mesh->directions : NULL; }
 
+const float *pelt_mesh_colors(const pelt_mesh *mesh) { return mesh ? mesh->colors : NULL; }
+
 pelt_mesh_data pelt_mesh_get_data(const pelt_mesh *m)
 {
     pelt_mesh_data d = {m->positions, m->normals, m->uvs, m->vertex_count, m->indices,
-                        m->triangle_count, m->directions, m->fur_uvs, m->comb};
+                        m->triangle_count, m->directions, m->fur_uvs, m->comb, m->colors};
     return d;
 }
 
@@ -475,8 +478,9 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
     if (data->directions) m->directions = pelt__calloc(m->vertex_count, 3 * sizeof(float));
     if (data->fur_uvs) m->fur_uvs = pelt__calloc(m->vertex_count, 2 * sizeof(float));
     if (data->comb) m->comb = pelt__calloc(m->vertex_count, 3 * sizeof(float));
+    if (data->colors) m->colors = pelt__calloc(m->vertex_count, 4 * sizeof(float));
     if ((data->directions && !m->directions) || (data->fur_uvs && !m->fur_uvs) ||
-        (data->comb && !m->comb)) {
+        (data->comb && !m->comb) || (data->colors && !m->colors)) {
         free(keep);
         free(remap);
         pelt_mesh_destroy(m);
@@ -496,6 +500,12 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
         if (m->comb) {
             const float *c = data->comb + 3 * i;
             for (int k = 0; k < 3; k++) m->comb[3 * o + k] = isfinite(c[k]) ? c[k] : 0.0f;
+        }
+        if (m->colors) {
+            /* Colours are clamped to [0,1]; non-finite ones become 0. */
+            const float *c = data->colors + 4 * i;
+            for (int k = 0; k < 4; k++)
+                m->colors[4 * o + k] = isfinite(c[k]) ? fminf(fmaxf(c[k], 0.0f), 1.0f) : 0.0f;
         }
         if (normals_ok) {
             /* Normalised in double: tiny or huge input normals stay finite.

@@ -368,7 +368,7 @@ typedef struct merge_state {
     size_t vertex_count, triangle_count;
     int have_normals, have_uvs, have_colors; /* every instanced mesh has them */
     /* Output arrays (second pass only). */
-    float *positions, *normals, *uvs, *directions;
+    float *positions, *normals, *uvs, *directions, *colors;
     uint32_t *indices;
     size_t v_at, t_at;
 } merge_state;
@@ -434,6 +434,8 @@ static pelt_status append_mesh(merge_state *s, const struct aiMesh *mesh, const 
             const float d[3] = {2.0f * c4.r - 1.0f, 2.0f * c4.g - 1.0f, 2.0f * c4.b - 1.0f};
             float *od = s->directions + 3 * (base + v);
             for (int k = 0; k < 3; k++) od[k] = x[4 * k] * d[0] + x[4 * k + 1] * d[1] + x[4 * k + 2] * d[2];
+            float *oc = s->colors + 4 * (base + v);
+            oc[0] = c4.r, oc[1] = c4.g, oc[2] = c4.b, oc[3] = c4.a;
         }
     }
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
@@ -497,7 +499,7 @@ static pelt_status visit(merge_state *s, const struct aiNode *node, const struct
 static pelt_status merge_scene(const struct aiScene *scene, const char *path, pelt_mesh **out,
                                pelt_error *err)
 {
-    merge_state s = {scene, path, err, 0, 0, 1, 1, 1, NULL, NULL, NULL, NULL, NULL, 0, 0};
+    merge_state s = {scene, path, err, 0, 0, 1, 1, 1, NULL, NULL, NULL, NULL, NULL, NULL, 0, 0};
     struct aiMatrix4x4 id = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     pelt_status st = visit(&s, scene->mRootNode, &id, 0);
     if (st) return st;
@@ -507,9 +509,10 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
     s.normals = s.have_normals ? pelt__calloc(s.vertex_count, 3 * sizeof(float)) : NULL;
     s.uvs = s.have_uvs ? pelt__calloc(s.vertex_count, 2 * sizeof(float)) : NULL;
     s.directions = s.have_colors ? pelt__calloc(s.vertex_count, 3 * sizeof(float)) : NULL;
+    s.colors = s.have_colors ? pelt__calloc(s.vertex_count, 4 * sizeof(float)) : NULL;
     s.indices = pelt__calloc(s.triangle_count, 3 * sizeof(uint32_t));
     if (!s.positions || !s.indices || (s.have_normals && !s.normals) || (s.have_uvs && !s.uvs) ||
-        (s.have_colors && !s.directions)) {
+        (s.have_colors && (!s.directions || !s.colors))) {
         st = pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: no memory for %zu vertices", path,
                         s.vertex_count);
     } else {
@@ -517,6 +520,7 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
     }
     if (st == PELT_OK) {
         pelt_mesh_data data = {s.positions, s.normals, s.uvs, s.v_at, s.indices, s.t_at, s.directions};
+        data.colors = s.colors;
         st = pelt_mesh_create(&data, out, err);
         if (st != PELT_OK && err) {
             /* Name the file in front of pelt_mesh_create's detail. */
@@ -529,6 +533,7 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
     free(s.normals);
     free(s.uvs);
     free(s.directions);
+    free(s.colors);
     free(s.indices);
     return st;
 }

@@ -21,6 +21,7 @@ struct pelt_mesh {
     float *comb;      /* 3 per vertex or NULL (then the tangent): the comb
                          direction, the direction field times its weight;
                          0 where the field vanishes, so the fur stands up */
+    float *colors;    /* 4 per vertex or NULL: RGBA vertex colours from the file */
     uint32_t *indices; /* 3 per triangle */
     float bounds_min[3], bounds_max[3];
     pelt_mesh_stats stats;

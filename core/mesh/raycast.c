@@ -401,6 +401,52 @@ bool pelt__bvh_raycast(const pelt__bvh *bvh, const float origin[3],
     return true;
 }
 
+/* Squared distance from c to the box [lo, hi]. */
+static float box_distance2(const float lo[3], const float hi[3], const float c[3])
+{
+    float d2 = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        float e = c[k] < lo[k] ? lo[k] - c[k] : c[k] > hi[k] ? c[k] - hi[k] : 0.0f;
+        d2 += e * e;
+    }
+    return d2;
+}
+
+size_t pelt__bvh_query_ball(const pelt__bvh *bvh, const float center[3], float radius,
+                            void (*visit)(size_t triangle, void *user), void *user)
+{
+    if (!bvh || !visit || !(radius >= 0.0f) || !isfinite(radius) || !isfinite(center[0]) ||
+        !isfinite(center[1]) || !isfinite(center[2]))
+        return 0;
+    float r2 = radius * radius;
+    size_t visited = 0;
+    uint32_t stack[STACK_MAX];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+        const bvh_node *n = &bvh->nodes[stack[--top]];
+        if (box_distance2(n->lo, n->hi, center) > r2) continue;
+        if (n->count == 0) {
+            stack[top++] = n->first;
+            stack[top++] = n->first + 1;
+            continue;
+        }
+        for (uint32_t i = n->first; i < n->first + n->count; i++) {
+            const bvh_tri *t = &bvh->tris[i];
+            float lo[3], hi[3];
+            for (int k = 0; k < 3; k++) {
+                float a = t->v0[k], b = a + t->e1[k], c = a + t->e2[k];
+                lo[k] = fminf(a, fminf(b, c));
+                hi[k] = fmaxf(a, fmaxf(b, c));
+            }
+            if (box_distance2(lo, hi, center) > r2) continue;
+            visit(bvh->source[i], user);
+            visited++;
+        }
+    }
+    return visited;
+}
+
 bool pelt__raycast_brute(const pelt_mesh *mesh, const float origin[3],
                          const float dir[3], float t_max, pelt__hit *hit)
 {

@@ -29,6 +29,13 @@ void pelt__bvh_destroy(pelt__bvh *bvh);
 bool pelt__bvh_raycast(const pelt__bvh *bvh, const float origin[3],
                        const float dir[3], float t_max, pelt__hit *hit);
 
+/* Calls visit(triangle, user) for every triangle whose bounding box comes
+ * within `radius` of `center` (a superset of the triangles the ball
+ * touches), for brushes: the work grows with the triangles near the ball,
+ * not with the mesh. Returns how many were visited. No allocation. */
+size_t pelt__bvh_query_ball(const pelt__bvh *bvh, const float center[3], float radius,
+                            void (*visit)(size_t triangle, void *user), void *user);
+
 /* The same query by testing every triangle: the reference for tests. */
 bool pelt__raycast_brute(const pelt_mesh *mesh, const float origin[3],
                          const float dir[3], float t_max, pelt__hit *hit);

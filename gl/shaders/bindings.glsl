@@ -14,6 +14,8 @@
 #define PELT_ATTR_TANGENT 4  // vec4, unit tangent along +u, w = handedness
 #define PELT_ATTR_TIP 5      // vec3, strand tip offset p - p_root (per frame)
 #define PELT_ATTR_COMB 6     // vec3, comb direction times its weight
+#define PELT_ATTR_GROOM 7    // vec4, groomed lean (u, v), length scale, density
+#define PELT_ATTR_HAIR_COLOR 8 // vec4 from 4 normalised bytes: hair colour, its weight
 
 // Texture units (gl/gpu_fur.c owns the textures).
 #define PELT_UNIT_FUR 0   // sampler2DArray: the fur volume, one slice a layer

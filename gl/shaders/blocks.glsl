@@ -30,4 +30,5 @@ layout(std140) uniform pelt_fur_block {
     float u_wet_darken;
     float u_color_scale;     // colour texture repeats per uv unit
     float u_slant;           // tan of the comb angle (Lengyel et al. §3)
+    vec3 u_skin_color;       // bare skin where grooming thins the hair
 };

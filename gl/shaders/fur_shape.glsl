@@ -26,6 +26,14 @@ vec3 fur_comb(vec3 u, float L0, float slant, float h)
     return u * (h * L0 * slant);
 }
 
+// Lengyel et al. §3 grooming: shear per unit length, the comb direction
+// times the global slant plus the groomed lean in the tangent frame (u, v).
+// Mirrors pelt__fur_groom_shear.
+vec3 fur_groom_shear(vec3 comb, float slant, vec3 u, vec3 v, vec2 lean)
+{
+    return comb * slant + u * lean.x + v * lean.y;
+}
+
 // T(h) of the combed strand (comb direction c); mirrors
 // pelt__fur_tangent_combed.
 vec3 fur_tangent_combed(vec3 n, float L0, vec3 tip, vec3 u, vec3 v, vec3 c, float omega, float K,

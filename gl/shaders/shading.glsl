@@ -13,3 +13,23 @@ float shadow_factor(float k_shadow, float h)
 {
     return (k_shadow - 1.0 + h) / k_shadow;
 }
+
+// Grooming (Lengyel et al. §3): a vertex's hair colour c.rgb over the
+// look's colour with weight c.a; its tip is brightened by the look's own
+// tip-to-root ratio. Mirrored by pelt__groom_root_color / _tip_color.
+vec3 groom_root_color(vec3 color, vec4 c)
+{
+    return mix(color, c.rgb, c.a);
+}
+
+vec3 groom_tip_color(vec3 color, vec3 tip, vec4 c)
+{
+    return mix(tip, min(c.rgb * tip / max(color, vec3(0.01)), vec3(1.0)), c.a);
+}
+
+// Grooming's density keeps the strands whose id (the fur volume's blue,
+// uniform in [0,1]) is below it; 1 keeps all of them.
+bool groom_keeps(float id, float density)
+{
+    return density >= 1.0 || id < density;
+}

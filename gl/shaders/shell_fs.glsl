@@ -6,6 +6,8 @@ in vec3 v_world;
 in vec3 v_tangent;
 in vec3 v_normal;
 in float v_h;
+in float v_density;
+in vec4 v_hair_color;
 flat in float v_layer;
 
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
@@ -24,7 +26,8 @@ void main()
     vec2 d = clump == CLUMP_DISPLACED ? q - v_uv : vec2(0.0);
     float rho = clump_texel(u_mask, v_uv).a;
     vec4 hair = texture(u_fur, vec3(v_fur_uv + d * u_fur_per_uv, v_layer + 1.0));
-    hair.rg /= max(hair.a, 1e-3);   // the volume is premultiplied
+    hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
+    if (!groom_keeps(hair.b, v_density)) discard;
     if (clump == CLUMP_DISPLACED) {
         // The clump squeezes its strands towards the centre by k: the
         // bundle is 1/k times as dense (see docs/wetness.md).
@@ -37,7 +40,9 @@ void main()
     vec3 L = normalize(u_light_dir);
     vec3 E = normalize(v_world - u_eye);
     vec2 kk = kajiya_kay(T, L, E, u_shininess);
-    vec3 base = mix(u_color, u_tip_color, hair.g) * texture(u_color_tex, (v_uv + d) * u_color_scale).rgb * hair.r;
+    vec3 root = groom_root_color(u_color, v_hair_color);
+    vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
+    vec3 base = mix(root, tip, hair.g) * texture(u_color_tex, (v_uv + d) * u_color_scale).rgb * hair.r;
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
     // Hair on the side of the body facing away from the light is in the
     // body's shadow: Kajiya-Kay alone would light it as brightly.

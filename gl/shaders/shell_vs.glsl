@@ -1,5 +1,8 @@
 // All shells in one instanced draw: the layer is gl_InstanceID.
-// Silva et al. Eq. 1: offset(h) = beta(h) + phi(h).
+// Silva et al. Eq. 1: offset(h) = beta(h) + phi(h), sheared by the comb and
+// the groom (Lengyel et al. §3): the groom's length scale s shortens the
+// whole strand (its rest length, bent tip and curl radius), its lean adds
+// to the comb's shear.
 layout(location = PELT_ATTR_POSITION) in vec3 a_position;
 layout(location = PELT_ATTR_NORMAL) in vec3 a_normal;
 layout(location = PELT_ATTR_UV) in vec2 a_uv;
@@ -7,6 +10,8 @@ layout(location = PELT_ATTR_FUR_UV) in vec2 a_fur_uv;
 layout(location = PELT_ATTR_TANGENT) in vec4 a_tangent;
 layout(location = PELT_ATTR_TIP) in vec3 a_tip;     // p - p_root, mesh-local
 layout(location = PELT_ATTR_COMB) in vec3 a_comb;    // comb direction x weight (0: stands up)
+layout(location = PELT_ATTR_GROOM) in vec4 a_groom;  // lean u, lean v, length scale, density
+layout(location = PELT_ATTR_HAIR_COLOR) in vec4 a_hair_color; // rgb, weight over u_color
 
 uniform float u_first_layer;            // the shell pass's own: the range may start above 0
 uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
@@ -17,6 +22,8 @@ out vec3 v_world;
 out vec3 v_tangent;
 out vec3 v_normal;
 out float v_h;
+out float v_density;
+out vec4 v_hair_color;
 flat out float v_layer;
 
 void main()
@@ -27,11 +34,15 @@ void main()
     vec3 u = normalize(a_tangent.xyz);
     vec3 v = cross(n, u) * a_tangent.w;
     float rho = textureLod(u_mask, a_uv, 0.0).a;
-    vec3 offset = fur_bend(n, u_length, a_tip, h)
-                + fur_curl(u, v, u_curl_frequency, u_curl_radius, rho, h)
-                + fur_comb(a_comb, u_length, u_slant, h);
-    vec3 t = fur_tangent_combed(n, u_length, a_tip, u, v, a_comb, u_curl_frequency,
-                                u_curl_radius, rho, u_slant, h);
+    float s = a_groom.z;
+    float L = u_length * s;
+    vec3 tip = a_tip * s;
+    float K = u_curl_radius * s;
+    vec3 shear = fur_groom_shear(a_comb, u_slant, u, v, a_groom.xy);
+    vec3 offset = fur_bend(n, L, tip, h)
+                + fur_curl(u, v, u_curl_frequency, K, rho, h)
+                + fur_comb(shear, L, 1.0, h);
+    vec3 t = fur_tangent_combed(n, L, tip, u, v, shear, u_curl_frequency, K, rho, 1.0, h);
     vec4 world = u_model * vec4(a_position + offset, 1.0);
     v_world = world.xyz;
     v_tangent = mat3(u_model) * t;
@@ -39,6 +50,8 @@ void main()
     v_uv = a_uv;
     v_fur_uv = a_fur_uv;
     v_h = h;
+    v_density = a_groom.w;
+    v_hair_color = a_hair_color;
     v_layer = layer;
     gl_Position = u_view_proj * world;
 }

@@ -1,7 +1,11 @@
 // Opaque skin: the innermost fur slice lit by Lambert, under gamma(0).
+// Where grooming thins the hair (density below 1) the bare skin colour
+// shows through in proportion.
 in vec3 v_normal;
 in vec2 v_uv;
 in vec2 v_fur_uv;
+in float v_density;
+in vec4 v_hair_color;
 
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
@@ -12,7 +16,8 @@ void main()
 {
     vec3 n = normalize(v_normal);
     float shade = texture(u_fur, vec3(v_fur_uv, 0.0)).r;
-    vec3 base = u_color * texture(u_color_tex, v_uv * u_color_scale).rgb * shade;
+    vec3 roots = groom_root_color(u_color, v_hair_color) * texture(u_color_tex, v_uv * u_color_scale).rgb * shade;
+    vec3 base = mix(u_skin_color, roots, clamp(v_density, 0.0, 1.0));
     float lambert = max(dot(n, normalize(u_light_dir)), 0.0);
     // The skin sits under all the fur: gamma at h = 0.
     float gamma = shadow_factor(u_shadow, 0.0);

@@ -31,6 +31,8 @@ typedef struct pelt_fur_look {
                                 5 / the mesh's bounding-box diagonal */
     float color[3];          /* base hair colour (linear RGB), default (0.55, 0.34, 0.18) */
     float tip_color[3];      /* colour at the tips, default (1, 0.82, 0.58) */
+    float skin_color[3];     /* bare skin where grooming thins the hair
+                                (pelt/groom.h density), default (0.78, 0.56, 0.47) */
     float color_scale;       /* colour texture repeats per uv unit, default 1 */
     float specular[3];       /* Kajiya-Kay K_s, default (0.9, 0.85, 0.8) */
     float shininess;         /* Kajiya-Kay exponent p, default 20 */
@@ -107,6 +109,12 @@ void pelt_fur_destroy(pelt_fur *fur);
 
 /* The desc with every default filled in. */
 pelt_fur_desc pelt_fur_get_desc(const pelt_fur *fur);
+
+/* Where a ray (mesh-local origin and direction) first meets the mesh:
+ * the point into hit (may be NULL). False on a miss or non-finite input.
+ * No allocation: cheap enough to run under a moving cursor. */
+bool pelt_fur_pick(const pelt_fur *fur, const float origin[3], const float direction[3],
+                   float hit[3]);
 
 /* A colour texture that modulates the hair colour (uv space of the mesh).
  * RGBA8, width * height * 4 bytes, copied. */

@@ -31,6 +31,10 @@ typedef struct pelt_mesh_data {
      * times a weight in [0,1] (0 stands the fur up), as pelt_atlas makes
      * it. NULL: the fur combs along the fur texture's u axis. */
     const float *comb;
+    /* 4 * vertex_count, or NULL: the file's first vertex colour set as
+     * RGBA in [0,1] (pelt_mesh_load fills it), e.g. a hair colour for
+     * pelt_fur_groom_from_vertex_colors. */
+    const float *colors;
 } pelt_mesh_data;
 
 /* What validation did to the input. */
@@ -73,9 +77,14 @@ pelt_mesh_stats pelt_mesh_get_stats(const pelt_mesh *mesh);
  * when it had none. Owned by the mesh. */
 const float *pelt_mesh_directions(const pelt_mesh *mesh);
 
+/* The file's vertex colours, RGBA in [0,1] (4 floats per vertex), or NULL
+ * when it had none. Owned by the mesh. */
+const float *pelt_mesh_colors(const pelt_mesh *mesh);
+
 /* The validated mesh as arrays (owned by the mesh, valid until it is
  * destroyed): normals are always set (computed when the input had none),
- * uvs always (fallback map), directions, fur_uvs and comb when given.
+ * uvs always (fallback map), directions, fur_uvs,
+ * comb and colors when given.
  * pelt_mesh_create(&data) of the result makes an equal mesh. */
 pelt_mesh_data pelt_mesh_get_data(const pelt_mesh *mesh);
 

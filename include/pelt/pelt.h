@@ -6,6 +6,7 @@
 #include "pelt/camera.h"
 #include "pelt/dynamics.h"
 #include "pelt/fur.h"
+#include "pelt/groom.h"
 #include "pelt/headless.h"
 #include "pelt/mesh.h"
 #include "pelt/render.h"

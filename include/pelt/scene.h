@@ -14,6 +14,7 @@
 #include "pelt/camera.h"
 #include "pelt/dynamics.h"
 #include "pelt/fur.h"
+#include "pelt/groom.h"
 #include "pelt/wetness.h"
 
 #ifdef __cplusplus
@@ -25,6 +26,7 @@ extern "C" {
 #define PELT_SCENE_FILE_MAX (16u << 20) /* scene files above 16 MiB are refused */
 #define PELT_SCENE_MAX_DROPLETS 1000000u
 #define PELT_SCENE_MAX_WIND_KEYS 65536u
+#define PELT_SCENE_MAX_STROKES 65536u
 
 /* Where the mesh comes from. 0 is the default (the Table 1 torus). */
 typedef enum pelt_scene_shape {
@@ -114,6 +116,44 @@ typedef struct pelt_scene_wetness {
     float mask_image_wetness;
 } pelt_scene_wetness;
 
+/* What the mesh file's vertex colours are, besides a possible flow map
+ * for the atlas (atlas.direction_from). */
+typedef enum pelt_vertex_colors_use {
+    PELT_VERTEX_COLORS_IGNORE = 0, /* default */
+    PELT_VERTEX_COLORS_HAIR        /* the hair colour (Lengyel's dog) */
+} pelt_vertex_colors_use;
+
+/* A scripted brush stroke (pelt/groom.h), applied when the scene is made.
+ * It lands where the camera's ray through `pixel` meets the mesh (the
+ * first frame's view), or at the mesh-local point `at`. */
+typedef struct pelt_scene_stroke {
+    pelt_brush brush;  /* tool, strength, amount, color; radius and delta in
+                          world units (the mesh's times mesh.scale) */
+    float pixel[2];    /* x right, y down, in output pixels */
+    float at[3];       /* mesh-local; NaN (the default) = use pixel */
+    float drag[2];     /* comb: the drag in pixels across the view plane at
+                          the stroke's depth (x right, y down), added to
+                          delta; default 0 */
+} pelt_scene_stroke;
+
+/* Grooming (docs/grooming.md): applied in this order when the scene is
+ * made: maps, vertex colours, the groom file (it replaces every field),
+ * then the strokes. */
+typedef struct pelt_scene_groom {
+    char file[PELT_SCENE_PATH_MAX];        /* "fur.groom": a groom PLY, "" none */
+    char length_map[PELT_SCENE_PATH_MAX];  /* grey -> length_range */
+    float length_range[2];                 /* default [0, 1] */
+    char density_map[PELT_SCENE_PATH_MAX]; /* grey -> density_range */
+    float density_range[2];                /* default [0, 1] */
+    char flow_map[PELT_SCENE_PATH_MAX];    /* rg -> lean (2 rg - 1) * flow_strength */
+    float flow_strength;                   /* default 1 (45 degrees at full red) */
+    char color_map[PELT_SCENE_PATH_MAX];   /* rgb -> hair colour, alpha -> weight */
+    pelt_vertex_colors_use vertex_colors;  /* default IGNORE */
+    /* Owned by the scene; pelt_scene_free frees them. */
+    pelt_scene_stroke *strokes;
+    size_t stroke_count;
+} pelt_scene_groom;
+
 /* How the surface gets its atlas (issue 5); copied into pelt_atlas_desc. */
 typedef enum pelt_direction_source {
     PELT_DIRECTION_GLOBAL = 0,   /* atlas.direction, projected per vertex */
@@ -134,8 +174,8 @@ typedef struct pelt_scene_atlas {
     pelt_direction_source direction_from;
 } pelt_scene_atlas;
 
-/* A whole scene. Plain data: copy it freely, but the two arrays
- * (wetness.droplets, animation.wind_keys) are owned by exactly one copy,
+/* A whole scene. Plain data: copy it freely, but the three arrays
+ * (wetness.droplets, animation.wind_keys, groom.strokes) are owned by exactly one copy,
  * which pelt_scene_free releases. */
 typedef struct pelt_scene {
     pelt_scene_mesh mesh;
@@ -162,6 +202,8 @@ typedef struct pelt_scene {
     pelt_scene_animation animation;
     pelt_scene_wetness wetness;
     pelt_scene_atlas atlas;
+    pelt_scene_groom groom; /* JSON keys "fur.groom", "fur.length_map"...
+                               and the top-level "strokes" list */
 } pelt_scene;
 
 /* Fills *s with the defaults (the paper's Table 1 set-up: torus 78 x 60,

@@ -72,6 +72,14 @@ pelt_view pelt_scene_instance_view(const pelt_scene_instance *inst);
 bool pelt_scene_instance_drop_at_pixel(pelt_scene_instance *inst, float px, float py,
                                        float radius, float wetness);
 
+/* A brush stroke (pelt/groom.h) where the ray through pixel (px, py) meets
+ * the mesh; the brush's radius and delta are in world units. `drag` (may
+ * be NULL) adds a drag of (dx, dy) pixels across the view plane at the
+ * stroke's depth to the delta: Lengyel et al.'s local combing under the
+ * mouse. False when the pixel misses the mesh or the brush is invalid. */
+bool pelt_scene_instance_brush_at_pixel(pelt_scene_instance *inst, float px, float py,
+                                        const pelt_brush *brush, const float drag[2]);
+
 pelt_scene_instance_stats pelt_scene_instance_get_stats(const pelt_scene_instance *inst);
 
 #ifdef __cplusplus

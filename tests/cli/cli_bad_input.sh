@@ -64,6 +64,22 @@ expect_fail size_huge "--size" $r --size 99999x10
 expect_fail seed_word "--seed" $r --seed abc
 expect_fail wind_two "--wind" $r --wind 1,2
 expect_fail wind_nan "--wind" $r --wind 1,nan,2
+# Groom files: corrupt, truncated, foreign, for another mesh; bad strokes.
+expect_ok groom_save $r --save-groom "$out/cli_torus.groom.ply"
+printf 'ply\nformat ascii 1.0\nend_header\n' > "$out/ascii.groom.ply"
+expect_fail groom_ascii "ascii.groom.ply" $r --groom "$out/ascii.groom.ply"
+head -c 700 "$out/cli_torus.groom.ply" > "$out/truncated.groom.ply"
+expect_fail groom_truncated "truncated.groom.ply" $r --groom "$out/truncated.groom.ply"
+expect_fail groom_not_ply "corrupt.png" $r --set fur.groom="$out/corrupt.png"
+expect_fail groom_other_mesh "does not match" $r --mesh sphere --groom "$out/cli_torus.groom.ply"
+expect_fail groom_missing "no_groom.ply" $r --groom "$out/no_groom.ply"
+expect_fail groom_unwritable "--save-groom" $r --save-groom "$out/cli_no_dir/g.ply"
+expect_fail stroke_no_place "strokes[0]" $r --set 'strokes=[{"tool":"comb","radius":0.1}]'
+expect_fail stroke_bad_tool "strokes[0].tool" $r --set 'strokes=[{"tool":"rake","radius":0.1,"at":[0,0,0]}]'
+expect_fail stroke_missed "does not see the mesh" $r --set 'strokes=[{"tool":"comb","radius":0.1,"pixel":[1,1]}]'
+expect_fail length_map_corrupt "corrupt.png" $r --set fur.length_map="$out/corrupt.png"
+expect_fail vertex_colors_none "no vertex colours" $r --set fur.vertex_colors=hair
+
 expect_fail unknown_flag "--bogus" $r --bogus
 expect_fail missing_value "--layers" $pelt render --layers
 expect_fail bad_pattern "-o" $pelt render --size 64x48 -q -o "$out/x_%s.png"

@@ -39,6 +39,23 @@ err=$("$pelt" render --size 64x48 --drop-at 1,2 -o "$d/x.png" 2>&1); rc=$?
 [ $rc -ne 0 ] && grep -q -- "--drop-at" <<<"$err"
 check drop_at_needs_three_numbers $? "exit $rc, '$err'"
 
+# Grooming: scripted strokes change the picture; saved with --save-groom
+# and loaded with --set fur.groom (and the --groom flag), the groom renders
+# the same picture byte for byte without the strokes.
+strokes='[{"tool":"density","pixel":[20,25],"radius":0.3,"amount":0},
+          {"tool":"comb","pixel":[44,26],"radius":0.4,"drag":[6,0]},
+          {"tool":"color","pixel":[32,36],"radius":0.4,"color":[0.9,0.9,0.95]}]'
+"$pelt" render -q --size 64x48 --set "strokes=$strokes" --save-groom "$d/strokes.groom.ply" \
+  -o "$d/groomed.png" 2>/dev/null
+check strokes_render $? "non-zero exit"
+! cmp -s "$d/dry.png" "$d/groomed.png"; check strokes_change_the_picture $? "same as ungroomed"
+"$pelt" render -q --size 64x48 --set fur.groom="$d/strokes.groom.ply" -o "$d/reloaded.png" 2>/dev/null &&
+  cmp -s "$d/groomed.png" "$d/reloaded.png"
+check saved_groom_renders_the_same $? "differs from the groomed picture"
+"$pelt" render -q --size 64x48 --groom "$d/strokes.groom.ply" -o "$d/reloaded2.png" 2>/dev/null &&
+  cmp -s "$d/groomed.png" "$d/reloaded2.png"
+check groom_flag_is_the_key $? "differs from the groomed picture"
+
 # No EGL driver at all (glvnd pointed at nothing): a clear error that says
 # what is missing, and no image.
 err=$(__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json "$pelt" render --size 64x48 -o "$d/none.png" 2>&1); rc=$?

@@ -208,6 +208,69 @@ static void clump_coverage_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+static const char groom_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, u, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, u, tip, h, s);\n"
+    "  vec3 v = cross(n, u);\n"
+    "  vec3 color = vec3(0.55, 0.34, 0.18) * (0.2 + s), tipc = vec3(1.0, 0.82, 0.58);\n"
+    "  vec4 c = vec4(fract(tip * 3.7 + 0.5), h);\n"
+    "  vec3 r = u_which == 0 ? fur_groom_shear(tip, 1.3 * s, u, v, vec2(h - 0.5, s * 1.2 - 0.4))\n"
+    "         : u_which == 1 ? groom_root_color(color, c)\n"
+    "         : u_which == 2 ? groom_tip_color(color, tipc, c)\n"
+    "         : vec3(groom_keeps(fract(s * 5.3), h) ? 1.0 : 0.0, 0.0, 0.0);\n"
+    "  o = vec4(r, 0.0);\n"
+    "}\n";
+
+/* Grooming (Lengyel et al. §3): the shear of a groomed strand in the
+ * vertex shader, the hair colour and the density test in the fragment
+ * shaders, against pelt__fur_groom_shear and core/fur/shading.c. */
+static void groom_glsl_matches_c(void)
+{
+    const char *names[] = {"fur_groom_shear", "groom_root_color", "groom_tip_color", "groom_keeps"};
+    for (int which = 0; which < 4; which++) {
+        char define[64];
+        snprintf(define, sizeof define, "#define u_which %d\n", which);
+        const char *fs[] = {pelt__shader_fur_shape, pelt__shader_shading, inputs_glsl, define,
+                            groom_main, NULL};
+        CHECK(gl_test_eval(gl, fs, W, H, out));
+        double worst = 0.0;
+        int kept = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                pelt_vec3 n, u, tip;
+                float h, s;
+                cell_inputs((float)x, (float)y, &n, &u, &tip, &h, &s);
+                pelt_vec3 v = v3_cross(n, u);
+                pelt_vec3 color = v3_scale(v3(0.55f, 0.34f, 0.18f), 0.2f + s);
+                pelt_vec3 tipc = v3(1.0f, 0.82f, 0.58f);
+                const float tv[3] = {tip.x, tip.y, tip.z};
+                float c[4];
+                for (int k = 0; k < 3; k++) {
+                    float f = tv[k] * 3.7f + 0.5f;
+                    c[k] = f - floorf(f);
+                }
+                c[3] = h;
+                float lean[2] = {h - 0.5f, s * 1.2f - 0.4f};
+                float id = s * 5.3f - floorf(s * 5.3f);
+                pelt_vec3 r = which == 0   ? pelt__fur_groom_shear(tip, 1.3f * s, u, v, lean)
+                              : which == 1 ? pelt__groom_root_color(color, c)
+                              : which == 2 ? pelt__groom_tip_color(color, tipc, c)
+                                           : v3(pelt__groom_keeps(id, h) ? 1.0f : 0.0f, 0, 0);
+                /* A threshold test: cells within rounding of it can go either way. */
+                if (which == 3 && fabsf(id - h) < 1e-4f) continue;
+                kept += which == 3 && r.x > 0.5f;
+                const float *g = out + 4 * (y * W + x);
+                double err = fmax(fabs(g[0] - r.x), fmax(fabs(g[1] - r.y), fabs(g[2] - r.z)));
+                if (err > worst) worst = err;
+            }
+        printf("  %s: worst |GLSL - C| = %.3g\n", names[which], worst);
+        if (which == 3) CHECK(kept > W * H / 5 && kept < W * H * 4 / 5); /* both branches seen */
+        CHECK(worst < 2e-4);
+    }
+}
+
 int main(void)
 {
     gl = gl_test_open(W, H, true);
@@ -216,6 +279,7 @@ int main(void)
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
+    RUN(groom_glsl_matches_c);
     pelt_headless_destroy(gl);
     return check_summary();
 }

@@ -257,6 +257,14 @@ static void each_bad_value_names_file_and_key(void)
         {"{\"fur\": {\"lenght\": 0.02}}", PELT_ERR_FORMAT, {"'fur.lenght'", "'fur.length'"}},
         {"{\"camra\": {}}", PELT_ERR_FORMAT, {"'camra'", "'camera'"}},
         {"{\"zzzzzzzz\": 1}", PELT_ERR_FORMAT, {"unknown key 'zzzzzzzz'"}},
+        {"{\"fur\": {\"length_range\": [2, 1]}}", PELT_ERR_FORMAT, {"fur.length_range", "min <= max"}},
+        {"{\"fur\": {\"vertex_colors\": \"paint\"}}", PELT_ERR_FORMAT, {"fur.vertex_colors", "hair"}},
+        {"{\"strokes\": [{\"tool\": \"comb\", \"radius\": 0, \"at\": [0, 0, 0]}]}", PELT_ERR_FORMAT,
+         {"strokes[0].radius", "positive"}},
+        {"{\"strokes\": [{\"radius\": 1, \"at\": [0, 0, 0]}]}", PELT_ERR_FORMAT, {"strokes[0]", "'tool'"}},
+        {"{\"strokes\": [{\"tool\": \"color\", \"radius\": 1, \"pixel\": [1, 2], \"at\": [0, 0, 0]}]}",
+         PELT_ERR_FORMAT, {"strokes[0]", "not both"}},
+        {"{\"strokes\": {\"tool\": \"comb\"}}", PELT_ERR_FORMAT, {"strokes", "an array"}},
         {"{\"fur\": {\"layers\": 8, \"layers\": 9}}", PELT_ERR_FORMAT, {"duplicate", "fur.layers"}},
         {"{\"camera\": {\"distance\": 1e999}}", PELT_ERR_FORMAT, {"camera.distance"}},
         {"{\"camera\": {\"distance\": 0}}", PELT_ERR_FORMAT, {"camera.distance", "positive"}},
@@ -690,6 +698,44 @@ static void preset_accepts_both_spellings(void)
     }
 }
 
+/* Grooming keys land in scene.groom and scene.fur.look; strokes keep
+ * their order and defaults (strength 1, at unset = NaN: by pixel). */
+static void grooming_keys_and_strokes(void)
+{
+    pelt_scene s;
+    pelt_error err = {0};
+    const char *json = "{\"fur\": {\"groom\": \"g.ply\", \"length_map\": \"len.png\", "
+                       "\"length_range\": [0.5, 2], \"flow_strength\": 0.5, "
+                       "\"vertex_colors\": \"hair\", \"skin_color\": [0.1, 0.2, 0.3]},"
+                       " \"strokes\": [{\"tool\": \"length\", \"radius\": 0.2, \"pixel\": [10, 20],"
+                       " \"amount\": -0.5}, {\"tool\": \"comb\", \"radius\": 0.1, \"at\": [1, 2, 3],"
+                       " \"drag\": [4, 5], \"strength\": 0.5}]}";
+    CHECK(pelt_scene_parse(json, "dir/groom.json", &s, &err) == PELT_OK);
+    CHECK(strcmp(s.groom.file, "dir/g.ply") == 0);
+    CHECK(strcmp(s.groom.length_map, "dir/len.png") == 0);
+    CHECK(s.groom.length_range[0] == 0.5f && s.groom.length_range[1] == 2.0f);
+    CHECK(s.groom.density_range[0] == 0.0f && s.groom.density_range[1] == 1.0f);
+    CHECK(s.groom.flow_strength == 0.5f);
+    CHECK(s.groom.vertex_colors == PELT_VERTEX_COLORS_HAIR);
+    CHECK(s.fur.look.skin_color[2] == 0.3f);
+    CHECK(s.groom.stroke_count == 2);
+    if (s.groom.stroke_count == 2) {
+        const pelt_scene_stroke *a = &s.groom.strokes[0], *b = &s.groom.strokes[1];
+        CHECK(a->brush.tool == PELT_BRUSH_LENGTH && a->brush.amount == -0.5f);
+        CHECK(a->brush.strength == 1.0f && isnan(a->at[0]) && a->pixel[1] == 20.0f);
+        CHECK(b->brush.tool == PELT_BRUSH_COMB && b->at[2] == 3.0f && b->drag[1] == 5.0f);
+        CHECK(b->brush.strength == 0.5f);
+    }
+    /* --set replaces the list and frees the old one (ASan would tell). */
+    CHECK(pelt_scene_set(&s, "strokes", "[{\"tool\": \"density\", \"radius\": 1, \"at\": [0,0,0]}]",
+                         &err) == PELT_OK);
+    CHECK(s.groom.stroke_count == 1 && s.groom.strokes[0].brush.tool == PELT_BRUSH_DENSITY);
+    CHECK(pelt_scene_set(&s, "strokes", "[{\"tool\": 3}]", &err) != PELT_OK);
+    CHECK(s.groom.stroke_count == 1);
+    pelt_scene_free(&s);
+    CHECK(s.groom.strokes == NULL && s.groom.stroke_count == 0);
+}
+
 static void forces_default_matches_dynamics_module(void)
 {
     pelt_scene s;
@@ -720,5 +766,6 @@ int main(void)
     RUN(shipped_presets_give_four_different_fig7_looks);
     RUN(preset_accepts_both_spellings);
     RUN(forces_default_matches_dynamics_module);
+    RUN(grooming_keys_and_strokes);
     return check_summary();
 }
