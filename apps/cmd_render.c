@@ -96,13 +96,6 @@ int cmd_render(int argc, char **argv)
         cli_options_free(&o);
         return 1;
     }
-    cli_video v;
-    if (video && !cli_video_open("render", ffmpeg, o.output, sc->output.width, sc->output.height,
-                                 fps, &v)) {
-        cli_session_close(&s);
-        cli_options_free(&o);
-        return 1;
-    }
     cli_session_drop_at(&s, &o);
     if (o.groom_out) {
         pelt_error gerr = {0};
@@ -112,6 +105,13 @@ int cmd_render(int argc, char **argv)
             cli_options_free(&o);
             return 1;
         }
+    }
+    cli_video v; /* ffmpeg starts last: nothing before the frames can fail now */
+    if (video && !cli_video_open("render", ffmpeg, o.output, sc->output.width, sc->output.height,
+                                 fps, &v)) {
+        cli_session_close(&s);
+        cli_options_free(&o);
+        return 1;
     }
     bool show_progress = frames > 1 && !o.quiet && isatty(2);
     double start = seconds_now();
