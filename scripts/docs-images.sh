@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Renders every picture under docs/images/ into OUTDIR with the commands the
-# docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/atlas.md;
+# docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/gallery-grooming.md, docs/atlas.md;
 # README.md only shows pictures of gallery.md), so that the result can be
 # compared with the committed pictures by scripts/docs-images-compare.sh.
 #
@@ -15,7 +15,7 @@
 #   DOCS_IMAGES      space-separated subset of picture groups to render (default all):
 #                    default bunny_dry elephant bunny_combed elephant_combed
 #                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water
-#                    wind_square turntable curl
+#                    wind_square turntable curl groom_torus groom_bunny groom_maps
 #
 # Each command runs in its own fresh working directory (symlinks to the source
 # tree's top-level entries, an empty docs/images/) with its own empty
@@ -191,11 +191,47 @@ img_curl() {
   done
 }
 
+# docs/gallery-grooming.md, Lengyel Fig. 4 h, i, k, l by scripted strokes.
+img_groom_torus() {
+  pelt render --size 480x360 -o groom_torus_h.png \
+    --set 'strokes=[{"tool":"length","at":[0,0,0],"radius":10,"amount":1}]'
+  pelt render --size 480x360 -o groom_torus_i.png \
+    --set 'strokes=[{"tool":"comb","at":[0,0,0],"radius":10,"delta":[0.09,0,0]}]'
+  pelt render --size 480x360 -o groom_torus_k.png \
+    --set 'strokes=[{"tool":"color","pixel":[250,250],"radius":0.35,"color":[0.2,0.5,1],"strength":0.6}]'
+  pelt render --size 480x360 -o groom_torus_l.png \
+    --set 'strokes=[{"tool":"comb","pixel":[250,250],"radius":0.35,"drag":[40,0]}]'
+  for F in h i k l; do collect groom_torus_$F.png groom_torus_$F.png; done
+}
+img_groom_bunny() {
+  B="--mesh $M/bunny00.off --size 480x360"
+  pelt render $B -o groom_bunny_h.png --set 'strokes=[{"tool":"length","at":[0,0,0],"radius":10,"amount":1}]'
+  pelt render $B -o groom_bunny_i.png --set 'strokes=[{"tool":"comb","at":[0,0,0],"radius":10,"delta":[0,-0.025,0]}]'
+  pelt render $B -o groom_bunny_k.png \
+    --set 'strokes=[{"tool":"color","pixel":[250,235],"radius":0.12,"color":[0.2,0.5,1],"strength":0.6}]'
+  pelt render $B -o groom_bunny_l.png --set 'strokes=[{"tool":"comb","pixel":[250,235],"radius":0.12,"drag":[60,-20]}]'
+  pelt render $B -o groom_bunny_paint.png --set 'strokes=[
+      {"tool":"density","pixel":[92,160],"radius":0.1,"amount":0},
+      {"tool":"color","pixel":[235,70],"radius":0.2,"color":[0.95,0.95,0.92]},
+      {"tool":"color","pixel":[270,200],"radius":0.25,"color":[0.06,0.05,0.04]}]'
+  for F in h i k l paint; do collect groom_bunny_$F.png groom_bunny_$F.png; done
+}
+
+# docs/gallery-grooming.md, maps and vertex colours.
+img_groom_maps() {
+  pelt render scenes/groom-stripes.json --size 480x360 -o groom_stripes.png
+  pelt render scenes/groom-bald.json --size 480x360 -o groom_bald.png
+  pelt render scenes/groom-flow.json --size 480x360 -o groom_flow.png
+  pelt render --mesh tests/data/meshes/swirl_colors.ply --set fur.vertex_colors=hair \
+    --pitch 70 --yaw 0 --size 480x360 -o groom_vertex_colors.png
+  for F in stripes bald flow vertex_colors; do collect groom_$F.png groom_$F.png; done
+}
+
 # ---- Running them.
 
 all="default bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny whirl
-     bunny_wet bunny_rain word_in_water wind_square turntable curl"
-needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain "
+     bunny_wet bunny_rain word_in_water wind_square turntable curl groom_torus groom_bunny groom_maps"
+needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny "
 groups="${DOCS_IMAGES:-$all}"
 
 now() { date +%s.%N; }
