@@ -77,8 +77,10 @@ fresh() {
   local w
   w="$(mktemp -d "$TMP/work.XXXXXX")"
   local e
+  # Not docs/ (made empty below) and no top-level picture: a command without
+  # -o writes pelt.png here, and must not write through a link into the tree.
   for e in "$ROOT"/*; do
-    [ "$(basename "$e")" = docs ] || ln -s "$e" "$w/"
+    case "$(basename "$e")" in docs|*.png) ;; *) ln -s "$e" "$w/" ;; esac
   done
   mkdir -p "$w/docs/images" "$w/.cache"
   echo "$w"
