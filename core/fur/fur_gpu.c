@@ -57,3 +57,16 @@ bool pelt__fur_gpu_take_groom_dirty(pelt_fur *f, size_t range[2])
 {
     return pelt__groom_take_dirty(&f->groom, range);
 }
+
+const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *f, size_t *count)
+{
+    *count = f->fin_count;
+    return f->fin_edges;
+}
+
+const uint8_t *pelt__fur_gpu_fin_texture(const pelt_fur *f, unsigned *width, unsigned *height)
+{
+    *width = f->fin_width;
+    *height = f->fin_height;
+    return f->fin_texture;
+}

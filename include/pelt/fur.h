@@ -65,6 +65,19 @@ typedef struct pelt_fur_comb {
                                 along the fur texture's u axis; default 0 */
 } pelt_fur_comb;
 
+/* Fins (Lengyel et al. §2.2-2.3): quads on the mesh edges near the
+ * silhouette, textured with the same hair seen from the side. */
+typedef struct pelt_fur_fins {
+    float length;            /* fin hair height as a multiple of the fur
+                                length, default 1 (Lengyel Fig. 5 used longer) */
+    float density;           /* width in texels of the slab of hair composited
+                                into the fin texture: wider = denser fins,
+                                default texture_size / 16 */
+    float curl;              /* sideways sine amplitude of fin hair in texels,
+                                default 0 (curlier than the shells when > 0) */
+    float curl_turns;        /* turns of that sine over the height, default 2 */
+} pelt_fur_fins;
+
 /* Fur parameters, one home each. A zero field means its documented
  * default; the defaults are the paper's Table 1 set-up (16 layers, 256x256
  * fur texture and wetness mask). These are the only defaults: the strands
@@ -79,6 +92,7 @@ typedef struct pelt_fur_desc {
     pelt_fur_dynamics dynamics;
     pelt_fur_wet wet;
     pelt_fur_comb comb;
+    pelt_fur_fins fins;
     pelt_hooks hooks;        /* allocator and logger, kept by the fur: every
                                 block it owns (texture, strands, mask, BVH,
                                 surface index, rain, colour) and its scratch
