@@ -9,7 +9,8 @@
 pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks, pelt_error *err)
 {
     const char *vs[] = {pelt__shader_fur_shape, pelt__shader_shell_vs, NULL};
-    const char *fs[] = {pelt__shader_shading, pelt__shader_clump, pelt__shader_shell_fs, NULL};
+    const char *fs[] = {pelt__shader_shading, pelt__shader_fur_light, pelt__shader_clump,
+                        pelt__shader_shell_fs, NULL};
     pelt_status st = pelt__gl_program_create("shell", vs, fs, hooks, &p->program, err);
     if (st == PELT_OK) p->first_layer = glGetUniformLocation(p->program, "u_first_layer");
     return st;

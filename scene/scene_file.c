@@ -94,6 +94,7 @@ void pelt_scene_defaults(pelt_scene *s)
     s->atlas.mode = PELT_ATLAS_AUTO;
     s->atlas.direction[1] = -1.0f;
 
+    s->draw.skin = s->draw.fins = s->draw.shells = true;
     s->groom.length_range[1] = 1.0f;
     s->groom.density_range[1] = 1.0f;
     s->groom.flow_strength = 1.0f;
@@ -117,6 +118,7 @@ void pelt_scene_free(pelt_scene *s)
 
 typedef enum kind {
     K_UINT,     /* unsigned, integer in [lo, hi] */
+    K_BOOL,     /* true or false into a bool */
     K_U32,      /* uint32_t seed, integer in [0, 2^32-1] */
     K_FLOAT,    /* float in [lo, hi] */
     K_VEC,      /* `count` floats, each in [lo, hi] */
@@ -204,6 +206,14 @@ static const key_def scene_keys[] = {
     FLT("fur.slant", fur.comb.slant, 0, 60, 0),
     VEC("fur.skin_color", fur.look.skin_color, 3, 0, 1, 0),
     PATH("fur.groom", groom.file),
+    FLT("fins.length", fur.fins.length, 0, 8, F_LO_OPEN | F_ZERO_OK),
+    FLT("fins.density", fur.fins.density, 0, 4096, F_LO_OPEN | F_ZERO_OK),
+    FLT("fins.curl", fur.fins.curl, 0, 64, 0),
+    FLT("fins.curl_turns", fur.fins.curl_turns, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    {"draw.skin", K_BOOL, OFF(draw.skin), 0, 0, 0, 0, 0, NULL},
+    {"draw.fins", K_BOOL, OFF(draw.fins), 0, 0, 0, 0, 0, NULL},
+    {"draw.shells", K_BOOL, OFF(draw.shells), 0, 0, 0, 0, 0, NULL},
+    {"draw.fins_unfaded", K_BOOL, OFF(draw.fins_unfaded), 0, 0, 0, 0, 0, NULL},
     PATH("fur.length_map", groom.length_map),
     RANGE("fur.length_range", groom.length_range[0], groom.length_range[1], 0, PELT_GROOM_MAX_LENGTH),
     PATH("fur.density_map", groom.density_map),
@@ -512,6 +522,10 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
     switch (d->k) {
     case K_UINT:
         if ((st = number(c, d, key, v, true, &x)) == PELT_OK) *(unsigned *)(void *)field = (unsigned)x;
+        break;
+    case K_BOOL:
+        if (!cJSON_IsBool(v)) return bad(c, key, "true or false", v);
+        *(bool *)(void *)field = cJSON_IsTrue(v);
         break;
     case K_U32:
         if ((st = number(c, d, key, v, true, &x)) == PELT_OK) *(uint32_t *)(void *)field = (uint32_t)x;

@@ -36,19 +36,9 @@ void main()
         hair.a = clump_coverage(hair.a, k);
     }
     if (hair.a < 0.05) discard;
-    vec3 T = normalize(v_tangent);
-    vec3 L = normalize(u_light_dir);
-    vec3 E = normalize(v_world - u_eye);
-    vec2 kk = kajiya_kay(T, L, E, u_shininess);
     vec3 root = groom_root_color(u_color, v_hair_color);
     vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
     vec3 base = mix(root, tip, hair.g) * texture(u_color_tex, (v_uv + d) * u_color_scale).rgb * hair.r;
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
-    // Hair on the side of the body facing away from the light is in the
-    // body's shadow: Kajiya-Kay alone would light it as brightly.
-    float facing = clamp(dot(normalize(v_normal), L) * 0.8 + 0.35, 0.0, 1.0);
-    float gamma = shadow_factor(u_shadow, v_h);
-    vec3 lit = base * (u_ambient + kk.x * facing * u_light_color)
-             + u_specular * kk.y * facing * u_light_color;
-    o_color = vec4(gamma * lit, hair.a);
+    o_color = vec4(fur_light(base, v_tangent, v_normal, v_world, v_h), hair.a);
 }
