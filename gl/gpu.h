@@ -72,6 +72,7 @@ typedef struct pelt__gpu_fur {
     GLuint volume; /* 2D array, one slice a layer (Lengyel et al. §2.2) */
     GLuint color;  /* RGBA8, white 1x1 until the fur has a colour texture */
     GLuint mask;   /* RGBA32F wetness mask, nearest (Silva et al. §3.1) */
+    GLuint light_table; /* RG32F 32x32, Lengyel et al. §2.4 */
     unsigned color_version;
 } pelt__gpu_fur;
 
@@ -104,7 +105,7 @@ typedef struct pelt__fur_block {
     float curl_radius, clump_blend, clump_tightness, wet_darken;
     float color_scale, slant, pad_[2];
     float skin_color[3], tiling;
-    float fin_length, pad2_[3];
+    float fin_length, inter_shadow, inter_shadow_step, shading_model;
 } pelt__fur_block;
 
 typedef struct pelt__gpu_blocks {

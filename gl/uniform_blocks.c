@@ -102,6 +102,9 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
     memcpy(k.skin_color, d.look.skin_color, sizeof k.skin_color);
     k.tiling = d.look.tiling;
     k.fin_length = d.fins.length;
+    k.inter_shadow = d.look.inter_shadow ? d.look.inter_shadow_darkness : 0.0f;
+    k.inter_shadow_step = d.look.inter_shadow_offset / (float)d.look.texture_size;
+    k.shading_model = (float)d.look.shading;
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

@@ -21,6 +21,7 @@ _Static_assert(sizeof(pelt_color_pattern) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_atlas_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_vertex_colors_use) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_brush_tool) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_shading_model) == sizeof(int), "enum size");
 
 #define PI_F 3.14159265358979f
 
@@ -154,6 +155,7 @@ static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
 static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
+static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
 /* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
  * The scene format names them as the issue does; the preset table spells two
  * of them differently, so both spellings are accepted (same index). */
@@ -205,6 +207,11 @@ static const key_def scene_keys[] = {
     FLT("fur.curl_radius", fur.look.curl_radius, 0, BIG, 0),
     FLT("fur.slant", fur.comb.slant, 0, 60, 0),
     VEC("fur.skin_color", fur.look.skin_color, 3, 0, 1, 0),
+    {"fur.inter_shadow", K_BOOL, OFF(fur.look.inter_shadow), 0, 0, 0, 0, 0, NULL},
+    FLT("fur.inter_shadow_offset", fur.look.inter_shadow_offset, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    FLT("fur.inter_shadow_darkness", fur.look.inter_shadow_darkness, 0, 1, F_LO_OPEN | F_ZERO_OK),
+    ENUM("shading.model", fur.look.shading, shading_names),
+    FLT("shading.diffuse_power", fur.look.diffuse_power, 0, 256, F_LO_OPEN | F_ZERO_OK),
     PATH("fur.groom", groom.file),
     FLT("fins.length", fur.fins.length, 0, 8, F_LO_OPEN | F_ZERO_OK),
     FLT("fins.density", fur.fins.density, 0, 4096, F_LO_OPEN | F_ZERO_OK),

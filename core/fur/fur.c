@@ -49,6 +49,9 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->wet.clump_tightness == 0.0f) d->wet.clump_tightness = 0.9f;
     if (d->wet.darken == 0.0f) d->wet.darken = 0.35f;
     if (d->look.color_scale == 0.0f) d->look.color_scale = 1.0f;
+    if (d->look.inter_shadow_offset == 0.0f) d->look.inter_shadow_offset = 4.0f;
+    if (d->look.inter_shadow_darkness == 0.0f) d->look.inter_shadow_darkness = 0.8f;
+    if (d->look.diffuse_power == 0.0f) d->look.diffuse_power = 1.0f;
     if (d->fins.length == 0.0f) d->fins.length = 1.0f;
     if (d->fins.density == 0.0f) d->fins.density = (float)d->look.texture_size / 16.0f;
     if (d->fins.curl_turns == 0.0f) d->fins.curl_turns = 2.0f;
@@ -94,6 +97,13 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour scale must be positive");
     if (!isfinite(d->look.curl_frequency) || !isfinite(d->look.curl_radius) || d->look.curl_radius < 0.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
+    if (!(d->look.inter_shadow_offset > 0.0f && d->look.inter_shadow_offset <= 64.0f) ||
+        !(d->look.inter_shadow_darkness > 0.0f && d->look.inter_shadow_darkness <= 1.0f) ||
+        !(d->look.diffuse_power > 0.0f && d->look.diffuse_power <= 256.0f) ||
+        (unsigned)d->look.shading > PELT_SHADING_LENGYEL_TABLE)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "inter-fur shadow offset must be in (0, 64] texels, darkness in (0, 1], "
+                          "diffuse power in (0, 256], shading a known model");
     if (!(d->fins.length > 0.0f && d->fins.length <= 8.0f) || !(d->fins.density > 0.0f) ||
         !(d->fins.density <= (float)d->look.texture_size) || !(d->fins.curl >= 0.0f && d->fins.curl <= 64.0f) ||
         !(d->fins.curl_turns > 0.0f && d->fins.curl_turns <= 64.0f))

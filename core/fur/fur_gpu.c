@@ -2,6 +2,7 @@
 #include "core/fur/fur_gpu.h"
 
 #include "core/fur/fur_internal.h"
+#include "core/fur/shading.h"
 
 const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *f) { return f->mesh; }
 
@@ -69,4 +70,11 @@ const uint8_t *pelt__fur_gpu_fin_texture(const pelt_fur *f, unsigned *width, uns
     *width = f->fin_width;
     *height = f->fin_height;
     return f->fin_texture;
+}
+
+_Static_assert(PELT__FUR_GPU_LIGHT_TABLE == PELT__LIGHT_TABLE, "one table size");
+
+void pelt__fur_gpu_light_table(const pelt_fur *f, float *out)
+{
+    pelt__lengyel_table(f->desc.look.diffuse_power, f->desc.look.shininess, out);
 }

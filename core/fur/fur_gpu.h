@@ -41,6 +41,12 @@ bool pelt__fur_gpu_take_groom_dirty(pelt_fur *fur, size_t range[2]);
 const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *fur, size_t *count);
 const uint8_t *pelt__fur_gpu_fin_texture(const pelt_fur *fur, unsigned *width, unsigned *height);
 
+/* Lengyel et al.'s §2.4 hair lighting table for the fur's material
+ * (core/fur/shading.h: pelt__lengyel_table): 32x32 texels of (diffuse,
+ * specular). */
+#define PELT__FUR_GPU_LIGHT_TABLE 32
+void pelt__fur_gpu_light_table(const pelt_fur *fur, float *out);
+
 /* The colour texture, RGBA8 width x height, or NULL when none was set;
  * *version changes whenever it is set. */
 const uint8_t *pelt__fur_gpu_color(const pelt_fur *fur, unsigned *width, unsigned *height,

@@ -27,7 +27,8 @@
 #define PELT_UNIT_VERTICES 4 // sampler2D RGBA32F: the vertex table, PELT_TABLE_TEXELS per vertex
 #define PELT_UNIT_TIPS 5  // sampler2D RGBA32F: strand tips, one texel per vertex
 #define PELT_UNIT_GROOM 6 // usampler2D R32UI: the groom, PELT_GROOM_WORDS per vertex
-#define PELT_UNIT_COUNT 7 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
+#define PELT_UNIT_LIGHT_TABLE 7 // sampler2D RG32F: Lengyel's hair lighting table
+#define PELT_UNIT_COUNT 8 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
 
 // Vertex tables: per-vertex data a pass fetches by vertex index (the fins
 // read both ends of an edge), row after row PELT_TABLE_WIDTH texels wide.

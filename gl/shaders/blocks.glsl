@@ -34,4 +34,7 @@ layout(std140) uniform pelt_fur_block {
     vec3 u_skin_color;       // bare skin where grooming thins the hair
     float u_tiling;          // fur tiles per world unit (the fins' texture scale)
     float u_fin_length;      // fin hair height, multiple of the strand length
+    float u_inter_shadow;    // Kenwright's shadow opacity, 0 = off
+    float u_inter_shadow_step; // its step towards the light, fur tiles
+    float u_shading_model;   // 0 Kajiya-Kay, 1 Lengyel's table
 };

@@ -6,6 +6,8 @@ in vec3 v_world;
 in vec3 v_tangent;
 in vec3 v_normal;
 in float v_h;
+in vec3 v_frame_u;
+in vec3 v_frame_v;
 in float v_density;
 in vec4 v_hair_color;
 flat in float v_layer;
@@ -35,7 +37,17 @@ void main()
                             CLUMP_MAX_PULL);
         hair.a = clump_coverage(hair.a, k);
     }
-    if (hair.a < 0.05) discard;
+    if (hair.a < 0.05) {
+        // Kenwright: no hair here, but the hair a step towards the light
+        // casts its shadow on what lies below, with that hair's coverage.
+        if (u_inter_shadow <= 0.0) discard;
+        vec2 step = inter_shadow_offset(normalize(u_light_dir), normalize(v_frame_u),
+                                        normalize(v_frame_v), u_inter_shadow_step);
+        float caster = texture(u_fur, vec3(v_fur_uv + d * u_fur_per_uv + step, v_layer + 1.0)).a;
+        if (caster < 0.05) discard;
+        o_color = vec4(0.0, 0.0, 0.0, caster * u_inter_shadow);
+        return;
+    }
     vec3 root = groom_root_color(u_color, v_hair_color);
     vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
     vec3 base = mix(root, tip, hair.g) * texture(u_color_tex, (v_uv + d) * u_color_scale).rgb * hair.r;

@@ -19,6 +19,14 @@ typedef enum pelt_color_pattern {
     PELT_COLOR_PATTERN_NOISE
 } pelt_color_pattern;
 
+/* The hair lighting model: Kajiya-Kay evaluated per fragment (Silva et
+ * al. Eq. 6), or Lengyel et al.'s §2.4 table K_a + K_d (1 - u^2)^(P_d/2) +
+ * K_s (1 - v^2)^(P_s/2), u = T.L, v = T.H, read from a 32x32 texture. */
+typedef enum pelt_shading_model {
+    PELT_SHADING_KAJIYA_KAY = 0,
+    PELT_SHADING_LENGYEL_TABLE
+} pelt_shading_model;
+
 /* How the fur looks: the synthesized hair volume (Lengyel et al. 2001
  * §2.2), its tiling, the colours and Kajiya-Kay shading (Silva et al. Eq. 6)
  * and curl (Silva Eq. 4). A zero field means its default. */
@@ -39,6 +47,15 @@ typedef struct pelt_fur_look {
     float shadow;            /* K_shadow >= 1 of Silva Eq. 6, default 2 */
     float curl_frequency;    /* omega of Silva Eq. 4 (radians over the length), default 0 */
     float curl_radius;       /* K_alpha of Silva Eq. 4 in world units, default 0 */
+    /* Kenwright's inter-fur shadows: where a shell has no hair but the hair
+       a small step towards the light does, that hair's shadow darkens what
+       lies below. Off by default. */
+    bool inter_shadow;
+    float inter_shadow_offset;   /* the step in fur-texture texels, default 4 */
+    float inter_shadow_darkness; /* opacity of the shadow, (0, 1], default 0.8 */
+    pelt_shading_model shading;  /* default PELT_SHADING_KAJIYA_KAY */
+    float diffuse_power;         /* P_d of Lengyel's table, default 1 (= Kajiya-Kay's
+                                    diffuse); its P_s is `shininess` */
 } pelt_fur_look;
 
 /* Strand dynamics (Silva et al. §3.2.1, Eq. 2): tip mass, spring constant
