@@ -55,6 +55,7 @@ void pelt__fin_pass_destroy(pelt__fin_pass *p);
 typedef struct pelt__shell_pass {
     GLuint program;
     GLint first_layer; /* uniform location */
+    GLint no_inter_shadow; /* uniform location */
 } pelt__shell_pass;
 
 pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks, pelt_error *err);

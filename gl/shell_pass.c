@@ -12,7 +12,10 @@ pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks
     const char *fs[] = {pelt__shader_shading, pelt__shader_fur_light, pelt__shader_clump,
                         pelt__shader_shell_fs, NULL};
     pelt_status st = pelt__gl_program_create("shell", vs, fs, hooks, &p->program, err);
-    if (st == PELT_OK) p->first_layer = glGetUniformLocation(p->program, "u_first_layer");
+    if (st == PELT_OK) {
+        p->first_layer = glGetUniformLocation(p->program, "u_first_layer");
+        p->no_inter_shadow = glGetUniformLocation(p->program, "u_no_inter_shadow");
+    }
     return st;
 }
 
@@ -33,6 +36,7 @@ void pelt__shell_pass_draw(const pelt__shell_pass *p, const pelt__pass_frame *f)
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(p->program);
     glUniform1f(p->first_layer, (float)first);
+    glUniform1i(p->no_inter_shadow, f->draw->no_inter_shadow ? 1 : 0);
     glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(f->mesh->triangle_count * 3), GL_UNSIGNED_INT,
                             NULL, (GLsizei)count);
     f->stats->shell_draw_calls++;

@@ -37,7 +37,7 @@
 #define PELT_GROOM_WORDS 5  // core/fur/groom.h: lean u, lean v, length, density, colour bytes
 
 // A fin is a strip of PELT_FIN_ROWS quads up the strand (gl/fin_pass.c).
-#define PELT_FIN_ROWS 8
+#define PELT_FIN_ROWS 4
 
 // Uniform block binding points (gl/uniform_blocks.c, gl/shaders/blocks.glsl).
 #define PELT_BLOCK_FRAME 0 // pelt_frame_block: matrices, eye, light

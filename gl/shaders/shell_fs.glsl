@@ -15,6 +15,7 @@ flat in float v_layer;
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
 uniform sampler2D u_mask;          // PELT_UNIT_MASK
+uniform int u_no_inter_shadow;     // the shell pass's own: 1 skips inter-fur shadows
 
 out vec4 o_color;
 
@@ -40,7 +41,7 @@ void main()
     if (hair.a < 0.05) {
         // Kenwright: no hair here, but the hair a step towards the light
         // casts its shadow on what lies below, with that hair's coverage.
-        if (u_inter_shadow <= 0.0) discard;
+        if (u_inter_shadow <= 0.0 || u_no_inter_shadow != 0) discard;
         vec2 step = inter_shadow_offset(normalize(u_light_dir), normalize(v_frame_u),
                                         normalize(v_frame_v), u_inter_shadow_step);
         float caster = texture(u_fur, vec3(v_fur_uv + d * u_fur_per_uv + step, v_layer + 1.0)).a;

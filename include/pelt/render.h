@@ -30,6 +30,7 @@ typedef struct pelt_draw_desc {
     bool no_shells; /* skip the shells (for measuring) */
     bool no_fins;   /* skip the fins (Lengyel et al. §2.3; drawn by default) */
     bool fins_unfaded; /* draw every fin at full opacity (Lengyel Fig. 4e) */
+    bool no_inter_shadow; /* skip the fur's inter-fur shadows (for measuring) */
     /* Draw only shells first_layer .. first_layer + layer_count - 1
      * (layer_count 0 = through the outermost): for inspecting one height
      * of the fur, and for level of detail. Still one instanced draw. */
