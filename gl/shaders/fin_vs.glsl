@@ -44,7 +44,9 @@ void main()
     vec3 na = vertex_texel(a_edge.x, 1).xyz, nb = vertex_texel(a_edge.y, 1).xyz;
     vec3 fin_n = normalize(mat3(u_model) * fin_normal(pa, pb, na, nb));
     v_fade = u_unfaded != 0 ? 1.0 : fin_fade(fin_n, u_view_dir);
-    if (v_fade <= 0.0) {
+    // The fragment stage drops coverage below 0.05, so a fin faded below
+    // that draws nothing: collapse it here, before its vertex fetches.
+    if (v_fade < 0.05) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
         return;
     }
