@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders every picture under docs/images/ into OUTDIR with the commands the
-# docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/gallery-grooming.md, docs/atlas.md;
+# docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/gallery-grooming.md,
+# docs/gallery-fins.md, docs/atlas.md;
 # README.md only shows pictures of gallery.md), so that the result can be
 # compared with the committed pictures by scripts/docs-images-compare.sh.
 #
@@ -16,6 +17,7 @@
 #                    default bunny_dry elephant bunny_combed elephant_combed
 #                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water
 #                    wind_square turntable curl groom_torus groom_bunny groom_maps
+#                    fins_torus fins_bunny inter_shadow
 #
 # Each command runs in its own fresh working directory (symlinks to the source
 # tree's top-level entries, an empty docs/images/) with its own empty
@@ -229,11 +231,40 @@ img_groom_maps() {
   for F in stripes bald flow vertex_colors; do collect groom_$F.png groom_$F.png; done
 }
 
+# docs/gallery-fins.md: Lengyel Fig. 4 a-e, Kenwright Fig. 1/3, the table.
+img_fins_torus() {
+  pelt render --size 480x360 --set draw.shells=false --no-fins -o fins_torus_a.png
+  pelt render --size 480x360 --set draw.shells=false -o fins_torus_b.png
+  pelt render --size 480x360 --no-fins -o fins_torus_c.png
+  pelt render --size 480x360 -o fins_torus_d.png
+  pelt render --size 480x360 --set draw.shells=false --set draw.fins_unfaded=true -o fins_torus_e.png
+  for F in a b c d e; do collect fins_torus_$F.png fins_torus_$F.png; done
+}
+img_fins_bunny() {
+  B="--mesh $M/bunny00.off --size 480x360"
+  pelt render $B --set draw.shells=false --set draw.fins=false -o fins_bunny_a.png
+  pelt render $B --set draw.shells=false -o fins_bunny_b.png
+  pelt render $B --no-fins -o fins_bunny_c.png
+  pelt render $B -o fins_bunny_d.png
+  pelt render $B --set draw.shells=false --set draw.fins_unfaded=true -o fins_bunny_e.png
+  for F in a b c d e; do collect fins_bunny_$F.png fins_bunny_$F.png; done
+}
+img_inter_shadow() {
+  K="--set fur.color=[0.6,0.45,0.3] --set fur.tip_color=[0.6,0.45,0.3] --set fur.specular=[0,0,0] --size 480x360"
+  pelt render --mesh square $K --pitch 50 --distance 1.6 -o kenwright_off.png
+  pelt render --mesh square $K --pitch 50 --distance 1.6 --inter-shadow -o kenwright_on.png
+  pelt render --mesh $M/bunny00.off $K -o kenwright_bunny_off.png
+  pelt render --mesh $M/bunny00.off $K --inter-shadow -o kenwright_bunny_on.png
+  pelt render --size 480x360 --shading lengyel-table -o lengyel_table.png
+  for F in kenwright_off kenwright_on kenwright_bunny_off kenwright_bunny_on lengyel_table; do collect $F.png $F.png; done
+}
+
 # ---- Running them.
 
 all="default bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny whirl
-     bunny_wet bunny_rain word_in_water wind_square turntable curl groom_torus groom_bunny groom_maps"
-needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny "
+     bunny_wet bunny_rain word_in_water wind_square turntable curl groom_torus groom_bunny groom_maps
+     fins_torus fins_bunny inter_shadow"
+needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow "
 groups="${DOCS_IMAGES:-$all}"
 
 now() { date +%s.%N; }
