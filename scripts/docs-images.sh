@@ -253,10 +253,13 @@ img_inter_shadow() {
   K="--set fur.color=[0.6,0.45,0.3] --set fur.tip_color=[0.6,0.45,0.3] --set fur.specular=[0,0,0] --size 480x360"
   pelt render --mesh square $K --pitch 50 --distance 1.6 -o kenwright_off.png
   pelt render --mesh square $K --pitch 50 --distance 1.6 --inter-shadow -o kenwright_on.png
+  pelt render $K --distance 2.4 -o kenwright_torus_off.png
+  pelt render $K --distance 2.4 --inter-shadow -o kenwright_torus_on.png
   pelt render --mesh $M/bunny00.off $K -o kenwright_bunny_off.png
   pelt render --mesh $M/bunny00.off $K --inter-shadow -o kenwright_bunny_on.png
   pelt render --size 480x360 --shading lengyel-table -o lengyel_table.png
-  for F in kenwright_off kenwright_on kenwright_bunny_off kenwright_bunny_on lengyel_table; do collect $F.png $F.png; done
+  for F in kenwright_off kenwright_on kenwright_torus_off kenwright_torus_on kenwright_bunny_off \
+           kenwright_bunny_on lengyel_table; do collect $F.png $F.png; done
 }
 
 # ---- Running them.
