@@ -22,6 +22,9 @@ void pelt__gl_unpack_defaults(void);
 /* Returns everything the renderer touches to GL's initial values, as
  * pelt/render.h states. */
 void pelt__gl_state_reset(void);
+/* The state of the blended hair passes (fins, shells): depth tested
+ * without depth write, no culling, blended over what is there. */
+void pelt__gl_blended_hair_state(void);
 
 /* ---- programs (gl/programs.c) ------------------------------------------ */
 

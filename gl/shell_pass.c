@@ -26,14 +26,7 @@ void pelt__shell_pass_draw(const pelt__shell_pass *p, const pelt__pass_frame *f)
     unsigned count = first >= f->layers ? 0 : f->layers - first;
     if (f->draw->layer_count && f->draw->layer_count < count) count = f->draw->layer_count;
     if (count == 0) return;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    /* Alpha accumulates as coverage, so an opaque background stays opaque. */
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    pelt__gl_blended_hair_state();
     glUseProgram(p->program);
     glUniform1f(p->first_layer, (float)first);
     glUniform1i(p->no_inter_shadow, f->draw->no_inter_shadow ? 1 : 0);
