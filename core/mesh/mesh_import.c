@@ -308,6 +308,21 @@ static file_kind sniff(const char *path, const char *head, size_t len)
     return KIND_OTHER;
 }
 
+/* Checks what the header of a file (or buffer) named `name` declares.
+ * buf holds its first len bytes of size in all; for OFF, PLY and STL it
+ * holds all of them. */
+static pelt_status check_header(const char *name, const char *buf, size_t len, long long size,
+                                pelt_error *err)
+{
+    if (len == 0) return pelt__fail(err, PELT_ERR_FORMAT, "%s: file is empty", name);
+    file_kind kind = sniff(name, buf, len);
+    text_reader r = {buf, 0, len};
+    if (kind == KIND_OFF) return check_off(name, &r, size, err);
+    if (kind == KIND_PLY) return check_ply(name, &r, size, err);
+    if (kind == KIND_STL) return check_stl(name, &r, size, err);
+    return PELT_OK;
+}
+
 /* Opens and sizes the file and checks what its header declares. OFF, PLY
  * and STL files are read whole (bounded by the real file size). */
 static pelt_status precheck(const char *path, pelt_error *err)
@@ -344,17 +359,8 @@ static pelt_status precheck(const char *path, pelt_error *err)
         e = errno;
     }
     fclose(f);
-    pelt_status st = PELT_OK;
-    if (failed) {
-        st = pelt__fail(err, PELT_ERR_IO, "cannot open '%s': %s", path, strerror(e));
-    } else if (len == 0) {
-        st = pelt__fail(err, PELT_ERR_FORMAT, "%s: file is empty", path);
-    } else {
-        text_reader r = {buf, 0, len};
-        if (kind == KIND_OFF) st = check_off(path, &r, size, err);
-        else if (kind == KIND_PLY) st = check_ply(path, &r, size, err);
-        else if (kind == KIND_STL) st = check_stl(path, &r, size, err);
-    }
+    pelt_status st = failed ? pelt__fail(err, PELT_ERR_IO, "cannot open '%s': %s", path, strerror(e))
+                            : check_header(path, buf, len, size, err);
     free(buf);
     return st;
 }
@@ -538,6 +544,25 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
     return st;
 }
 
+/* Merges what assimp made of `name` (NULL: assimp's error). */
+static pelt_status take_scene(const struct aiScene *scene, const char *name, pelt_mesh **out,
+                              pelt_error *err)
+{
+    if (!scene) {
+        const char *why = aiGetErrorString();
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: %s", name,
+                          why && *why ? why : "assimp could not read it");
+    }
+    pelt_status st = scene->mRootNode
+                         ? merge_scene(scene, name, out, err)
+                         : pelt__fail(err, PELT_ERR_FORMAT, "%s: the file holds no scene", name);
+    aiReleaseImport(scene);
+    return st;
+}
+
+static const unsigned import_flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
+                                     aiProcess_SortByPType | aiProcess_ValidateDataStructure;
+
 pelt_status pelt_mesh_load(const char *path, pelt_mesh **out, pelt_error *err)
 {
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_mesh_load: out is NULL");
@@ -546,19 +571,23 @@ pelt_status pelt_mesh_load(const char *path, pelt_mesh **out, pelt_error *err)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_mesh_load: no path given");
     pelt_status st = precheck(path, err);
     if (st) return st;
-    const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices |
-                           aiProcess_SortByPType | aiProcess_ValidateDataStructure;
-    const struct aiScene *scene = aiImportFile(path, flags);
-    if (!scene) {
-        const char *why = aiGetErrorString();
-        return pelt__fail(err, PELT_ERR_FORMAT, "%s: %s", path,
-                          why && *why ? why : "assimp could not read it");
-    }
-    if (!scene->mRootNode) {
-        aiReleaseImport(scene);
-        return pelt__fail(err, PELT_ERR_FORMAT, "%s: the file holds no scene", path);
-    }
-    st = merge_scene(scene, path, out, err);
-    aiReleaseImport(scene);
-    return st;
+    return take_scene(aiImportFile(path, import_flags), path, out, err);
+}
+
+pelt_status pelt_mesh_load_memory(const void *data, size_t size, const char *name, pelt_mesh **out,
+                                  pelt_error *err)
+{
+    if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_mesh_load_memory: out is NULL");
+    *out = NULL;
+    if (!name || !strrchr(name, '.'))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "pelt_mesh_load_memory: the name must end in the format's extension");
+    if (!data && size > 0)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_mesh_load_memory: data is NULL");
+    if (size > UINT32_MAX)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: larger than 4 GiB", name);
+    pelt_status st = check_header(name, data, size, (long long)size, err);
+    if (st) return st;
+    const char *ext = strrchr(name, '.') + 1;
+    return take_scene(aiImportFileFromMemory(data, (unsigned)size, import_flags, ext), name, out, err);
 }
