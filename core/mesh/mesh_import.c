@@ -170,77 +170,270 @@ static pelt_status check_off(const char *path, text_reader *r, long long size, p
     return PELT_OK;
 }
 
-/* Bytes of a binary PLY scalar type (1 for names we do not know). */
-static long long ply_type_size(const char *t)
+/* Bytes of a PLY scalar type; 0 for a name PLY does not have. */
+static int ply_type_size(const char *t)
 {
-    if (!strcmp(t, "short") || !strcmp(t, "ushort") || !strcmp(t, "int16") || !strcmp(t, "uint16"))
-        return 2;
-    if (!strcmp(t, "int") || !strcmp(t, "uint") || !strcmp(t, "float") || !strcmp(t, "int32") ||
-        !strcmp(t, "uint32") || !strcmp(t, "float32"))
-        return 4;
-    if (!strcmp(t, "double") || !strcmp(t, "float64")) return 8;
-    return 1;
+    static const struct { const char *name; int bytes; } types[] = {
+        {"char", 1},  {"uchar", 1},  {"int8", 1},   {"uint8", 1},   {"short", 2},  {"ushort", 2},
+        {"int16", 2}, {"uint16", 2}, {"int", 4},    {"uint", 4},    {"int32", 4},  {"uint32", 4},
+        {"float", 4}, {"float32", 4}, {"double", 8}, {"float64", 8}};
+    for (size_t i = 0; i < sizeof types / sizeof types[0]; i++)
+        if (!strcmp(t, types[i].name)) return types[i].bytes;
+    return 0;
 }
 
-/* PLY: the declared elements must fit in the file. Each element needs at
- * least the bytes of its scalars and list counts (binary), or one token per
- * property (ASCII). A truncated ASCII body makes assimp leak, so its tokens
- * are counted. */
-static pelt_status check_ply(const char *path, text_reader *r, long long size, pelt_error *err)
+/* A PLY header as far as the body check needs it. */
+#define PLY_MAX_ELEMENTS 16
+#define PLY_MAX_PROPERTIES 64
+typedef struct ply_property {
+    char name[64];
+    int count_bytes; /* 0 for a scalar, else the bytes of a list's count */
+    int bytes;       /* of the scalar or of each list entry */
+    int count_signed;
+} ply_property;
+typedef struct ply_element {
+    char name[64];
+    long long count;
+    int property_count;
+    ply_property properties[PLY_MAX_PROPERTIES];
+} ply_element;
+typedef struct ply_header {
+    int format; /* 0 ascii, 1 binary little endian, 2 binary big endian */
+    int element_count;
+    ply_element elements[PLY_MAX_ELEMENTS];
+} ply_header;
+
+static pelt_status parse_ply_header(const char *path, text_reader *r, long long size, ply_header *h,
+                                    pelt_error *err)
 {
-    char tok[128], name[128];
-    long long need = 0, count = 0, per = 0;
-    int ascii = 0, in_element = 0, ended = 0;
+    char tok[128];
+    h->format = -1;
     skip_line(r); /* "ply" */
-    while (!ended) {
+    for (;;) {
         if (!next_token(r, tok, sizeof tok, 0))
             return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header has no end_header", path);
-        ended = !strcmp(tok, "end_header");
+        if (!strcmp(tok, "end_header")) break;
         if (!strcmp(tok, "format")) {
             next_token(r, tok, sizeof tok, 1);
-            ascii = !strcmp(tok, "ascii");
-        } else if (!strcmp(tok, "element") || ended) {
-            if (in_element) {
-                if (per < 1) per = 1;
-                if (count > (size + 1) / per || need + count * per > size + 1) need = size + 1;
-                else need += count * per;
-            }
-            if (!ended) {
-                if (!next_token(r, name, sizeof name, 1) || !next_token(r, tok, sizeof tok, 1))
-                    return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY element line is incomplete", path);
-                count = parse_count(tok);
-                if (count < 0)
-                    return pelt__fail(err, PELT_ERR_FORMAT,
-                                      "%s: PLY element '%s' has count '%s', not a count", path, name, tok);
-                if (count > size)
-                    return pelt__fail(err, PELT_ERR_FORMAT,
-                                      "%s: PLY header declares %lld '%s' elements but the file has "
-                                      "only %lld bytes",
-                                      path, count, name, size);
-                per = 0;
-                in_element = 1;
-            }
+            h->format = !strcmp(tok, "ascii")                  ? 0
+                        : !strcmp(tok, "binary_little_endian") ? 1
+                        : !strcmp(tok, "binary_big_endian")    ? 2
+                                                               : -1;
+            if (h->format < 0)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY format '%s' is not a PLY format", path, tok);
+        } else if (!strcmp(tok, "element")) {
+            if (h->element_count == PLY_MAX_ELEMENTS)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header has more than %d elements", path,
+                                  PLY_MAX_ELEMENTS);
+            ply_element *e = &h->elements[h->element_count++];
+            if (!next_token(r, e->name, sizeof e->name, 1) || !next_token(r, tok, sizeof tok, 1))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY element line is incomplete", path);
+            e->count = parse_count(tok);
+            if (e->count < 0)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY element '%s' has count '%s', not a count",
+                                  path, e->name, tok);
+            if (e->count > size)
+                return pelt__fail(err, PELT_ERR_FORMAT,
+                                  "%s: PLY header declares %lld '%s' elements but the file has only %lld "
+                                  "bytes",
+                                  path, e->count, e->name, size);
         } else if (!strcmp(tok, "property")) {
+            if (h->element_count == 0)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY property before any element", path);
+            ply_element *e = &h->elements[h->element_count - 1];
+            if (e->property_count == PLY_MAX_PROPERTIES)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY element '%s' has more than %d properties",
+                                  path, e->name, PLY_MAX_PROPERTIES);
+            ply_property *p = &e->properties[e->property_count++];
             if (!next_token(r, tok, sizeof tok, 1))
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY property line is incomplete", path);
-            if (!strcmp(tok, "list") && !next_token(r, tok, sizeof tok, 1))
-                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY list property is incomplete", path);
-            per += ascii ? 1 : ply_type_size(tok);
+            if (!strcmp(tok, "list")) {
+                if (!next_token(r, tok, sizeof tok, 1))
+                    return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY list property is incomplete", path);
+                p->count_bytes = ply_type_size(tok);
+                p->count_signed = tok[0] != 'u';
+                if (p->count_bytes == 0 || p->count_bytes == 8 || !strncmp(tok, "float", 5))
+                    return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY list count type '%s' is not an integer",
+                                      path, tok);
+                if (!next_token(r, tok, sizeof tok, 1))
+                    return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY list property is incomplete", path);
+            }
+            p->bytes = ply_type_size(tok);
+            if (p->bytes == 0)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY property type '%s' is not a PLY type",
+                                  path, tok);
+            if (!next_token(r, p->name, sizeof p->name, 1))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY property has no name", path);
         }
         skip_line(r);
     }
-    long long body = size - (long long)r->pos;
-    if (!ascii && need > body)
-        return pelt__fail(err, PELT_ERR_FORMAT,
-                          "%s: PLY header declares at least %lld bytes of data but the file holds %lld",
-                          path, need, body);
-    if (ascii) {
-        long long tokens = 0;
-        while (tokens < need && next_token(r, tok, sizeof tok, 0)) tokens++;
-        if (tokens < need)
+    skip_line(r);
+    if (h->format < 0) return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header has no format line", path);
+    return PELT_OK;
+}
+
+/* A binary list count of n bytes at p; -1 when negative. */
+static long long ply_binary_count(const unsigned char *p, int n, int big_endian, int is_signed)
+{
+    unsigned long long v = 0;
+    for (int k = 0; k < n; k++) v |= (unsigned long long)p[big_endian ? k : n - 1 - k] << (8 * (n - 1 - k));
+    if (is_signed && (v >> (8 * n - 1)) & 1) return -1;
+    return (long long)v;
+}
+
+/* The binary body: every element's scalars and every list's declared
+ * entries are there. */
+static pelt_status check_ply_binary(const char *path, const text_reader *r, const ply_header *h,
+                                    pelt_error *err)
+{
+    const unsigned char *s = (const unsigned char *)r->s;
+    size_t at = r->pos;
+    for (int ei = 0; ei < h->element_count; ei++) {
+        const ply_element *e = &h->elements[ei];
+        for (long long i = 0; i < e->count; i++) {
+            for (int pi = 0; pi < e->property_count; pi++) {
+                const ply_property *p = &e->properties[pi];
+                long long n = 1;
+                if (p->count_bytes) {
+                    if (r->len - at < (size_t)p->count_bytes)
+                        return pelt__fail(err, PELT_ERR_FORMAT,
+                                          "%s: PLY file ends in '%s' %lld of %lld (property '%s')", path,
+                                          e->name, i, e->count, p->name);
+                    n = ply_binary_count(s + at, p->count_bytes, h->format == 2, p->count_signed);
+                    at += (size_t)p->count_bytes;
+                    if (n < 0)
+                        return pelt__fail(err, PELT_ERR_FORMAT,
+                                          "%s: PLY list '%s' of '%s' %lld has a negative count", path,
+                                          p->name, e->name, i);
+                }
+                if ((unsigned long long)n * (unsigned)p->bytes > r->len - at) {
+                    if (!p->count_bytes)
+                        return pelt__fail(err, PELT_ERR_FORMAT,
+                                          "%s: PLY file ends in '%s' %lld of %lld (property '%s')", path,
+                                          e->name, i, e->count, p->name);
+                    return pelt__fail(err, PELT_ERR_FORMAT,
+                                      "%s: PLY list '%s' of '%s' %lld of %lld declares %lld entries but "
+                                      "the file ends first",
+                                      path, p->name, e->name, i, e->count, n);
+                }
+                at += (size_t)n * (unsigned)p->bytes;
+            }
+        }
+    }
+    return PELT_OK;
+}
+
+/* The ASCII body: one line per element, holding exactly its scalars and
+ * the entries its lists declare. */
+static pelt_status check_ply_ascii(const char *path, text_reader *r, const ply_header *h,
+                                   pelt_error *err)
+{
+    char tok[128];
+    long long line = 0; /* the header's lines first */
+    for (size_t i = 0; i < r->pos; i++) line += r->s[i] == '\n';
+    for (int ei = 0; ei < h->element_count; ei++) {
+        const ply_element *e = &h->elements[ei];
+        for (long long i = 0; i < e->count; i++) {
+            if (!off_next_line(r, &line))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY file ends at '%s' %lld of %lld", path,
+                                  e->name, i, e->count);
+            for (int pi = 0; pi < e->property_count; pi++) {
+                const ply_property *p = &e->properties[pi];
+                long long n = 1;
+                if (p->count_bytes) {
+                    if (!next_token(r, tok, sizeof tok, 1) || (n = parse_count(tok)) < 0)
+                        return pelt__fail(err, PELT_ERR_FORMAT,
+                                          "%s: line %lld: PLY '%s' %lld: list '%s' has no count", path,
+                                          line, e->name, i, p->name);
+                }
+                for (long long k = 0; k < n; k++) {
+                    if (next_token(r, tok, sizeof tok, 1)) continue;
+                    if (!p->count_bytes)
+                        return pelt__fail(err, PELT_ERR_FORMAT,
+                                          "%s: line %lld: PLY '%s' %lld ends before property '%s'", path,
+                                          line, e->name, i, p->name);
+                    return pelt__fail(err, PELT_ERR_FORMAT,
+                                      "%s: line %lld: PLY '%s' %lld: list '%s' declares %lld entries but "
+                                      "the line holds %lld",
+                                      path, line, e->name, i, p->name, n, k);
+                }
+            }
+            if (next_token(r, tok, sizeof tok, 1))
+                return pelt__fail(err, PELT_ERR_FORMAT,
+                                  "%s: line %lld: PLY '%s' %lld holds more values than its properties "
+                                  "declare ('%s')",
+                                  path, line, e->name, i, tok);
+            skip_line(r);
+        }
+    }
+    return PELT_OK;
+}
+
+/* PLY: the body must hold exactly what the header declares, lists
+ * included: a list that declares more entries than there are would make
+ * assimp read the next element's values as indices (a silently wrong
+ * mesh), and a truncated ASCII body makes it leak. */
+static pelt_status check_ply(const char *path, text_reader *r, long long size, pelt_error *err)
+{
+    ply_header *h = pelt__calloc(1, sizeof *h);
+    if (!h) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
+    pelt_status st = parse_ply_header(path, r, size, h, err);
+    if (st == PELT_OK)
+        st = h->format == 0 ? check_ply_ascii(path, r, h, err) : check_ply_binary(path, r, h, err);
+    free(h);
+    return st;
+}
+
+/* OBJ: every face has three or more corners and each corner names a
+ * vertex of the file (1-based, or negative: counted back from the last
+ * vertex so far). assimp makes a face of one or two corners a point or a
+ * line and pelt would drop it: a silently partial mesh. */
+static pelt_status check_obj(const char *path, text_reader *r, pelt_error *err)
+{
+    char tok[128];
+    long long vertices = 0, line = 1;
+    text_reader count = *r;
+    while (count.pos < count.len) { /* forward references are allowed: count them all first */
+        if (next_token(&count, tok, sizeof tok, 1) && !strcmp(tok, "v")) vertices++;
+        skip_line(&count);
+    }
+    long long seen = 0;
+    for (; r->pos < r->len; line++) {
+        if (!next_token(r, tok, sizeof tok, 1) || (strcmp(tok, "f") && strcmp(tok, "v"))) {
+            skip_line(r);
+            continue;
+        }
+        if (!strcmp(tok, "v")) {
+            seen++;
+            skip_line(r);
+            continue;
+        }
+        long long corners = 0;
+        for (;;) {
+            if (!next_token(r, tok, sizeof tok, 1)) break;
+            if (!strcmp(tok, "\\")) { /* the face goes on on the next line */
+                skip_line(r);
+                line++;
+                continue;
+            }
+            char *end;
+            errno = 0;
+            long long i = strtoll(tok, &end, 10);
+            if (end == tok || (*end != '\0' && *end != '/'))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: face corner '%s' is not a vertex index",
+                                  path, line, tok);
+            if (errno == ERANGE || i == 0 || i > vertices || (i < 0 && -i > seen))
+                return pelt__fail(err, PELT_ERR_FORMAT,
+                                  "%s: line %lld: face refers to vertex '%s' but there are %lld vertices%s",
+                                  path, line, tok, i < 0 ? seen : vertices, i < 0 ? " before it" : "");
+            corners++;
+        }
+        if (corners < 3)
             return pelt__fail(err, PELT_ERR_FORMAT,
-                              "%s: PLY header declares at least %lld values but the file holds %lld",
-                              path, need, tokens);
+                              "%s: line %lld: a face of %lld corner%s; a face needs 3 or more ('l' makes "
+                              "a line)",
+                              path, line, corners, corners == 1 ? "" : "s");
+        skip_line(r);
     }
     return PELT_OK;
 }
@@ -279,9 +472,17 @@ static pelt_status check_stl(const char *path, const text_reader *r, long long s
         const unsigned char *u = (const unsigned char *)r->s + 80;
         n = (long long)u[0] | (long long)u[1] << 8 | (long long)u[2] << 16 | (long long)u[3] << 24;
     }
-    /* Some binary writers start the header with "solid" too. */
-    if (r->len >= 5 && strncmp(r->s, "solid", 5) == 0 && 84 + 50 * n != size)
-        return check_stl_ascii(path, r, err);
+    /* Some binary writers start the header with "solid" too: ASCII is a
+     * "solid" whose size does not fit the count and that has a facet (or
+     * ends) within its first 256 bytes; a cut binary file does not. */
+    if (r->len >= 5 && strncmp(r->s, "solid", 5) == 0 && 84 + 50 * n != size) {
+        text_reader probe = {r->s, 0, r->len < 256 ? r->len : 256};
+        char tok[16];
+        int ascii = n < 0;
+        while (!ascii && next_token(&probe, tok, sizeof tok, 0))
+            ascii = !strcmp(tok, "facet") || !strcmp(tok, "endsolid");
+        if (ascii) return check_stl_ascii(path, r, err);
+    }
     if (size < 84 || r->len < 84)
         return pelt__fail(err, PELT_ERR_FORMAT, "%s: binary STL shorter than its 84-byte header", path);
     if (84 + 50 * n > size)
@@ -291,7 +492,7 @@ static pelt_status check_stl(const char *path, const text_reader *r, long long s
     return PELT_OK;
 }
 
-typedef enum file_kind { KIND_OTHER, KIND_OFF, KIND_PLY, KIND_STL } file_kind;
+typedef enum file_kind { KIND_OTHER, KIND_OFF, KIND_PLY, KIND_STL, KIND_OBJ } file_kind;
 
 /* By content first (assimp also sniffs), then by extension. */
 static file_kind sniff(const char *path, const char *head, size_t len)
@@ -305,11 +506,12 @@ static file_kind sniff(const char *path, const char *head, size_t len)
         return KIND_OFF;
     if (ends_with_ci(path, ".off")) return KIND_OFF;
     if (ends_with_ci(path, ".stl")) return KIND_STL;
+    if (ends_with_ci(path, ".obj")) return KIND_OBJ;
     return KIND_OTHER;
 }
 
 /* Checks what the header of a file (or buffer) named `name` declares.
- * buf holds its first len bytes of size in all; for OFF, PLY and STL it
+ * buf holds its first len bytes of size in all; for OFF, PLY, STL and OBJ it
  * holds all of them. */
 static pelt_status check_header(const char *name, const char *buf, size_t len, long long size,
                                 pelt_error *err)
@@ -320,11 +522,12 @@ static pelt_status check_header(const char *name, const char *buf, size_t len, l
     if (kind == KIND_OFF) return check_off(name, &r, size, err);
     if (kind == KIND_PLY) return check_ply(name, &r, size, err);
     if (kind == KIND_STL) return check_stl(name, &r, size, err);
+    if (kind == KIND_OBJ) return check_obj(name, &r, err);
     return PELT_OK;
 }
 
-/* Opens and sizes the file and checks what its header declares. OFF, PLY
- * and STL files are read whole (bounded by the real file size). */
+/* Opens and sizes the file and checks what its header declares. OFF, PLY,
+ * STL and OBJ files are read whole (bounded by the real file size). */
 static pelt_status precheck(const char *path, pelt_error *err)
 {
     FILE *f = fopen(path, "rb");
