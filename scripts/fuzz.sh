@@ -28,7 +28,12 @@ if [ ${#need[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${need[@]}" >/dev/null
 fi
 
-all=$(sed -n 's/^pelt_fuzz(\(fuzz_[a-z_]*\) .*/\1/p' tests/CMakeLists.txt)
+build=$root/build-fuzz
+CC=clang cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPELT_SANITIZE=ON \
+  -DPELT_FUZZ=ON >/dev/null
+# The targets are what tests/CMakeLists.txt declares with pelt_fuzz.
+all=$(cmake --build "$build" --target help | sed -n 's/^\.\.\. \(fuzz_[a-z_]*\)$/\1/p' \
+      | grep -v '_replay$' | sort)
 if [ "$target" = all ]; then
   targets=$all
 elif echo "$all" | grep -qx "$target"; then
@@ -37,10 +42,6 @@ else
   echo "fuzz: no target '$target'; there are: $(echo $all)" >&2
   exit 2
 fi
-
-build=$root/build-fuzz
-CC=clang cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPELT_SANITIZE=ON \
-  -DPELT_FUZZ=ON >/dev/null
 # shellcheck disable=SC2086
 cmake --build "$build" -j2 --target $targets >/dev/null
 

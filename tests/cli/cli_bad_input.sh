@@ -37,6 +37,15 @@ expect_fail missing_mesh "no_such_mesh.obj" $r --mesh "$out/no_such_mesh.obj"
 for f in "$data"/meshes/bad_*; do
   expect_fail "mesh_$(basename "$f")" "$(basename "$f")" $r --mesh "$f"
 done
+# Strict, never a silently partial mesh: what is wrong, where.
+expect_fail ply_list_short "list 'vertex_indices' declares 4 entries but the line holds 3" \
+  $r --mesh "$data/meshes/bad_list_short.ply"
+expect_fail ply_list_short_binary "declares 3 entries but the file ends first" \
+  $r --mesh "$data/meshes/bad_list_short_binary.ply"
+expect_fail stl_truncated_binary "binary STL declares 2 triangles but the file has only 154 bytes" \
+  $r --mesh "$data/meshes/bad_truncated_solid.stl"
+expect_fail obj_two_corner_face "line 7: a face of 2 corners" $r --mesh "$data/meshes/bad_face_two_vertices.obj"
+expect_fail gltf_accessor_out_of_range "out of range" $r --mesh "$data/meshes/bad_accessor_range.gltf"
 expect_fail missing_scene "nope.json" $r "$out/nope.json" 
 for f in "$data"/scenes/bad_*.json "$data"/scenes/empty.json "$data"/scenes/nul_byte.json; do
   [ -e "$f" ] || continue
