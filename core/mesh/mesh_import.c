@@ -104,8 +104,17 @@ static pelt_status check_off(const char *path, text_reader *r, long long size, p
 {
     char tok[64];
     long long line = 0;
-    if (!off_next_line(r, &line) || !next_token(r, tok, sizeof tok, 1) || !ends_with_ci(tok, "OFF"))
+    if (!off_next_line(r, &line) || !next_token(r, tok, sizeof tok, 1))
         return PELT_OK; /* not an OFF header: assimp decides */
+    if (!ends_with_ci(tok, "OFF")) {
+        /* assimp reads "OFF2000000000" as a header and a count (and reserves
+         * that many vertices): a count must stand apart. */
+        for (const char *p = tok; *p; p++)
+            if (!strncmp(p, "OFF", 3) || !strncmp(p, "off", 3))
+                return pelt__fail(err, PELT_ERR_FORMAT,
+                                  "%s: line %lld: OFF header '%s' runs into what follows it", path, line, tok);
+        return PELT_OK;
+    }
     if (strchr(tok, 'n') || strchr(tok, '4')) return PELT_OK; /* dimension variants: assimp refuses */
     long long counts[3] = {-1, -1, 0};
     int have = 0;
@@ -347,7 +356,14 @@ static pelt_status check_ply_ascii(const char *path, text_reader *r, const ply_h
                                           line, e->name, i, p->name);
                 }
                 for (long long k = 0; k < n; k++) {
-                    if (next_token(r, tok, sizeof tok, 1)) continue;
+                    if (next_token(r, tok, sizeof tok, 1)) {
+                        char *end;
+                        strtod(tok, &end);
+                        if (*end == '\0') continue;
+                        return pelt__fail(err, PELT_ERR_FORMAT,
+                                          "%s: line %lld: PLY '%s' %lld: '%s' (property '%s') is not a number",
+                                          path, line, e->name, i, tok, p->name);
+                    }
                     if (!p->count_bytes)
                         return pelt__fail(err, PELT_ERR_FORMAT,
                                           "%s: line %lld: PLY '%s' %lld ends before property '%s'", path,
@@ -378,6 +394,10 @@ static pelt_status check_ply(const char *path, text_reader *r, long long size, p
     ply_header *h = pelt__calloc(1, sizeof *h);
     if (!h) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     pelt_status st = parse_ply_header(path, r, size, h, err);
+    if (st == PELT_OK && memchr(r->s, '\0', r->pos))
+        st = pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header holds a NUL byte (it must be text)", path);
+    if (st == PELT_OK && h->format == 0 && memchr(r->s + r->pos, '\0', r->len - r->pos))
+        st = pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII PLY holds a NUL byte (it must be text)", path);
     if (st == PELT_OK)
         st = h->format == 0 ? check_ply_ascii(path, r, h, err) : check_ply_binary(path, r, h, err);
     free(h);
@@ -442,6 +462,8 @@ static pelt_status check_obj(const char *path, text_reader *r, pelt_error *err)
  * (assimp leaks memory on a truncated one). */
 static pelt_status check_stl_ascii(const char *path, const text_reader *head, pelt_error *err)
 {
+    if (memchr(head->s, '\0', head->len))
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII STL holds a NUL byte (it must be text)", path);
     text_reader r = *head;
     char tok[64];
     long long vertices = 0;
@@ -492,12 +514,45 @@ static pelt_status check_stl(const char *path, const text_reader *r, long long s
     return PELT_OK;
 }
 
-typedef enum file_kind { KIND_OTHER, KIND_OFF, KIND_PLY, KIND_STL, KIND_OBJ } file_kind;
+static uint32_t u32_le(const char *p)
+{
+    const unsigned char *u = (const unsigned char *)p;
+    return (uint32_t)u[0] | (uint32_t)u[1] << 8 | (uint32_t)u[2] << 16 | (uint32_t)u[3] << 24;
+}
+
+/* GLB: the lengths in the header and the chunk headers fit in the file
+ * (assimp allocates a chunk's declared length before reading it). */
+static pelt_status check_glb(const char *path, const text_reader *r, long long size, pelt_error *err)
+{
+    if (r->len < 12) return pelt__fail(err, PELT_ERR_FORMAT, "%s: GLB header is truncated", path);
+    uint32_t version = u32_le(r->s + 4), total = u32_le(r->s + 8);
+    if ((long long)total > size)
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: GLB header declares %u bytes but the file has %lld",
+                          path, total, size);
+    if (version == 1) { /* glTF 1.0: one content block after a 20-byte header */
+        if (r->len < 20 || (long long)u32_le(r->s + 12) > size - 20)
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: GLB content is longer than the file", path);
+        return PELT_OK;
+    }
+    size_t at = 12;
+    for (int chunk = 0; at + 8 <= total && at + 8 <= r->len; chunk++) {
+        uint32_t n = u32_le(r->s + at);
+        if (n > total - at - 8)
+            return pelt__fail(err, PELT_ERR_FORMAT,
+                              "%s: GLB chunk %d declares %u bytes but only %zu follow", path, chunk, n,
+                              (size_t)total - at - 8);
+        at += 8 + (size_t)n;
+    }
+    return PELT_OK;
+}
+
+typedef enum file_kind { KIND_OTHER, KIND_OFF, KIND_PLY, KIND_STL, KIND_OBJ, KIND_GLB } file_kind;
 
 /* By content first (assimp also sniffs), then by extension. */
 static file_kind sniff(const char *path, const char *head, size_t len)
 {
     if (len >= 3 && (strncmp(head, "ply", 3) == 0 || strncmp(head, "PLY", 3) == 0)) return KIND_PLY;
+    if (len >= 4 && memcmp(head, "glTF", 4) == 0) return KIND_GLB;
     text_reader probe = {head, 0, len};
     char tok[16];
     long long line = 0;
@@ -519,10 +574,14 @@ static pelt_status check_header(const char *name, const char *buf, size_t len, l
     if (len == 0) return pelt__fail(err, PELT_ERR_FORMAT, "%s: file is empty", name);
     file_kind kind = sniff(name, buf, len);
     text_reader r = {buf, 0, len};
+    if ((kind == KIND_OFF || kind == KIND_OBJ) && memchr(buf, '\0', len))
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: %s file holds a NUL byte (it must be text)", name,
+                          kind == KIND_OFF ? "an OFF" : "an OBJ");
     if (kind == KIND_OFF) return check_off(name, &r, size, err);
     if (kind == KIND_PLY) return check_ply(name, &r, size, err);
     if (kind == KIND_STL) return check_stl(name, &r, size, err);
     if (kind == KIND_OBJ) return check_obj(name, &r, err);
+    if (kind == KIND_GLB) return check_glb(name, &r, size, err);
     return PELT_OK;
 }
 

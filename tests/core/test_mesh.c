@@ -532,7 +532,7 @@ static void bad_files_fail_cleanly_naming_the_file(void)
         "bad_truncated.stl",      "bad_truncated_binary.ply", "bad_list_short.ply",
         "bad_list_long_count.ply", "bad_list_short_binary.ply", "bad_truncated_solid.stl",
         "bad_face_two_vertices.obj", "bad_face_one_vertex.obj", "bad_accessor_range.gltf",
-        "bad_view_range.gltf",    "bad_accessor_offset.gltf",
+        "bad_view_range.gltf",    "bad_accessor_offset.gltf", "bad_glb_chunk_length.glb",
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char path[1024];
@@ -572,6 +572,7 @@ static void specific_bad_files_say_what_is_wrong(void)
         {"bad_accessor_range.gltf", "Accessor with offset/length (0/1600) is out of range"},
         {"bad_view_range.gltf", "Buffer view with offset/length (4000/12) is out of range"},
         {"bad_accessor_offset.gltf", "Accessor with offset/length (8/12) is out of range"},
+        {"bad_glb_chunk_length.glb", "GLB chunk 0 declares 2734687028 bytes but only"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char path[1024];

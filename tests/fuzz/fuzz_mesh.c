@@ -13,7 +13,8 @@
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    const char *ext = PELT_FUZZ_NAME + strlen("fuzz_mesh_");
+    const char *target = PELT_FUZZ_NAME;
+    const char *ext = target + strlen("fuzz_mesh_");
     if (!strcmp(ext, "gltf") && size >= 4 && !memcmp(data, "glTF", 4)) ext = "glb";
     char name[32] = "fuzz.";
     strncat(name, ext, sizeof name - strlen(name) - 1);
