@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 /* How much of the file the header checks look at. */
@@ -107,15 +108,20 @@ static pelt_status check_off(const char *path, text_reader *r, long long size, p
     if (!off_next_line(r, &line) || !next_token(r, tok, sizeof tok, 1))
         return PELT_OK; /* not an OFF header: assimp decides */
     if (!ends_with_ci(tok, "OFF")) {
-        /* assimp reads "OFF2000000000" as a header and a count (and reserves
-         * that many vertices): a count must stand apart. */
+        /* assimp reads "OFF2000000000" as a header and a count, and a file
+         * without a header as counts (reserving that many vertices either
+         * way): a count must stand apart, and what is not a header or a count
+         * is not OFF. */
         for (const char *p = tok; *p; p++)
             if (!strncmp(p, "OFF", 3) || !strncmp(p, "off", 3))
                 return pelt__fail(err, PELT_ERR_FORMAT,
                                   "%s: line %lld: OFF header '%s' runs into what follows it", path, line, tok);
-        return PELT_OK;
+        if (parse_count(tok) < 0)
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: not an OFF file: it starts with '%s'", path, tok);
+        r->pos -= strlen(tok) < r->pos ? strlen(tok) : r->pos; /* no header: this line holds the counts */
+    } else if (strchr(tok, 'n') || strchr(tok, '4')) {
+        return PELT_OK; /* dimension variants: assimp refuses */
     }
-    if (strchr(tok, 'n') || strchr(tok, '4')) return PELT_OK; /* dimension variants: assimp refuses */
     long long counts[3] = {-1, -1, 0};
     int have = 0;
     for (int pass = 0; pass < 2 && have < 2; pass++) {
@@ -191,6 +197,8 @@ static int ply_type_size(const char *t)
     return 0;
 }
 
+static long long line_at(const text_reader *r, size_t pos);
+
 /* A PLY header as far as the body check needs it. */
 #define PLY_MAX_ELEMENTS 16
 #define PLY_MAX_PROPERTIES 64
@@ -246,7 +254,11 @@ static pelt_status parse_ply_header(const char *path, text_reader *r, long long 
                                   "%s: PLY header declares %lld '%s' elements but the file has only %lld "
                                   "bytes",
                                   path, e->count, e->name, size);
-        } else if (!strcmp(tok, "property")) {
+        } else if (strcmp(tok, "property") != 0) {
+            if (strcmp(tok, "comment") && strcmp(tok, "obj_info"))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: PLY header line starts with '%s'",
+                                  path, line_at(r, r->pos), tok);
+        } else {
             if (h->element_count == 0)
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY property before any element", path);
             ply_element *e = &h->elements[h->element_count - 1];
@@ -278,7 +290,25 @@ static pelt_status parse_ply_header(const char *path, text_reader *r, long long 
     }
     skip_line(r);
     if (h->format < 0) return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header has no format line", path);
+    int xyz = 0;
+    for (int ei = 0; ei < h->element_count; ei++) {
+        const ply_element *e = &h->elements[ei];
+        if (strcmp(e->name, "vertex")) continue;
+        for (int pi = 0; pi < e->property_count; pi++)
+            if (!e->properties[pi].count_bytes && strlen(e->properties[pi].name) == 1 &&
+                strchr("xyz", e->properties[pi].name[0]))
+                xyz |= 1 << (e->properties[pi].name[0] - 'x');
+    }
+    if (xyz != 7)
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY has no 'vertex' element with x, y and z", path);
     return PELT_OK;
+}
+
+/* The corner list of a face: fewer than 3 entries is not a face. */
+static int ply_is_corner_list(const ply_element *e, const ply_property *p)
+{
+    return p->count_bytes && !strcmp(e->name, "face") &&
+           (!strcmp(p->name, "vertex_indices") || !strcmp(p->name, "vertex_index"));
 }
 
 /* A binary list count of n bytes at p; -1 when negative. */
@@ -314,6 +344,10 @@ static pelt_status check_ply_binary(const char *path, const text_reader *r, cons
                         return pelt__fail(err, PELT_ERR_FORMAT,
                                           "%s: PLY list '%s' of '%s' %lld has a negative count", path,
                                           p->name, e->name, i);
+                    if (n < 3 && ply_is_corner_list(e, p))
+                        return pelt__fail(err, PELT_ERR_FORMAT,
+                                          "%s: PLY face %lld has %lld corners; a face needs 3 or more",
+                                          path, i, n);
                 }
                 if ((unsigned long long)n * (unsigned)p->bytes > r->len - at) {
                     if (!p->count_bytes)
@@ -354,6 +388,11 @@ static pelt_status check_ply_ascii(const char *path, text_reader *r, const ply_h
                         return pelt__fail(err, PELT_ERR_FORMAT,
                                           "%s: line %lld: PLY '%s' %lld: list '%s' has no count", path,
                                           line, e->name, i, p->name);
+                    if (n < 3 && ply_is_corner_list(e, p))
+                        return pelt__fail(err, PELT_ERR_FORMAT,
+                                          "%s: line %lld: PLY face %lld has %lld corners; a face needs 3 "
+                                          "or more",
+                                          path, line, i, n);
                 }
                 for (long long k = 0; k < n; k++) {
                     if (next_token(r, tok, sizeof tok, 1)) {
@@ -458,32 +497,80 @@ static pelt_status check_obj(const char *path, text_reader *r, pelt_error *err)
     return PELT_OK;
 }
 
-/* ASCII STL: every "vertex" has three numbers and the solid is closed
- * (assimp leaks memory on a truncated one). */
+/* The 1-based line of position pos. */
+static long long line_at(const text_reader *r, size_t pos)
+{
+    long long line = 1;
+    for (size_t i = 0; i < pos && i < r->len; i++) line += r->s[i] == '\n';
+    return line;
+}
+
+static int word_is(const char *tok, const char *word)
+{
+    return strcasecmp(tok, word) == 0;
+}
+
+/* Reads n numbers; false (with k the one missing) when one is not. */
+static int stl_numbers(text_reader *r, int n, int *k)
+{
+    char tok[64];
+    for (*k = 0; *k < n; (*k)++) {
+        char *end = NULL;
+        if (next_token(r, tok, sizeof tok, 1)) strtod(tok, &end);
+        if (!end || end == tok || *end != '\0') return 0;
+    }
+    return 1;
+}
+
+/* ASCII STL, word by word: solid NAME { facet normal N N N outer loop
+ * (vertex X Y Z){3} endloop endfacet } endsolid, and maybe another solid.
+ * assimp leaks memory on a truncated file and on a misspelt keyword. */
 static pelt_status check_stl_ascii(const char *path, const text_reader *head, pelt_error *err)
 {
     if (memchr(head->s, '\0', head->len))
         return pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII STL holds a NUL byte (it must be text)", path);
+    static const char *const facet[] = {"outer", "loop", "vertex", "vertex", "vertex", "endloop", "endfacet"};
     text_reader r = *head;
     char tok[64];
-    long long vertices = 0;
-    int closed = 0;
-    while (next_token(&r, tok, sizeof tok, 0)) {
-        if (!strcmp(tok, "endsolid")) closed = 1;
-        if (strcmp(tok, "vertex") != 0) continue;
-        for (int k = 0; k < 3; k++) {
-            char *end = NULL;
-            if (next_token(&r, tok, sizeof tok, 1)) strtod(tok, &end);
-            if (!end || end == tok || *end != '\0')
-                return pelt__fail(err, PELT_ERR_FORMAT, "%s: STL vertex %lld lacks coordinate %d", path,
-                                  vertices, k);
+    long long vertices = 0, facets = 0;
+    skip_line(&r); /* solid NAME */
+    for (;;) {
+        if (!next_token(&r, tok, sizeof tok, 0))
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII STL is truncated (%lld vertices, no endsolid)",
+                              path, vertices);
+        if (word_is(tok, "endsolid")) {
+            skip_line(&r);
+            if (!next_token(&r, tok, sizeof tok, 0)) return PELT_OK;
+            if (word_is(tok, "solid")) {
+                skip_line(&r);
+                continue;
+            }
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: '%s' after endsolid", path,
+                              line_at(&r, r.pos), tok);
         }
-        vertices++;
+        int k;
+        if (!word_is(tok, "facet") || !next_token(&r, tok, sizeof tok, 1) || !word_is(tok, "normal"))
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: STL facet %lld does not start with "
+                              "'facet normal'", path, line_at(&r, r.pos), facets);
+        if (!stl_numbers(&r, 3, &k))
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: STL facet %lld: normal lacks coordinate %d",
+                              path, line_at(&r, r.pos), facets, k);
+        for (size_t w = 0; w < sizeof facet / sizeof facet[0]; w++) {
+            if (!next_token(&r, tok, sizeof tok, 0))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII STL is truncated (%lld vertices, no endsolid)",
+                                  path, vertices);
+            if (!word_is(tok, facet[w]))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: STL facet %lld: '%s' where '%s' belongs",
+                                  path, line_at(&r, r.pos), facets, tok, facet[w]);
+            if (!strcmp(facet[w], "vertex")) {
+                if (!stl_numbers(&r, 3, &k))
+                    return pelt__fail(err, PELT_ERR_FORMAT, "%s: STL vertex %lld lacks coordinate %d", path,
+                                      vertices, k);
+                vertices++;
+            }
+        }
+        facets++;
     }
-    if (!closed || vertices % 3 != 0)
-        return pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII STL is truncated (%lld vertices%s)", path,
-                          vertices, closed ? "" : ", no endsolid");
-    return PELT_OK;
 }
 
 /* Binary STL: 80-byte header, a triangle count, 50 bytes per triangle. */
@@ -520,6 +607,16 @@ static uint32_t u32_le(const char *p)
     return (uint32_t)u[0] | (uint32_t)u[1] << 8 | (uint32_t)u[2] << 16 | (uint32_t)u[3] << 24;
 }
 
+/* glTF JSON starts with '{' (after white space or a byte order mark). assimp
+ * guesses a format for anything else and one of its guesses reads past the
+ * end of the buffer. */
+static int is_json_object(const char *s, size_t len)
+{
+    size_t i = len >= 3 && !memcmp(s, "\xef\xbb\xbf", 3) ? 3 : 0;
+    while (i < len && isspace((unsigned char)s[i])) i++;
+    return i < len && s[i] == '{';
+}
+
 /* GLB: the lengths in the header and the chunk headers fit in the file
  * (assimp allocates a chunk's declared length before reading it). */
 static pelt_status check_glb(const char *path, const text_reader *r, long long size, pelt_error *err)
@@ -541,12 +638,22 @@ static pelt_status check_glb(const char *path, const text_reader *r, long long s
             return pelt__fail(err, PELT_ERR_FORMAT,
                               "%s: GLB chunk %d declares %u bytes but only %zu follow", path, chunk, n,
                               (size_t)total - at - 8);
+        if (chunk == 0 && (memcmp(r->s + at + 4, "JSON", 4) || !is_json_object(r->s + at + 8, n)))
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: GLB does not start with a JSON chunk", path);
         at += 8 + (size_t)n;
     }
     return PELT_OK;
 }
 
-typedef enum file_kind { KIND_OTHER, KIND_OFF, KIND_PLY, KIND_STL, KIND_OBJ, KIND_GLB } file_kind;
+static pelt_status check_gltf(const char *path, const text_reader *r, pelt_error *err)
+{
+    if (!is_json_object(r->s, r->len))
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: not a glTF file: it does not start with a JSON object",
+                          path);
+    return PELT_OK;
+}
+
+typedef enum file_kind { KIND_OTHER, KIND_OFF, KIND_PLY, KIND_STL, KIND_OBJ, KIND_GLB, KIND_GLTF } file_kind;
 
 /* By content first (assimp also sniffs), then by extension. */
 static file_kind sniff(const char *path, const char *head, size_t len)
@@ -562,6 +669,7 @@ static file_kind sniff(const char *path, const char *head, size_t len)
     if (ends_with_ci(path, ".off")) return KIND_OFF;
     if (ends_with_ci(path, ".stl")) return KIND_STL;
     if (ends_with_ci(path, ".obj")) return KIND_OBJ;
+    if (ends_with_ci(path, ".gltf")) return KIND_GLTF;
     return KIND_OTHER;
 }
 
@@ -582,6 +690,7 @@ static pelt_status check_header(const char *name, const char *buf, size_t len, l
     if (kind == KIND_STL) return check_stl(name, &r, size, err);
     if (kind == KIND_OBJ) return check_obj(name, &r, err);
     if (kind == KIND_GLB) return check_glb(name, &r, size, err);
+    if (kind == KIND_GLTF) return check_gltf(name, &r, err);
     return PELT_OK;
 }
 
