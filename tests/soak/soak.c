@@ -4,8 +4,8 @@
  * becomes NaN or infinite, that GL raises no error, and that resident
  * memory stays flat once warmed up.
  *   pelt_soak [STEPS [SIZE]]    default 1000 steps at 32 x 24
- * Prints RSS at the start (after the warm-up) and the end and steps per
- * second; exits 1 on any failure, 77 when there is no OpenGL. */
+ * Prints the resident anonymous memory at the start (after the warm-up)
+ * and the end and steps per second; exits 1 on any failure, 77 when there is no OpenGL. */
 #define _POSIX_C_SOURCE 200809L
 #include <pelt/pelt.h>
 
@@ -18,17 +18,20 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
-#include <unistd.h>
 
-/* Resident memory in KiB, from /proc/self/statm. */
+/* Resident anonymous memory in KiB (heap and mappings of the process's own
+ * making; not the shared libraries, whose pages the kernel may drop and
+ * bring back), from /proc/self/status. */
 static long rss_kib(void)
 {
-    long pages = 0, resident = 0;
-    FILE *f = fopen("/proc/self/statm", "r");
+    char line[256];
+    long kib = -1;
+    FILE *f = fopen("/proc/self/status", "r");
     if (!f) return -1;
-    if (fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = -1;
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "RssAnon: %ld kB", &kib) == 1) break;
     fclose(f);
-    return resident < 0 ? -1 : resident * (sysconf(_SC_PAGESIZE) / 1024);
+    return kib;
 }
 
 static double now(void)
@@ -183,7 +186,7 @@ int main(int argc, char **argv)
     long measured = steps - warm;
     printf("soak: %ld steps at %ux%u, %u triangles, %u layers\n", steps, w, h,
            (unsigned)pelt_mesh_get_data(mesh).triangle_count, fd.layers);
-    printf("soak: RSS after %ld warm-up steps %ld KiB, at the end %ld KiB (peak %ld KiB, %+ld KiB)\n",
+    printf("soak: anonymous RSS after %ld warm-up steps %ld KiB, at the end %ld KiB (peak %ld KiB, %+ld KiB)\n",
            warm, rss_start, rss_end, rss_peak, rss_end - rss_start);
     printf("soak: %.1f steps/s over the last %ld steps (%.1f s)\n", (double)measured / seconds,
            measured, seconds);
