@@ -18,7 +18,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
 #include <sys/stat.h>
 
 /* How much of the file the header checks look at. */
@@ -101,26 +100,37 @@ static int off_next_line(text_reader *r, long long *line)
  * "-1" as vertex 0, which would turn a corrupt file into a plausible mesh;
  * and it reserves the declared counts before reading, so a header claiming
  * two billion vertices must not reach it. */
+/* 1 for an OFF header assimp reads ([ST][C][N]OFF), 2 for its 4D and n-D
+ * variants, 0 for anything else. */
+static int off_header(const char *t)
+{
+    int variant = 0;
+    if (!strncmp(t, "ST", 2)) t += 2;
+    if (*t == 'C') t++;
+    if (*t == 'N') t++;
+    if (*t == '4') t++, variant = 1;
+    if (*t == 'n') t++, variant = 1;
+    return !ends_with_ci(t, "OFF") || strlen(t) != 3 ? 0 : variant ? 2 : 1;
+}
+
 static pelt_status check_off(const char *path, text_reader *r, long long size, pelt_error *err)
 {
     char tok[64];
     long long line = 0;
     if (!off_next_line(r, &line) || !next_token(r, tok, sizeof tok, 1))
-        return PELT_OK; /* not an OFF header: assimp decides */
-    if (!ends_with_ci(tok, "OFF")) {
-        /* assimp reads "OFF2000000000" as a header and a count, and a file
-         * without a header as counts (reserving that many vertices either
-         * way): a count must stand apart, and what is not a header or a count
-         * is not OFF. */
-        for (const char *p = tok; *p; p++)
-            if (!strncmp(p, "OFF", 3) || !strncmp(p, "off", 3))
-                return pelt__fail(err, PELT_ERR_FORMAT,
-                                  "%s: line %lld: OFF header '%s' runs into what follows it", path, line, tok);
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: OFF file holds nothing", path);
+    /* assimp's rule: [ST][C][N][4][n]OFF is a header; a file without one
+     * starts with its counts, and assimp then reads them one place on, so
+     * each of the three must be small enough to be either (it reserves what
+     * they declare). Anything else is not OFF. */
+    int header = off_header(tok), headerless = 0;
+    if (header == 2)
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: OFF variant '%s' (4D or n-D) is not supported", path, tok);
+    if (!header) {
         if (parse_count(tok) < 0)
             return pelt__fail(err, PELT_ERR_FORMAT, "%s: not an OFF file: it starts with '%s'", path, tok);
-        r->pos -= strlen(tok) < r->pos ? strlen(tok) : r->pos; /* no header: this line holds the counts */
-    } else if (strchr(tok, 'n') || strchr(tok, '4')) {
-        return PELT_OK; /* dimension variants: assimp refuses */
+        r->pos -= strlen(tok) < r->pos ? strlen(tok) : r->pos; /* this line holds the counts */
+        headerless = 1;
     }
     long long counts[3] = {-1, -1, 0};
     int have = 0;
@@ -139,6 +149,11 @@ static pelt_status check_off(const char *path, text_reader *r, long long size, p
             have++;
         }
     }
+    if (headerless && (counts[0] > size / 4 || counts[1] > size / 4 || counts[2] > size / 4))
+        return pelt__fail(err, PELT_ERR_FORMAT,
+                          "%s: OFF file without a header declares counts %lld %lld %lld but has only %lld "
+                          "bytes",
+                          path, counts[0], counts[1], counts[2], size);
     const long long nv = counts[0], nf = counts[1];
     if (nv > size / 6 || nf > size / 4 || nv * 6 + nf * 4 > size)
         return pelt__fail(err, PELT_ERR_FORMAT,
@@ -430,6 +445,9 @@ static pelt_status check_ply_ascii(const char *path, text_reader *r, const ply_h
  * mesh), and a truncated ASCII body makes it leak. */
 static pelt_status check_ply(const char *path, text_reader *r, long long size, pelt_error *err)
 {
+    if (r->len < 4 || (strncmp(r->s, "ply", 3) && strncmp(r->s, "PLY", 3)) ||
+        !isspace((unsigned char)r->s[3]))
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: not a PLY file: it does not start with 'ply'", path);
     ply_header *h = pelt__calloc(1, sizeof *h);
     if (!h) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     pelt_status st = parse_ply_header(path, r, size, h, err);
@@ -505,9 +523,10 @@ static long long line_at(const text_reader *r, size_t pos)
     return line;
 }
 
+/* Keywords are lower case: assimp reads "vErtex" as something else and leaks. */
 static int word_is(const char *tok, const char *word)
 {
-    return strcasecmp(tok, word) == 0;
+    return strcmp(tok, word) == 0;
 }
 
 /* Reads n numbers; false (with k the one missing) when one is not. */
@@ -669,6 +688,7 @@ static file_kind sniff(const char *path, const char *head, size_t len)
     if (ends_with_ci(path, ".off")) return KIND_OFF;
     if (ends_with_ci(path, ".stl")) return KIND_STL;
     if (ends_with_ci(path, ".obj")) return KIND_OBJ;
+    if (ends_with_ci(path, ".ply")) return KIND_PLY;
     if (ends_with_ci(path, ".gltf")) return KIND_GLTF;
     return KIND_OTHER;
 }
