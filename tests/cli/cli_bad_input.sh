@@ -62,6 +62,12 @@ printf 'not a png' > "$out/corrupt.png"
 expect_fail texture_missing "no_texture.png" $r --texture "$out/no_texture.png"
 expect_fail texture_corrupt "corrupt.png" $r --texture "$out/corrupt.png"
 expect_fail mask_image_corrupt "corrupt.png" $r --mask-image "$out/corrupt.png"
+# A 16-bit PGM shorter than its header says (stb read past it; found by fuzz_image).
+printf 'P5\n64 64\n65535\n\001\002' > "$out/short16.pgm"
+expect_fail texture_short_pnm "short16.pgm' is truncated" $r --texture "$out/short16.pgm"
+# A PGM header declaring 60000 x 60000 pixels: refused before stb allocates.
+printf 'P5\n60000 60000\n255\n\001' > "$out/huge.pgm"
+expect_fail texture_huge_pnm "declares 60000 x 60000 pixels" $r --texture "$out/huge.pgm"
 expect_fail pattern_unknown "--pattern" $r --pattern plaid
 
 expect_fail layers_zero "--layers" $r --layers 0
