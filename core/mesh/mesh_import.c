@@ -134,8 +134,9 @@ static pelt_status check_off(const char *path, text_reader *r, long long size, p
     }
     long long counts[3] = {-1, -1, 0};
     int have = 0;
-    for (int pass = 0; pass < 2 && have < 2; pass++) {
-        if (pass == 1) {
+    /* assimp reads the counts as numbers wherever the lines break. */
+    for (int pass = 0; have < 2; pass++) {
+        if (pass > 0) {
             skip_line(r);
             if (!off_next_line(r, &line))
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: OFF header ends before its counts", path);
@@ -246,6 +247,9 @@ static pelt_status parse_ply_header(const char *path, text_reader *r, long long 
             return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header has no end_header", path);
         if (!strcmp(tok, "end_header")) break;
         if (!strcmp(tok, "format")) {
+            if (h->format >= 0)
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: a second PLY format line", path,
+                                  line_at(r, r->pos));
             next_token(r, tok, sizeof tok, 1);
             h->format = !strcmp(tok, "ascii")                  ? 0
                         : !strcmp(tok, "binary_little_endian") ? 1
@@ -260,6 +264,10 @@ static pelt_status parse_ply_header(const char *path, text_reader *r, long long 
             ply_element *e = &h->elements[h->element_count++];
             if (!next_token(r, e->name, sizeof e->name, 1) || !next_token(r, tok, sizeof tok, 1))
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY element line is incomplete", path);
+            for (int k = 0; k + 1 < h->element_count; k++)
+                if (!strcmp(h->elements[k].name, e->name))
+                    return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: a second PLY element '%s'",
+                                      path, line_at(r, r->pos), e->name);
             e->count = parse_count(tok);
             if (e->count < 0)
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY element '%s' has count '%s', not a count",
@@ -548,6 +556,11 @@ static pelt_status check_stl_ascii(const char *path, const text_reader *head, pe
 {
     if (memchr(head->s, '\0', head->len))
         return pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII STL holds a NUL byte (it must be text)", path);
+    for (size_t i = 0; i < head->len; i++) /* assimp ends a line at a lone carriage return */
+        if (head->s[i] == '\r' && (i + 1 == head->len || head->s[i + 1] != '\n'))
+            return pelt__fail(err, PELT_ERR_FORMAT,
+                              "%s: line %lld: ASCII STL has a carriage return inside a line", path,
+                              line_at(head, i));
     static const char *const facet[] = {"outer", "loop", "vertex", "vertex", "vertex", "endloop", "endfacet"};
     text_reader r = *head;
     char tok[64];
