@@ -215,6 +215,28 @@ static int ply_type_size(const char *t)
 
 static long long line_at(const text_reader *r, size_t pos);
 
+/* Text formats hold no control character but tabs and line breaks (LF or
+ * CR LF): assimp ends a line at a lone CR or a form feed where pelt's
+ * reader does not, and stops at a NUL, and leaked on each. The first bad
+ * byte of [from, to) fails with what and where. */
+static pelt_status check_text(const char *path, const char *what, const text_reader *r, size_t from,
+                              size_t to, pelt_error *err)
+{
+    for (size_t i = from; i < to; i++) {
+        unsigned char c = (unsigned char)r->s[i];
+        if (c >= 0x20 || c == '\t' || c == '\n' || (c == '\r' && i + 1 < r->len && r->s[i + 1] == '\n'))
+            continue;
+        if (c == 0)
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: %s holds a NUL byte (it must be text)",
+                              path, line_at(r, i), what);
+        return pelt__fail(err, PELT_ERR_FORMAT,
+                          "%s: line %lld: %s holds control character 0x%02x (text has only tabs and line "
+                          "breaks)",
+                          path, line_at(r, i), what, c);
+    }
+    return PELT_OK;
+}
+
 /* A PLY header as far as the body check needs it. */
 #define PLY_MAX_ELEMENTS 16
 #define PLY_MAX_PROPERTIES 64
@@ -459,10 +481,8 @@ static pelt_status check_ply(const char *path, text_reader *r, long long size, p
     ply_header *h = pelt__calloc(1, sizeof *h);
     if (!h) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
     pelt_status st = parse_ply_header(path, r, size, h, err);
-    if (st == PELT_OK && memchr(r->s, '\0', r->pos))
-        st = pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header holds a NUL byte (it must be text)", path);
-    if (st == PELT_OK && h->format == 0 && memchr(r->s + r->pos, '\0', r->len - r->pos))
-        st = pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII PLY holds a NUL byte (it must be text)", path);
+    if (st == PELT_OK) st = check_text(path, "the PLY header", r, 0, r->pos, err);
+    if (st == PELT_OK && h->format == 0) st = check_text(path, "ASCII PLY", r, r->pos, r->len, err);
     if (st == PELT_OK)
         st = h->format == 0 ? check_ply_ascii(path, r, h, err) : check_ply_binary(path, r, h, err);
     free(h);
@@ -554,13 +574,8 @@ static int stl_numbers(text_reader *r, int n, int *k)
  * assimp leaks memory on a truncated file and on a misspelt keyword. */
 static pelt_status check_stl_ascii(const char *path, const text_reader *head, pelt_error *err)
 {
-    if (memchr(head->s, '\0', head->len))
-        return pelt__fail(err, PELT_ERR_FORMAT, "%s: ASCII STL holds a NUL byte (it must be text)", path);
-    for (size_t i = 0; i < head->len; i++) /* assimp ends a line at a lone carriage return */
-        if (head->s[i] == '\r' && (i + 1 == head->len || head->s[i + 1] != '\n'))
-            return pelt__fail(err, PELT_ERR_FORMAT,
-                              "%s: line %lld: ASCII STL has a carriage return inside a line", path,
-                              line_at(head, i));
+    pelt_status st = check_text(path, "ASCII STL", head, 0, head->len, err);
+    if (st) return st;
     static const char *const facet[] = {"outer", "loop", "vertex", "vertex", "vertex", "endloop", "endfacet"};
     text_reader r = *head;
     char tok[64];
@@ -715,9 +730,10 @@ static pelt_status check_header(const char *name, const char *buf, size_t len, l
     if (len == 0) return pelt__fail(err, PELT_ERR_FORMAT, "%s: file is empty", name);
     file_kind kind = sniff(name, buf, len);
     text_reader r = {buf, 0, len};
-    if ((kind == KIND_OFF || kind == KIND_OBJ) && memchr(buf, '\0', len))
-        return pelt__fail(err, PELT_ERR_FORMAT, "%s: %s file holds a NUL byte (it must be text)", name,
-                          kind == KIND_OFF ? "an OFF" : "an OBJ");
+    if (kind == KIND_OFF || kind == KIND_OBJ) {
+        pelt_status st = check_text(name, kind == KIND_OFF ? "an OFF file" : "an OBJ file", &r, 0, len, err);
+        if (st) return st;
+    }
     if (kind == KIND_OFF) return check_off(name, &r, size, err);
     if (kind == KIND_PLY) return check_ply(name, &r, size, err);
     if (kind == KIND_STL) return check_stl(name, &r, size, err);

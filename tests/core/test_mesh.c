@@ -533,6 +533,7 @@ static void bad_files_fail_cleanly_naming_the_file(void)
         "bad_list_long_count.ply", "bad_list_short_binary.ply", "bad_truncated_solid.stl",
         "bad_face_two_vertices.obj", "bad_face_one_vertex.obj", "bad_accessor_range.gltf",
         "bad_view_range.gltf",    "bad_accessor_offset.gltf", "bad_glb_chunk_length.glb",
+        "bad_stl_misspelt.stl",   "bad_off_counts_two_lines.off", "bad_ply_carriage_return.ply",
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char path[1024];
@@ -573,6 +574,10 @@ static void specific_bad_files_say_what_is_wrong(void)
         {"bad_view_range.gltf", "Buffer view with offset/length (4000/12) is out of range"},
         {"bad_accessor_offset.gltf", "Accessor with offset/length (8/12) is out of range"},
         {"bad_glb_chunk_length.glb", "GLB chunk 0 declares 2734687028 bytes but only"},
+        /* Found by fuzzing: inputs that made assimp leak or allocate gigabytes. */
+        {"bad_stl_misspelt.stl", "line 2: STL facet 0 does not start with 'facet normal'"},
+        {"bad_off_counts_two_lines.off", "declares 3 vertices and 3000000000 faces"},
+        {"bad_ply_carriage_return.ply", "line 12: ASCII PLY holds control character 0x0d"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char path[1024];
