@@ -668,6 +668,8 @@ static int is_json_object(const char *s, size_t len)
  * (assimp allocates a chunk's declared length before reading it). */
 static pelt_status check_glb(const char *path, const text_reader *r, long long size, pelt_error *err)
 {
+    if (r->len < 4 || memcmp(r->s, "glTF", 4))
+        return pelt__fail(err, PELT_ERR_FORMAT, "%s: not a GLB file: it does not start with 'glTF'", path);
     if (r->len < 12) return pelt__fail(err, PELT_ERR_FORMAT, "%s: GLB header is truncated", path);
     uint32_t version = u32_le(r->s + 4), total = u32_le(r->s + 8);
     if ((long long)total > size)
@@ -718,6 +720,7 @@ static file_kind sniff(const char *path, const char *head, size_t len)
     if (ends_with_ci(path, ".obj")) return KIND_OBJ;
     if (ends_with_ci(path, ".ply")) return KIND_PLY;
     if (ends_with_ci(path, ".gltf")) return KIND_GLTF;
+    if (ends_with_ci(path, ".glb")) return KIND_GLB;
     return KIND_OTHER;
 }
 
