@@ -18,6 +18,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 /* How much of the file the header checks look at. */
@@ -77,6 +78,27 @@ static long long parse_count(const char *tok)
         else v = 1LL << 62;
     }
     return v;
+}
+
+/* A decimal number as assimp reads one: [+-] digits [. digits] [e [+-]
+ * digits], or nan / inf. strtod also takes hexadecimal ("0x.58"), which
+ * assimp reads differently (and then leaked). */
+static int is_decimal(const char *t)
+{
+    if (*t == '+' || *t == '-') t++;
+    if (!strcasecmp(t, "nan") || !strcasecmp(t, "inf") || !strcasecmp(t, "infinity")) return 1;
+    int digits = 0;
+    while (isdigit((unsigned char)*t)) t++, digits++;
+    if (*t == '.') t++;
+    while (isdigit((unsigned char)*t)) t++, digits++;
+    if (!digits) return 0;
+    if (*t == 'e' || *t == 'E') {
+        t++;
+        if (*t == '+' || *t == '-') t++;
+        if (!isdigit((unsigned char)*t)) return 0;
+        while (isdigit((unsigned char)*t)) t++;
+    }
+    return *t == '\0';
 }
 
 /* OFF line reader: skips blank lines and '#' comments, returns 1 with pos
@@ -165,12 +187,7 @@ static pelt_status check_off(const char *path, text_reader *r, long long size, p
     for (long long v = 0; v < nv; v++) {
         int coords = 0;
         if (off_next_line(r, &line)) {
-            while (coords < 3 && next_token(r, tok, sizeof tok, 1)) {
-                char *end;
-                strtod(tok, &end);
-                if (*end != '\0') break;
-                coords++;
-            }
+            while (coords < 3 && next_token(r, tok, sizeof tok, 1) && is_decimal(tok)) coords++;
         }
         if (coords < 3)
             return pelt__fail(err, PELT_ERR_FORMAT,
@@ -441,9 +458,7 @@ static pelt_status check_ply_ascii(const char *path, text_reader *r, const ply_h
                 }
                 for (long long k = 0; k < n; k++) {
                     if (next_token(r, tok, sizeof tok, 1)) {
-                        char *end;
-                        strtod(tok, &end);
-                        if (*end == '\0') continue;
+                        if (is_decimal(tok)) continue;
                         return pelt__fail(err, PELT_ERR_FORMAT,
                                           "%s: line %lld: PLY '%s' %lld: '%s' (property '%s') is not a number",
                                           path, line, e->name, i, tok, p->name);
@@ -561,11 +576,8 @@ static int word_is(const char *tok, const char *word)
 static int stl_numbers(text_reader *r, int n, int *k)
 {
     char tok[64];
-    for (*k = 0; *k < n; (*k)++) {
-        char *end = NULL;
-        if (next_token(r, tok, sizeof tok, 1)) strtod(tok, &end);
-        if (!end || end == tok || *end != '\0') return 0;
-    }
+    for (*k = 0; *k < n; (*k)++)
+        if (!next_token(r, tok, sizeof tok, 1) || !is_decimal(tok)) return 0;
     return 1;
 }
 
@@ -620,7 +632,10 @@ static pelt_status check_stl_ascii(const char *path, const text_reader *head, pe
     }
 }
 
-/* Binary STL: 80-byte header, a triangle count, 50 bytes per triangle. */
+/* STL as assimp tells them apart: binary when the size is exactly the 84
+ * header bytes and 50 per triangle of its count; else ASCII when it starts
+ * with "solid" after white space (some binary writers start the header with
+ * it too: one that is not text is reported as a cut binary file). */
 static pelt_status check_stl(const char *path, const text_reader *r, long long size, pelt_error *err)
 {
     long long n = -1;
@@ -628,24 +643,18 @@ static pelt_status check_stl(const char *path, const text_reader *r, long long s
         const unsigned char *u = (const unsigned char *)r->s + 80;
         n = (long long)u[0] | (long long)u[1] << 8 | (long long)u[2] << 16 | (long long)u[3] << 24;
     }
-    /* Some binary writers start the header with "solid" too: ASCII is a
-     * "solid" whose size does not fit the count and that has a facet (or
-     * ends) within its first 256 bytes; a cut binary file does not. */
-    if (r->len >= 5 && strncmp(r->s, "solid", 5) == 0 && 84 + 50 * n != size) {
-        text_reader probe = {r->s, 0, r->len < 256 ? r->len : 256};
-        char tok[16];
-        int ascii = n < 0;
-        while (!ascii && next_token(&probe, tok, sizeof tok, 0))
-            ascii = !strcmp(tok, "facet") || !strcmp(tok, "endsolid");
-        if (ascii) return check_stl_ascii(path, r, err);
-    }
-    if (size < 84 || r->len < 84)
+    if (n >= 0 && 84 + 50 * n == size) return PELT_OK;
+    size_t at = 0;
+    while (at < r->len && isspace((unsigned char)r->s[at])) at++;
+    int solid = r->len - at >= 5 && !strncmp(r->s + at, "solid", 5);
+    pelt_error text_err = {0};
+    if (solid && (n < 0 || check_text(path, "ASCII STL", r, 0, r->len, &text_err) == PELT_OK))
+        return check_stl_ascii(path, r, err);
+    if (n < 0)
         return pelt__fail(err, PELT_ERR_FORMAT, "%s: binary STL shorter than its 84-byte header", path);
-    if (84 + 50 * n > size)
-        return pelt__fail(err, PELT_ERR_FORMAT,
-                          "%s: binary STL declares %lld triangles but the file has only %lld bytes", path,
-                          n, size);
-    return PELT_OK;
+    return pelt__fail(err, PELT_ERR_FORMAT,
+                      "%s: binary STL declares %lld triangles (%lld bytes) but the file has %lld bytes", path,
+                      n, 84 + 50 * n, size);
 }
 
 static uint32_t u32_le(const char *p)

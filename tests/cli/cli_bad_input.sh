@@ -42,7 +42,7 @@ expect_fail ply_list_short "list 'vertex_indices' declares 4 entries but the lin
   $r --mesh "$data/meshes/bad_list_short.ply"
 expect_fail ply_list_short_binary "declares 3 entries but the file ends first" \
   $r --mesh "$data/meshes/bad_list_short_binary.ply"
-expect_fail stl_truncated_binary "binary STL declares 2 triangles but the file has only 154 bytes" \
+expect_fail stl_truncated_binary "binary STL declares 2 triangles (184 bytes) but the file has 154 bytes" \
   $r --mesh "$data/meshes/bad_truncated_solid.stl"
 expect_fail obj_two_corner_face "line 7: a face of 2 corners" $r --mesh "$data/meshes/bad_face_two_vertices.obj"
 expect_fail gltf_accessor_out_of_range "out of range" $r --mesh "$data/meshes/bad_accessor_range.gltf"

@@ -564,7 +564,7 @@ static void specific_bad_files_say_what_is_wrong(void)
         {"bad_list_short.ply", "line 18: PLY 'face' 3: list 'vertex_indices' declares 4 entries but the line holds 3"},
         {"bad_list_long_count.ply", "declares 9 entries but the line holds 3"},
         {"bad_list_short_binary.ply", "'face' 1 of 2 declares 3 entries but the file ends first"},
-        {"bad_truncated_solid.stl", "binary STL declares 2 triangles but the file has only 154 bytes"},
+        {"bad_truncated_solid.stl", "binary STL declares 2 triangles (184 bytes) but the file has 154 bytes"},
         {"bad_truncated_binary.ply", "file ends in 'vertex' 1 of 3"},
         {"bad_face_two_vertices.obj", "line 7: a face of 2 corners"},
         {"bad_face_one_vertex.obj", "line 5: a face of 1 corner;"},
