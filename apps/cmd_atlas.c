@@ -84,6 +84,13 @@ static const char *mode_name(int mode)
     return mode == PELT_ATLAS_MESH_UVS ? "mesh uvs" : "patches";
 }
 
+static void print_warning(pelt_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level <= PELT_LOG_WARNING)
+        fprintf(stderr, "pelt %s: %s%s\n", CMD, level == PELT_LOG_WARNING ? "warning: " : "", message);
+}
+
 int cmd_atlas(int argc, char **argv)
 {
     const char *mesh_arg = NULL, *output = "atlas.png", *cache_dir = NULL;
@@ -91,6 +98,7 @@ int cmd_atlas(int argc, char **argv)
     bool no_cache = false;
     pelt_atlas_desc desc;
     memset(&desc, 0, sizeof desc);
+    desc.hooks.logger.func = print_warning; /* a damaged cache file, unusable uvs */
 
     for (int i = 0; i < argc; i++) {
         const char *a = argv[i];
@@ -206,7 +214,8 @@ int cmd_atlas(int argc, char **argv)
     if (!cli_write_png(CMD, output, rgba, size, size)) goto done;
 
     const pelt_atlas_stats *s = pelt_atlas_get_stats(atlas);
-    if (s->uv_warning[0]) fprintf(stderr, "pelt atlas: warning: %s\n", s->uv_warning);
+    /* A build logged it already; a cache hit did not. */
+    if (s->uv_warning[0] && s->from_cache) fprintf(stderr, "pelt atlas: warning: %s\n", s->uv_warning);
     printf("%s\n"
            "  mode        %s\n"
            "  triangles   %zu\n"

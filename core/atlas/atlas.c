@@ -456,7 +456,16 @@ pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
         d.max_stretch = ms, d.max_patch_faces = cap, d.smoothing_iterations = iters;
         key = pelt__atlas_key(in, &d, mask, density);
         pelt__atlas_record r;
-        if (pelt__atlas_cache_load(d.cache_dir, key, m.vertex_count, m.triangle_count, &r)) {
+        char why[128];
+        bool hit = pelt__atlas_cache_load(d.cache_dir, key, m.vertex_count, m.triangle_count, &r,
+                                          why, sizeof why);
+        if (!hit && why[0]) {
+            char path[4200];
+            pelt__atlas_cache_path(d.cache_dir, key, path, sizeof path);
+            pelt__log(&d.hooks.logger, PELT_LOG_WARNING, "atlas cache '%s' %s; building the atlas again",
+                      path, why);
+        }
+        if (hit) {
             pelt_atlas *cached = NULL;
             pelt_status st = atlas_from_record(&d.hooks.allocator, in, &r, &cached, err);
             pelt__atlas_record_free(&r);

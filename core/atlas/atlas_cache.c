@@ -6,12 +6,14 @@
 #include "core/base/hooks.h"
 
 #include <errno.h>
+#include <stddef.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 /* The file: a header, the arrays (see payload_size), the checksum. Anything
  * that does not match exactly is ignored, and the atlas is rebuilt. */
@@ -42,6 +44,12 @@ typedef struct cache_header {
     float texel_density, fur_per_atlas, fill, reserved2;
     char uv_warning[256];
 } cache_header;
+
+/* The fuzz target reads the key and input counts at these offsets. */
+_Static_assert(offsetof(cache_header, key) == PELT__ATLAS_CACHE_KEY_AT &&
+                   offsetof(cache_header, in_vertices) == PELT__ATLAS_CACHE_KEY_AT + 8 &&
+                   offsetof(cache_header, in_triangles) == PELT__ATLAS_CACHE_KEY_AT + 16,
+               "cache header layout");
 
 static size_t payload_size(uint64_t vc, uint64_t tc)
 {
@@ -80,10 +88,12 @@ bool pelt__atlas_cache_store(const char *dir, uint64_t key, const pelt__atlas_re
         return false;
     char path[4200], tmp[4300];
     pelt__atlas_cache_path(dir, key, path, sizeof path);
+    /* A name of this process alone: two builders of the same atlas each
+     * write their own file and rename it over the other's, whole. */
     struct timespec ts;
     timespec_get(&ts, TIME_UTC);
-    snprintf(tmp, sizeof tmp, "%s.tmp%09ld", path, (long)ts.tv_nsec);
-    FILE *f = fopen(tmp, "wb");
+    snprintf(tmp, sizeof tmp, "%s.tmp%ld.%09ld", path, (long)getpid(), (long)ts.tv_nsec);
+    FILE *f = fopen(tmp, "wbx");
     if (!f) return false;
     cache_header h;
     memset(&h, 0, sizeof h);
@@ -137,44 +147,48 @@ void pelt__atlas_record_free(pelt__atlas_record *r)
     memset(r, 0, sizeof *r);
 }
 
-bool pelt__atlas_cache_load(const char *dir, uint64_t key, size_t in_vertices,
-                            size_t in_triangles, pelt__atlas_record *out)
+/* Fails a load with its reason (for the warning). */
+static bool reject(char *why, size_t why_size, const char *reason)
+{
+    if (why && why_size) snprintf(why, why_size, "%s", reason);
+    return false;
+}
+
+bool pelt__atlas_cache_load_memory(const void *data, size_t size, uint64_t key,
+                                   size_t in_vertices, size_t in_triangles,
+                                   pelt__atlas_record *out, char *why, size_t why_size)
 {
     memset(out, 0, sizeof *out);
-    char path[4200];
-    pelt__atlas_cache_path(dir, key, path, sizeof path);
-    FILE *f = fopen(path, "rb");
-    if (!f) return false;
     cache_header h;
-    bool ok = fread(&h, sizeof h, 1, f) == 1 && memcmp(h.magic, CACHE_MAGIC, 8) == 0 &&
-              h.version == PELT__ATLAS_CACHE_VERSION && h.key == key &&
-              h.triangles == in_triangles && h.in_triangles == in_triangles &&
-              h.in_vertices <= in_vertices && h.vertices > 0 && h.vertices <= 3 * h.triangles &&
-              h.mask_size > 0 && h.mask_size <= 16384 && h.patch_count >= 1 &&
-              h.patch_count <= h.triangles &&
-              (h.mode_used == PELT_ATLAS_MESH_UVS || h.mode_used == PELT_ATLAS_PATCHES) &&
-              memchr(h.uv_warning, '\0', sizeof h.uv_warning) != NULL;
-    unsigned char *buf = NULL;
-    if (ok) {
-        size_t n = payload_size(h.vertices, h.triangles);
-        buf = pelt__calloc(n + sizeof(uint64_t) + 1, 1);
-        /* Exactly the expected length: one byte more means a stale layout. */
-        ok = buf && fread(buf, 1, n + sizeof(uint64_t) + 1, f) == n + sizeof(uint64_t);
-        if (ok) {
-            pelt__atlas_hash s = pelt__atlas_hash_begin();
-            pelt__atlas_hash_bytes(&s, &h, sizeof h);
-            pelt__atlas_hash_bytes(&s, buf, n);
-            uint64_t sum;
-            memcpy(&sum, buf + n, sizeof sum);
-            ok = sum == s.h;
-        }
-    }
-    fclose(f);
-    if (!ok) {
-        free(buf);
-        return false;
-    }
-    /* The arrays stay in the buffer: every one starts at a multiple of 4. */
+    if (size < sizeof h + sizeof(uint64_t)) return reject(why, why_size, "is truncated");
+    memcpy(&h, data, sizeof h);
+    if (memcmp(h.magic, CACHE_MAGIC, 8) != 0) return reject(why, why_size, "is not a pelt atlas cache");
+    if (h.version != PELT__ATLAS_CACHE_VERSION)
+        return reject(why, why_size, "was written by another version of pelt");
+    if (h.key != key) return reject(why, why_size, "was made for another mesh or settings");
+    if (h.vertices == 0 || h.vertices > 3 * (uint64_t)in_triangles || h.triangles != in_triangles)
+        return reject(why, why_size, "does not fit this mesh");
+    /* Exactly the expected length: a byte more or less is a stale layout or a cut file. */
+    size_t n = payload_size(h.vertices, h.triangles);
+    if (size != sizeof h + n + sizeof(uint64_t))
+        return reject(why, why_size, size < sizeof h + n + sizeof(uint64_t) ? "is truncated"
+                                                                               : "is longer than its header says");
+    pelt__atlas_hash s = pelt__atlas_hash_begin();
+    pelt__atlas_hash_bytes(&s, data, sizeof h + n);
+    uint64_t sum;
+    memcpy(&sum, (const unsigned char *)data + sizeof h + n, sizeof sum);
+    if (sum != s.h) return reject(why, why_size, "fails its checksum");
+    /* The checksum guards against damage, these against a file that was made
+     * for something else. */
+    if (h.in_triangles != in_triangles || h.in_vertices > in_vertices || h.mask_size == 0 ||
+        h.mask_size > 16384 || h.patch_count < 1 || h.patch_count > h.triangles ||
+        (h.mode_used != PELT_ATLAS_MESH_UVS && h.mode_used != PELT_ATLAS_PATCHES) ||
+        !memchr(h.uv_warning, '\0', sizeof h.uv_warning))
+        return reject(why, why_size, "has a header that does not fit this mesh");
+    /* The arrays get their own block: every one starts at a multiple of 4. */
+    unsigned char *buf = pelt__calloc(n ? n : 1, 1);
+    if (!buf) return reject(why, why_size, "cannot be read: out of memory");
+    memcpy(buf, (const unsigned char *)data + sizeof h, n);
     size_t vc = h.vertices, tc = h.triangles;
     const unsigned char *p = buf;
     pelt__atlas_record r = {.vertex_count = vc, .triangle_count = tc, .owned = buf};
@@ -186,8 +200,7 @@ bool pelt__atlas_cache_load(const char *dir, uint64_t key, size_t in_vertices,
     r.fur_uvs = (const float *)p, p += vc * 8;
     r.triangle_patch = (const uint32_t *)p, p += tc * 4;
     r.indices = (const uint32_t *)p;
-    /* The checksum guards against damage, these against a file that was made
-     * for something else. */
+    bool ok = true;
     for (size_t o = 0; o < vc && ok; o++)
         ok = r.source_vertex[o] < in_vertices && r.welded_vertex[o] < in_vertices;
     for (size_t i = 0; i < 3 * tc && ok; i++) ok = r.indices[i] < vc;
@@ -196,7 +209,7 @@ bool pelt__atlas_cache_load(const char *dir, uint64_t key, size_t in_vertices,
          all_finite(r.uvs, 2 * vc) && all_finite(r.fur_uvs, 2 * vc);
     if (!ok) {
         free(buf);
-        return false;
+        return reject(why, why_size, "holds an index out of range or a non-finite value");
     }
     r.stats.mode_used = (int)h.mode_used;
     r.stats.patch_count = h.patch_count;
@@ -207,4 +220,31 @@ bool pelt__atlas_cache_load(const char *dir, uint64_t key, size_t in_vertices,
     memcpy(r.stats.uv_warning, h.uv_warning, sizeof h.uv_warning);
     *out = r;
     return true;
+}
+
+bool pelt__atlas_cache_load(const char *dir, uint64_t key, size_t in_vertices,
+                            size_t in_triangles, pelt__atlas_record *out, char *why, size_t why_size)
+{
+    memset(out, 0, sizeof *out);
+    if (why && why_size) why[0] = '\0';
+    char path[4200];
+    pelt__atlas_cache_path(dir, key, path, sizeof path);
+    FILE *f = fopen(path, "rb");
+    if (!f) return false; /* no file: a plain miss, no reason */
+    /* At most what the largest record that fits the mesh takes. */
+    size_t cap = sizeof(cache_header) + payload_size(3 * (uint64_t)in_triangles, in_triangles) +
+                 sizeof(uint64_t) + 1;
+    unsigned char *data = pelt__calloc(cap, 1);
+    if (!data) {
+        fclose(f);
+        return reject(why, why_size, "cannot be read: out of memory");
+    }
+    size_t size = fread(data, 1, cap, f);
+    bool failed = ferror(f);
+    fclose(f);
+    bool ok = failed ? reject(why, why_size, "cannot be read")
+                     : pelt__atlas_cache_load_memory(data, size, key, in_vertices, in_triangles, out,
+                                                     why, why_size);
+    free(data);
+    return ok;
 }

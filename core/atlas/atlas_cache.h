@@ -48,12 +48,22 @@ typedef struct pelt__atlas_record {
 } pelt__atlas_record;
 
 /* Reads the record cached under key. The file must hold exactly what a
- * store wrote for key (magic, version, checksum, length) and arrays that fit
- * an input mesh of in_vertices / in_triangles (indices in range, finite
- * values); anything else is ignored and false returned. On success the
- * arrays are owned by *out: free with pelt__atlas_record_free. */
+ * store wrote for key (magic, version, key, length, checksum) and arrays
+ * that fit an input mesh of in_vertices / in_triangles (indices in range,
+ * finite values); anything else is ignored and false returned, with the
+ * reason in why ("is truncated", "fails its checksum", ...). A missing file
+ * is false with why empty. On success the arrays are owned by *out: free
+ * with pelt__atlas_record_free. */
 bool pelt__atlas_cache_load(const char *dir, uint64_t key, size_t in_vertices,
-                            size_t in_triangles, pelt__atlas_record *out);
+                            size_t in_triangles, pelt__atlas_record *out, char *why,
+                            size_t why_size);
+/* The same checks on a cache file's bytes. */
+bool pelt__atlas_cache_load_memory(const void *data, size_t size, uint64_t key,
+                                   size_t in_vertices, size_t in_triangles,
+                                   pelt__atlas_record *out, char *why, size_t why_size);
+/* Where the header keeps the key, then the input vertex and triangle counts
+ * (three little-endian u64). */
+#define PELT__ATLAS_CACHE_KEY_AT 16
 /* Frees what a load allocated; the record is zeroed. */
 void pelt__atlas_record_free(pelt__atlas_record *r);
 /* Writes the record under key atomically (temporary file + rename), making

@@ -60,6 +60,12 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out,
  * merged. Errors name the file. Free with pelt_mesh_destroy. */
 pelt_status pelt_mesh_load(const char *path, pelt_mesh **out, pelt_error *err);
 
+/* The same from memory. `name` starts every message and its extension
+ * names the format ("bunny.ply"); a glTF's external buffers cannot be found
+ * from memory (use GLB or data: URIs). */
+pelt_status pelt_mesh_load_memory(const void *data, size_t size, const char *name, pelt_mesh **out,
+                                  pelt_error *err);
+
 /* Procedural shapes with uvs in [0,1]^2. */
 pelt_status pelt_mesh_torus(float major_radius, float minor_radius,
                             unsigned major_segments, unsigned minor_segments,

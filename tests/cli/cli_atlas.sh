@@ -53,6 +53,19 @@ expect_atlas sphere sphere
 expect_atlas sphere_again sphere
 if grep -q "cache.*hit" <<<"$stdout"; then pass sphere_second_run_from_cache; else fail "sphere_second_run_from_cache: $stdout"; fi
 
+# A cache file cut short (a crash, a full disk, another process): the atlas
+# is built again with a warning naming the file, and the next run hits.
+for f in "$cache"/atlas-*.bin; do
+  cp "$f" "$f.whole"; head -c $(( $(wc -c <"$f.whole") / 2 )) "$f.whole" >"$f"; rm "$f.whole"
+done
+expect_atlas sphere_truncated_cache sphere
+if grep -q "cache.*hit" <<<"$stdout"; then fail "truncated_cache_rebuilt: $stdout"; else pass truncated_cache_rebuilt; fi
+if grep -q "warning: atlas cache '$cache/atlas-.*\.bin' is truncated; building the atlas again" \
+     "$out/atlas_sphere_truncated_cache.err"; then pass truncated_cache_warns
+else fail "truncated_cache_warns: $(cat "$out/atlas_sphere_truncated_cache.err")"; fi
+expect_atlas sphere_rewritten_cache sphere
+if grep -q "cache.*hit" <<<"$stdout"; then pass rewritten_cache_hits; else fail "rewritten_cache_hits: $stdout"; fi
+
 # --no-cache never reports a hit, even with a warm cache.
 stdout=$("$pelt" atlas sphere -o "$out/atlas_nocache.png" --size 64 --no-cache --cache-dir "$cache" 2>/dev/null)
 if grep -q "cache.*hit" <<<"$stdout"; then fail "no_cache_rebuilds: $stdout"; else pass no_cache_rebuilds; fi

@@ -37,6 +37,15 @@ expect_fail missing_mesh "no_such_mesh.obj" $r --mesh "$out/no_such_mesh.obj"
 for f in "$data"/meshes/bad_*; do
   expect_fail "mesh_$(basename "$f")" "$(basename "$f")" $r --mesh "$f"
 done
+# Strict, never a silently partial mesh: what is wrong, where.
+expect_fail ply_list_short "list 'vertex_indices' declares 4 entries but the line holds 3" \
+  $r --mesh "$data/meshes/bad_list_short.ply"
+expect_fail ply_list_short_binary "declares 3 entries but the file ends first" \
+  $r --mesh "$data/meshes/bad_list_short_binary.ply"
+expect_fail stl_truncated_binary "binary STL declares 2 triangles (184 bytes) but the file has 154 bytes" \
+  $r --mesh "$data/meshes/bad_truncated_solid.stl"
+expect_fail obj_two_corner_face "line 7: a face of 2 corners" $r --mesh "$data/meshes/bad_face_two_vertices.obj"
+expect_fail gltf_accessor_out_of_range "out of range" $r --mesh "$data/meshes/bad_accessor_range.gltf"
 expect_fail missing_scene "nope.json" $r "$out/nope.json" 
 for f in "$data"/scenes/bad_*.json "$data"/scenes/empty.json "$data"/scenes/nul_byte.json; do
   [ -e "$f" ] || continue
@@ -53,6 +62,12 @@ printf 'not a png' > "$out/corrupt.png"
 expect_fail texture_missing "no_texture.png" $r --texture "$out/no_texture.png"
 expect_fail texture_corrupt "corrupt.png" $r --texture "$out/corrupt.png"
 expect_fail mask_image_corrupt "corrupt.png" $r --mask-image "$out/corrupt.png"
+# A 16-bit PGM shorter than its header says (stb read past it; found by fuzz_image).
+printf 'P5\n64 64\n65535\n\001\002' > "$out/short16.pgm"
+expect_fail texture_short_pnm "short16.pgm' is truncated" $r --texture "$out/short16.pgm"
+# A PGM header declaring 60000 x 60000 pixels: refused before stb allocates.
+printf 'P5\n60000 60000\n255\n\001' > "$out/huge.pgm"
+expect_fail texture_huge_pnm "declares 60000 x 60000 pixels" $r --texture "$out/huge.pgm"
 expect_fail pattern_unknown "--pattern" $r --pattern plaid
 
 expect_fail layers_zero "--layers" $r --layers 0

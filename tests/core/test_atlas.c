@@ -8,8 +8,11 @@
 #include "core/base/weld.h"
 #include "core/mesh/mesh_internal.h"
 
+#include <dirent.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 static pelt_mesh *torus(void)
 {
@@ -463,6 +466,30 @@ static void atlas_mesh_rebuilds_from_its_arrays(void)
     }
 }
 
+/* The last warning a logger saw. */
+static char last_warning[512];
+static int warnings;
+
+static void keep_warning(pelt_log_level level, const char *message, void *user)
+{
+    (void)user;
+    if (level != PELT_LOG_WARNING) return;
+    warnings++;
+    snprintf(last_warning, sizeof last_warning, "%s", message);
+}
+
+/* Cuts the file at path to half its length. */
+static void truncate_half(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    CHECK(f != NULL);
+    if (!f) return;
+    fseek(f, 0, SEEK_END);
+    long size = ftell(f);
+    CHECK(truncate(path, size / 2) == 0);
+    fclose(f);
+}
+
 static void atlas_cache_round_trip_and_rejects_corruption(void)
 {
     const char *dir = PELT_TEST_OUT "/atlas_cache";
@@ -501,18 +528,134 @@ static void atlas_cache_round_trip_and_rejects_corruption(void)
         fputc(ch ^ 0x5a, f);
         fclose(f);
     }
-    CHECK(pelt_atlas_create(m, &d, &c, NULL) == PELT_OK);
+    /* ... with a warning naming the file and the reason. */
+    pelt_atlas_desc logged = d;
+    logged.hooks.logger.func = keep_warning;
+    warnings = 0;
+    CHECK(pelt_atlas_create(m, &logged, &c, NULL) == PELT_OK);
     CHECK(!pelt_atlas_get_stats(c)->from_cache);
     CHECK(same_mesh(pelt_atlas_mesh(a), pelt_atlas_mesh(c)));
-    /* Truncated: also rejected. Then the rewritten file is trusted again. */
+    CHECK(warnings == 1 && strstr(last_warning, path) && strstr(last_warning, "checksum"));
+    if (!strstr(last_warning, "checksum")) fprintf(stderr, "  seen: %s\n", last_warning);
+    /* Cut to half its length: rebuilt with a warning, written whole again. */
+    truncate_half(path);
+    pelt_atlas_destroy(c);
+    warnings = 0;
+    CHECK(pelt_atlas_create(m, &logged, &c, NULL) == PELT_OK);
+    CHECK(!pelt_atlas_get_stats(c)->from_cache);
+    CHECK(warnings == 1 && strstr(last_warning, path) && strstr(last_warning, "truncated"));
+    if (!strstr(last_warning, "truncated")) fprintf(stderr, "  seen: %s\n", last_warning);
+    CHECK(same_mesh(pelt_atlas_mesh(a), pelt_atlas_mesh(c)));
+    /* A foreign file (not a cache at all): also rejected with a warning. Then
+     * the rewritten file is trusted again. */
     f = fopen(path, "wb");
     if (f) fputs("PELTATL", f), fclose(f);
     pelt_atlas_destroy(c);
-    CHECK(pelt_atlas_create(m, &d, &c, NULL) == PELT_OK);
+    warnings = 0;
+    CHECK(pelt_atlas_create(m, &logged, &c, NULL) == PELT_OK);
     CHECK(!pelt_atlas_get_stats(c)->from_cache);
+    CHECK(warnings == 1 && strstr(last_warning, path));
     CHECK(pelt_atlas_create(m, &d, &e, NULL) == PELT_OK);
     CHECK(pelt_atlas_get_stats(e)->from_cache);
     pelt_atlas_destroy(a), pelt_atlas_destroy(b), pelt_atlas_destroy(c), pelt_atlas_destroy(e);
+    pelt_mesh_destroy(m);
+}
+
+/* A child of the concurrency test: builds the atlas `rounds` times, each
+ * time after removing the cache file (so every round writes it), and fails
+ * when any build saw a damaged file. */
+static int cache_writer(const pelt_mesh *m, const pelt_atlas_desc *d, const char *path, int rounds)
+{
+    pelt_atlas_desc logged = *d;
+    logged.hooks.logger.func = keep_warning;
+    warnings = 0;
+    for (int i = 0; i < rounds; i++) {
+        remove(path);
+        pelt_atlas *a = NULL;
+        if (pelt_atlas_create(m, &logged, &a, NULL) != PELT_OK) return 2;
+        pelt_atlas_destroy(a);
+    }
+    if (warnings) fprintf(stderr, "  writer %d saw: %s\n", (int)getpid(), last_warning);
+    return warnings ? 1 : 0;
+}
+
+/* A child of the concurrency test: reads the cache file as fast as it can
+ * until the file `done` appears (the writers have finished); any cache file
+ * it finds must be whole, and it must find some. */
+static int cache_reader(const char *dir, uint64_t key, const pelt_mesh *m, const char *done, int *hits)
+{
+    const pelt_mesh_data md = pelt_mesh_get_data(m);
+    for (long i = 0; access(done, F_OK) != 0 && i < 10000000; i++) {
+        pelt__atlas_record r;
+        char why[128];
+        if (pelt__atlas_cache_load(dir, key, md.vertex_count, md.triangle_count, &r, why, sizeof why)) {
+            (*hits)++;
+            pelt__atlas_record_free(&r);
+        } else if (why[0]) {
+            fprintf(stderr, "  reader saw a cache file that %s\n", why);
+            return 1;
+        }
+    }
+    return *hits > 0 ? 0 : 3;
+}
+
+/* Two processes building the same atlas at once (here three writers and a
+ * reader) never leave or show a damaged cache file, and no temporary file
+ * is left behind. */
+static void atlas_cache_survives_concurrent_builders(void)
+{
+    const char *dir = PELT_TEST_OUT "/atlas_cache_concurrent";
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_torus(1.0f, 0.35f, 24, 12, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt_atlas_desc d = {.mode = PELT_ATLAS_PATCHES, .cache_dir = dir, .seed = 3, .max_patch_faces = 200};
+    pelt_atlas *first = NULL;
+    CHECK(pelt_atlas_create(m, &d, &first, NULL) == PELT_OK);
+    if (!first) return;
+    const pelt_atlas_stats *st = pelt_atlas_get_stats(first);
+    pelt_atlas_desc keyed = d;
+    keyed.max_stretch = 2.0f, keyed.smoothing_iterations = 4;
+    uint64_t key = pelt__atlas_key(m, &keyed, st->mask_size, st->texel_density);
+    char path[4200];
+    pelt__atlas_cache_path(dir, key, path, sizeof path);
+    char done[4300];
+    snprintf(done, sizeof done, "%s.done", dir);
+    remove(done);
+    enum { WRITERS = 3 };
+    pid_t kids[WRITERS + 1];
+    for (int k = 0; k <= WRITERS; k++) {
+        kids[k] = fork();
+        if (kids[k] == 0) {
+            int hits = 0, rc = k < WRITERS ? cache_writer(m, &d, path, 12) : cache_reader(dir, key, m, done, &hits);
+            if (k == WRITERS) printf("  reader: %d whole files seen\n", hits);
+            fflush(stdout);
+            _exit(rc);
+        }
+        CHECK(kids[k] > 0);
+    }
+    for (int k = 0; k <= WRITERS; k++) {
+        if (k == WRITERS) fclose(fopen(done, "w")); /* the reader may stop */
+        int status = -1;
+        if (kids[k] > 0) waitpid(kids[k], &status, 0);
+        CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    }
+    remove(done);
+    /* What is left is a whole file that gives the same atlas. */
+    pelt_atlas *after = NULL;
+    CHECK(pelt_atlas_create(m, &d, &after, NULL) == PELT_OK);
+    CHECK(after && pelt_atlas_get_stats(after)->from_cache);
+    CHECK(after && same_mesh(pelt_atlas_mesh(first), pelt_atlas_mesh(after)));
+    DIR *dd = opendir(dir);
+    int files = 0;
+    for (struct dirent *e; dd && (e = readdir(dd));) {
+        if (e->d_name[0] == '.') continue;
+        files++;
+        if (strstr(e->d_name, ".tmp")) fprintf(stderr, "  left behind: %s\n", e->d_name);
+        CHECK(strstr(e->d_name, ".tmp") == NULL);
+    }
+    if (dd) closedir(dd);
+    CHECK(files == 1);
+    pelt_atlas_destroy(first), pelt_atlas_destroy(after);
     pelt_mesh_destroy(m);
 }
 
@@ -578,6 +721,7 @@ int main(void)
     RUN(atlas_split_vertices_keep_original_normals);
     RUN(atlas_mesh_rebuilds_from_its_arrays);
     RUN(atlas_cache_round_trip_and_rejects_corruption);
+    RUN(atlas_cache_survives_concurrent_builders);
     RUN(atlas_draw_paints_patches_and_borders);
     RUN(atlas_rejects_bad_desc_with_named_field);
     return check_summary();

@@ -529,7 +529,11 @@ static void bad_files_fail_cleanly_naming_the_file(void)
         "bad_nan.ply",            "bad_nan.stl",             "bad_negative_count.off",
         "bad_negative_index.obj", "bad_negative_index.off",  "bad_negative_index.ply",
         "bad_truncated.obj",      "bad_truncated.off",       "bad_truncated.ply",
-        "bad_truncated.stl",      "bad_truncated_binary.ply",
+        "bad_truncated.stl",      "bad_truncated_binary.ply", "bad_list_short.ply",
+        "bad_list_long_count.ply", "bad_list_short_binary.ply", "bad_truncated_solid.stl",
+        "bad_face_two_vertices.obj", "bad_face_one_vertex.obj", "bad_accessor_range.gltf",
+        "bad_view_range.gltf",    "bad_accessor_offset.gltf", "bad_glb_chunk_length.glb",
+        "bad_stl_misspelt.stl",   "bad_off_counts_two_lines.off", "bad_ply_carriage_return.ply",
     };
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         char path[1024];
@@ -556,6 +560,24 @@ static void specific_bad_files_say_what_is_wrong(void)
         {"bad_nan.obj", "non-finite"},
         {"bad_lines_only.obj", "no triangles"},
         {"bad_empty.obj", "empty"},
+        /* Strict, never a silently partial mesh. */
+        {"bad_list_short.ply", "line 18: PLY 'face' 3: list 'vertex_indices' declares 4 entries but the line holds 3"},
+        {"bad_list_long_count.ply", "declares 9 entries but the line holds 3"},
+        {"bad_list_short_binary.ply", "'face' 1 of 2 declares 3 entries but the file ends first"},
+        {"bad_truncated_solid.stl", "binary STL declares 2 triangles (184 bytes) but the file has 154 bytes"},
+        {"bad_truncated_binary.ply", "file ends in 'vertex' 1 of 3"},
+        {"bad_face_two_vertices.obj", "line 7: a face of 2 corners"},
+        {"bad_face_one_vertex.obj", "line 5: a face of 1 corner;"},
+        {"bad_index_range.obj", "line 4: face refers to vertex '99' but there are 3 vertices"},
+        {"bad_negative_index.obj", "vertex '-5' but there are 3 vertices before it"},
+        {"bad_accessor_range.gltf", "Accessor with offset/length (0/1600) is out of range"},
+        {"bad_view_range.gltf", "Buffer view with offset/length (4000/12) is out of range"},
+        {"bad_accessor_offset.gltf", "Accessor with offset/length (8/12) is out of range"},
+        {"bad_glb_chunk_length.glb", "GLB chunk 0 declares 2734687028 bytes but only"},
+        /* Found by fuzzing: inputs that made assimp leak or allocate gigabytes. */
+        {"bad_stl_misspelt.stl", "line 2: STL facet 0 does not start with 'facet normal'"},
+        {"bad_off_counts_two_lines.off", "declares 3 vertices and 3000000000 faces"},
+        {"bad_ply_carriage_return.ply", "line 12: ASCII PLY holds control character 0x0d"},
     };
     for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         char path[1024];
@@ -564,6 +586,8 @@ static void specific_bad_files_say_what_is_wrong(void)
         pelt_error e = {0};
         pelt_mesh_load(path, &m, &e);
         CHECK(strstr(e.message, cases[i].says) != NULL);
+        if (!strstr(e.message, cases[i].says))
+            fprintf(stderr, "  expected '%s' in: %s\n", cases[i].says, e.message);
         pelt_mesh_destroy(m);
     }
 }
@@ -580,6 +604,55 @@ static void missing_file_is_io_error_naming_it(void)
     CHECK(pelt_mesh_load(NULL, &m, &e) == PELT_ERR_INVALID_ARGUMENT);
     CHECK(pelt_mesh_load(MESH_DIR "tetra.off", NULL, &e) == PELT_ERR_INVALID_ARGUMENT);
     CHECK(m == NULL);
+}
+
+/* A whole file into memory (free it). */
+static unsigned char *read_whole(const char *path, size_t *size)
+{
+    FILE *f = fopen(path, "rb");
+    CHECK(f != NULL);
+    if (!f) return NULL;
+    fseek(f, 0, SEEK_END);
+    long n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    unsigned char *buf = malloc((size_t)n + 1);
+    *size = fread(buf, 1, (size_t)n, f);
+    fclose(f);
+    return buf;
+}
+
+/* pelt_mesh_load_memory gives what pelt_mesh_load gives, good or bad. */
+static void memory_load_equals_file_load(void)
+{
+    static const char *const names[] = {
+        "tetra.off", "tetra.ply", "swirl_colors.ply", "two_facets.stl", "one_triangle_binary.stl",
+        "cube_quads.obj", "quad.gltf", "quad.glb", "bad_list_short.ply", "bad_face_two_vertices.obj",
+        "bad_truncated_solid.stl", "bad_huge_count.off", "bad_accessor_range.gltf", "bad_empty.obj"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        char path[1024];
+        snprintf(path, sizeof path, "%s%s", MESH_DIR, names[i]);
+        size_t size = 0;
+        unsigned char *data = read_whole(path, &size);
+        pelt_mesh *a = NULL, *b = NULL;
+        pelt_error ea = {0}, eb = {0};
+        pelt_status sa = pelt_mesh_load(path, &a, &ea);
+        pelt_status sb = pelt_mesh_load_memory(data, size, path, &b, &eb);
+        CHECK(sa == sb);
+        CHECK(!strcmp(ea.message, eb.message));
+        if (sa != sb || strcmp(ea.message, eb.message))
+            fprintf(stderr, "  %s: file '%s', memory '%s'\n", names[i], ea.message, eb.message);
+        if (a && b) {
+            pelt_mesh_data da = pelt_mesh_get_data(a), db = pelt_mesh_get_data(b);
+            CHECK(da.vertex_count == db.vertex_count && da.triangle_count == db.triangle_count);
+            CHECK(!memcmp(da.positions, db.positions, da.vertex_count * 3 * sizeof(float)));
+        }
+        pelt_mesh_destroy(a), pelt_mesh_destroy(b);
+        free(data);
+    }
+    pelt_mesh *m = NULL;
+    pelt_error e = {0};
+    CHECK(pelt_mesh_load_memory("v 0 0 0", 7, "no_extension", &m, &e) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(strstr(e.message, "extension") != NULL);
 }
 
 int main(void)
@@ -612,5 +685,6 @@ int main(void)
     RUN(bad_files_fail_cleanly_naming_the_file);
     RUN(specific_bad_files_say_what_is_wrong);
     RUN(missing_file_is_io_error_naming_it);
+    RUN(memory_load_equals_file_load);
     return check_summary();
 }

@@ -20,7 +20,7 @@ allowed_local() {
         core/wet/*)   echo '^(pelt/(base|mesh|wetness|fur)\.h|core/(base|mesh|wet)/)' ;;
         core/fur/*)   echo '^(pelt/(base|mesh|fur|groom|dynamics|wetness)\.h|core/(base|mesh|wet|fur)/)' ;;
         gl/*)         echo '^(pelt/(base|camera|mesh|fur|dynamics|wetness|render)\.h|core/base/|core/fur/fur_gpu\.h|gl/)' ;;
-        scene/*)      echo '^(pelt/|core/base/)' ;;
+        scene/*)      echo '^(pelt/|core/base/|scene/)' ;;
         platform/*)   echo '^(pelt/(base|headless|window)\.h|core/base/|platform/)' ;;
         *)            echo '.' ;;
     esac
