@@ -310,12 +310,24 @@ static void draw_hud(view_app *a)
     if (st->lod || st->fins || st->shadows)
         n += snprintf(text + n, sizeof text - (size_t)n, "\n\x04%s%s%s: not built yet\x01",
                       st->lod ? "LOD " : "", st->fins ? "fins " : "", st->shadows ? "shadows" : "");
-    if (st->message[0] && st->message_seconds > 0.0f)
-        snprintf(text + n, sizeof text - (size_t)n, "\n%s%s\x01",
-                 st->message_is_error ? "\x02" : "\x04", st->message);
-    view_hud_text(a->hud, text, 8.0f, 8.0f, 1.5f, st->width, st->height);
+    float scale = st->width >= 700 ? 1.5f : 1.0f;
+    if (st->message[0] && st->message_seconds > 0.0f) {
+        /* Wrapped to the window: about 6 pixels a character. */
+        size_t cols = (size_t)fmaxf(((float)st->width - 24.0f) / (6.0f * scale), 20.0f);
+        n += snprintf(text + n, sizeof text - (size_t)n, "\n%s", st->message_is_error ? "\x02" : "\x04");
+        size_t len = strlen(st->message);
+        for (size_t i = 0; i < len && (size_t)n + 4 < sizeof text; i += cols) {
+            if (i) text[n++] = '\n';
+            size_t k = len - i < cols ? len - i : cols;
+            if ((size_t)n + k + 2 >= sizeof text) break;
+            memcpy(text + n, st->message + i, k);
+            n += (int)k;
+        }
+        text[n] = '\0';
+    }
+    view_hud_text(a->hud, text, 8.0f, 8.0f, scale, st->width, st->height);
     if (st->help)
-        view_hud_text(a->hud, view_help_text(), 8.0f, 8.0f + 1.5f * 12.0f * 8.0f, 1.5f, st->width,
+        view_hud_text(a->hud, view_help_text(), 8.0f, 8.0f + scale * 12.0f * 9.0f, scale, st->width,
                       st->height);
 }
 
