@@ -122,6 +122,26 @@ check saved_groom_renders_the_same $rc "$res"
 res=$("$region" "$d/dry.png" "$d/groomed_render.png" $cx $cy $r)
 is "$(value inside_mean "$res")" '>' 5; check saved_groom_is_combed $? "$res"
 
+# The camera: the wheel zooms, a right drag orbits, a middle drag pans;
+# each changes the picture.
+printf '0 scroll 3\n0.1 screenshot %s\n0.1 drag 100 60 160 60 0.1 right\n0.3 screenshot %s\n0.3 drag 100 60 140 60 0.1 middle\n0.5 screenshot %s\n0.5 exit\n' \
+  "$d/zoom.png" "$d/orbit.png" "$d/pan.png" >"$d/camera.txt"
+view --no-hud --script "$d/camera.txt" 2>/dev/null; check camera_runs $? ""
+! "$png_diff" "$d/dry.png" "$d/zoom.png" >/dev/null && ! "$png_diff" "$d/zoom.png" "$d/orbit.png" >/dev/null &&
+  ! "$png_diff" "$d/orbit.png" "$d/pan.png" >/dev/null
+check zoom_orbit_pan_move_the_view $? "a camera move left the picture as it was"
+
+# Keys: the towel dries a wet spot at once; screenshots go to -o; layers,
+# curl presets and the passes not built yet say what they did.
+printf '0 key 1\n0 click %s %s\n0.2 key t\n0.3 screenshot %s\n0.3 key p\n0.4 key up\n0.5 key c\n0.6 key l\n0.6 key f\n0.6 key s\n0.7 exit\n' \
+  $cx $cy "$d/towel.png" >"$d/keys.txt"
+err=$(view --no-hud -o "$d/key_shot_%d.png" --script "$d/keys.txt" 2>&1); check keys_run $? "$err"
+res=$("$png_diff" "$d/dry.png" "$d/towel.png"); check towel_dries_all $? "$res"
+[ -s "$d/key_shot_0.png" ]; check screenshot_key_writes_the_output $? "no $d/key_shot_0.png"
+grep -q "32 layers" <<<"$err"; check layers_double $? "$err"
+grep -q "curl straight" <<<"$err"; check curl_preset_cycles $? "$err"
+[ "$(grep -c "not built yet" <<<"$err")" -eq 3 ]; check lod_fins_shadows_say_not_built $? "$err"
+
 # The scene file changes on disk while the window is open: it reloads
 # (polled once a second) and the new background shows.
 printf '{"output": {"background": [0.1, 0.11, 0.13, 1]}}\n' >"$d/scene.json"
