@@ -326,6 +326,8 @@ static void draw_hud(view_app *a)
         text[n] = '\0';
     }
     view_hud_text(a->hud, text, 8.0f, 8.0f, scale, st->width, st->height);
+    if (st->tool != VIEW_TOOL_ORBIT && st->mx > 0.0f && st->my > 0.0f)
+        view_hud_ring(a->hud, st->mx, st->my, view_brush_pixels(st), st->width, st->height);
     if (st->help)
         view_hud_text(a->hud, view_help_text(), 8.0f, 8.0f + scale * 12.0f * 9.0f, scale, st->width,
                       st->height);

@@ -92,6 +92,8 @@ void view_hud_destroy(view_hud *h);
  * "\x04" yellow. Leaves GL state as the renderer's contract states it. */
 void view_hud_text(view_hud *h, const char *text, float x, float y, float scale,
                    unsigned width, unsigned height);
+/* The brush: a ring of radius r pixels around (cx, cy). */
+void view_hud_ring(view_hud *h, float cx, float cy, float r, unsigned width, unsigned height);
 
 /* ---- the viewer ------------------------------------------------------------- */
 
@@ -126,7 +128,8 @@ typedef struct view_state {
     float radius;         /* world units */
     float diagonal;       /* of the mesh, world units: scales radius and zoom */
     float blow_seconds;   /* the dryer's air lasts this much longer */
-    float blow_dir[3];
+    float blow_dir[3];    /* world units: along the ray through the cursor */
+    float blow_center[3]; /* world units: where that ray meets the mesh */
     bool was_blowing;
     uint32_t rng;
     /* switches */
@@ -169,5 +172,7 @@ void view_message(view_state *st, bool error, const char *fmt, ...)
 /* The help overlay's text: every key and tool. */
 const char *view_help_text(void);
 const char *view_tool_name(view_tool t);
+/* The brush radius in pixels at the camera's target distance. */
+float view_brush_pixels(const view_state *st);
 
 #endif

@@ -3,6 +3,7 @@
 #include "apps/view.h"
 
 #include <epoxy/gl.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -149,6 +150,30 @@ static void quad(float *v, float x0, float y0, float x1, float y1, const uint8_t
     }
 }
 
+/* Draws the first `quads` quads of h->verts, placed at origin + scale * p. */
+static void draw_quads(view_hud *h, size_t quads, float ox, float oy, float scale, unsigned width,
+                       unsigned height)
+{
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+    glViewport(0, 0, (GLsizei)width, (GLsizei)height);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    glUseProgram(h->program);
+    glUniform2f(h->u_size, (float)width, (float)height);
+    glUniform2f(h->u_origin, ox, oy);
+    glUniform1f(h->u_scale, scale);
+    glBindVertexArray(h->vao);
+    glBindBuffer(GL_ARRAY_BUFFER, h->vbo);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(quads * 64), h->verts, GL_STREAM_DRAW);
+    glDrawElements(GL_TRIANGLES, (GLsizei)(quads * 6), GL_UNSIGNED_INT, NULL);
+    glBindVertexArray(0);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    glUseProgram(0);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glDisable(GL_BLEND);
+}
+
 void view_hud_text(view_hud *h, const char *text, float x, float y, float scale, unsigned width,
                    unsigned height)
 {
@@ -185,22 +210,30 @@ void view_hud_text(view_hud *h, const char *text, float x, float y, float scale,
     float pad = 4.0f;
     quad(h->verts, -pad, -pad, max_x + pad, ly + 12.0f + pad - 2.0f, panel);
 
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-    glViewport(0, 0, (GLsizei)width, (GLsizei)height);
-    glDisable(GL_DEPTH_TEST);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-    glUseProgram(h->program);
-    glUniform2f(h->u_size, (float)width, (float)height);
-    glUniform2f(h->u_origin, x + pad * scale, y + pad * scale);
-    glUniform1f(h->u_scale, scale);
-    glBindVertexArray(h->vao);
-    glBindBuffer(GL_ARRAY_BUFFER, h->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(quads * 64), h->verts, GL_STREAM_DRAW);
-    glDrawElements(GL_TRIANGLES, (GLsizei)(quads * 6), GL_UNSIGNED_INT, NULL);
-    glBindVertexArray(0);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-    glUseProgram(0);
-    glBlendFunc(GL_ONE, GL_ZERO);
-    glDisable(GL_BLEND);
+    draw_quads(h, quads, x + pad * scale, y + pad * scale, scale, width, height);
+}
+
+void view_hud_ring(view_hud *h, float cx, float cy, float r, unsigned width, unsigned height)
+{
+    static const uint8_t dark[4] = {0, 0, 0, 140}, light[4] = {255, 255, 255, 200};
+    enum { SEGMENTS = 72 };
+    size_t quads = 0;
+    for (int pass = 0; pass < 2; pass++) /* a dark ring under a light one: seen on any fur */
+        for (int i = 0; i < SEGMENTS; i++) {
+            float a0 = 6.2831853f * (float)i / SEGMENTS, a1 = 6.2831853f * (float)(i + 1) / SEGMENTS;
+            float w = pass == 0 ? 2.0f : 0.75f, rr[2] = {r - w, r + w};
+            float *v = h->verts + quads * 16;
+            float xs[4] = {cx + rr[0] * cosf(a0), cx + rr[1] * cosf(a0), cx + rr[1] * cosf(a1),
+                           cx + rr[0] * cosf(a1)};
+            float ys[4] = {cy + rr[0] * sinf(a0), cy + rr[1] * sinf(a0), cy + rr[1] * sinf(a1),
+                           cy + rr[0] * sinf(a1)};
+            for (int j = 0; j < 4; j++) {
+                v[4 * j] = xs[j];
+                v[4 * j + 1] = ys[j];
+                v[4 * j + 2] = 0.0f;
+                memcpy(&v[4 * j + 3], pass == 0 ? dark : light, 4);
+            }
+            quads++;
+        }
+    draw_quads(h, quads, 0.0f, 0.0f, 1.0f, width, height);
 }

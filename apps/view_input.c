@@ -29,7 +29,7 @@ const char *view_help_text(void)
            "\x04tools\x01\n"
            "  0  orbit       left drag orbits everywhere\n"
            "  1  water       click: a droplet; hold: rain under the cursor\n"
-           "  2  hair dryer  hold: dries under the cursor, blows along the view\n"
+           "  2  hair dryer  hold: dries and blows along the view, under the cursor\n"
            "  3  comb        drag: the hair under the brush leans along the drag\n"
            "  4  length      drag: longer; with shift: shorter\n"
            "  [ ]  brush radius\n"
@@ -110,6 +110,8 @@ static float world_per_pixel(const view_state *st)
     float h = st->height ? (float)st->height : 1.0f;
     return 2.0f * st->camera.distance * tanf(st->camera.fov_y * 0.5f * 3.14159265f / 180.0f) / h;
 }
+
+float view_brush_pixels(const view_state *st) { return st->radius / world_per_pixel(st); }
 
 static void apply_camera(view_state *st, pelt_scene_instance *inst)
 {
@@ -292,8 +294,12 @@ static void apply_forces(view_state *st, pelt_scene_instance *inst, bool blowing
             f.wind[k] = st->wind_on ? st->wind_dir[k] * st->wind_strength : 0.0f;
             if (!st->gravity_on) f.gravity[k] = 0.0f;
         }
-        if (blowing) f.wind[k] += st->blow_dir[k] * 60.0f * fminf(st->blow_seconds / 0.3f, 1.0f);
+        if (blowing) { /* the dryer's air, around the point under the cursor */
+            f.blow[k] = st->blow_dir[k] * 60.0f * fminf(st->blow_seconds / 0.3f, 1.0f);
+            f.blow_center[k] = st->blow_center[k];
+        }
     }
+    f.blow_radius = blowing ? 1.5f * st->radius : 0.0f;
     pelt_scene_instance_set_forces(inst, &f);
 }
 
@@ -325,12 +331,18 @@ void view_input_frame(view_state *st, pelt_scene_instance *inst, float dt)
         pelt_scene_instance_drop_at_pixel(inst, st->mx, st->my, st->radius * 1.25f,
                                           -fminf(2.5f * dt, 1.0f));
         pelt_view v = pelt_scene_instance_view(inst);
-        static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-        memcpy(v.model, identity, sizeof identity);
-        float o[3], d[3];
-        if (pelt_view_pixel_ray(&v, st->mx, st->my, o, d)) {
-            memcpy(st->blow_dir, d, sizeof d);
-            st->blow_seconds = 0.6f;
+        float o[3], d[3], hit[3];
+        if (pelt_view_pixel_ray(&v, st->mx, st->my, o, d) &&
+            pelt_fur_pick(pelt_scene_instance_fur(inst), o, d, hit)) {
+            const float *m = v.model; /* the hit in world units */
+            for (int k = 0; k < 3; k++)
+                st->blow_center[k] = m[k] * hit[0] + m[4 + k] * hit[1] + m[8 + k] * hit[2] + m[12 + k];
+            static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+            memcpy(v.model, identity, sizeof identity); /* the ray in world units */
+            if (pelt_view_pixel_ray(&v, st->mx, st->my, o, d)) {
+                memcpy(st->blow_dir, d, sizeof d);
+                st->blow_seconds = 0.6f;
+            }
         }
     }
     bool blowing = st->blow_seconds > 0.0f;

@@ -86,11 +86,13 @@ is "$(value outside_frac "$res")" '<' 0.005; check comb_only_under_the_brush $? 
 
 # (iv) Wet the spot, then hold the hair dryer over it: once its air has
 # passed, the dry picture is back.
-printf '0 key 1\n0 click %s %s\n0.2 screenshot %s\n0.2 key 2\n0.3 hold %s %s 0.8\n3.0 screenshot %s\n3.0 exit\n' \
-  $cx $cy "$d/before_dryer.png" $cx $cy "$d/dried.png" >"$d/dryer.txt"
+printf '0 key 1\n0 click %s %s\n0.2 screenshot %s\n0.2 key 2\n0.3 hold %s %s 0.8\n0.8 screenshot %s\n3.0 screenshot %s\n3.0 exit\n' \
+  $cx $cy "$d/before_dryer.png" $cx $cy "$d/drying.png" "$d/dried.png" >"$d/dryer.txt"
 view --no-hud --script "$d/dryer.txt" 2>/dev/null; check dryer_runs $? ""
 res=$("$region" "$d/dry.png" "$d/before_dryer.png" $cx $cy $r)
 is "$(value inside_mean "$res")" '>' 15; check wet_before_the_dryer $? "$res"
+res=$("$region" "$d/dry.png" "$d/drying.png" $cx $cy $((2 * r))); echo "  drying vs dry: $res"
+is "$(value outside_frac "$res")" '<' 0.005; check dryer_air_is_local $? "$res"
 res=$("$png_diff" "$d/dry_3s.png" "$d/dried.png"); rc=$?
 check dryer_brings_back_the_dry_picture $rc "$res"
 
