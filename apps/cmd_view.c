@@ -269,12 +269,14 @@ static void save_groom(view_app *a)
 static void handle_requests(view_app *a)
 {
     unsigned r = a->st.requests;
-    a->st.requests &= VIEW_REQ_SCREENSHOT | VIEW_REQ_EXIT; /* those come after the draw */
+    unsigned later = r & (VIEW_REQ_SCREENSHOT | VIEW_REQ_EXIT); /* those come after the draw */
+    a->st.requests = 0;
     if (r & VIEW_REQ_RESET) reset(a);
     if (r & VIEW_REQ_RELOAD) reload(a);
     if (r & VIEW_REQ_LOAD_MESH) load_mesh(a, a->st.drop_path);
     if (r & VIEW_REQ_REBUILD) rebuild(a);
     if (r & VIEW_REQ_SAVE_GROOM) save_groom(a);
+    a->st.requests |= later; /* a reset or reload starts the state afresh */
 }
 
 static float wet_share(pelt_fur *fur)
@@ -486,6 +488,12 @@ int cmd_view(int argc, char **argv)
             handle_requests(a); /* a drop or reload before the next event sees the new scene */
         }
         handle_requests(a);
+        /* After the script's last event and screenshot, the window is live. */
+        if (a->scripted && !a->has_frames && (!a->script || view_script_done(a->script))) {
+            bool pending = false;
+            for (int i = 0; i < a->shot_count; i++) pending = pending || !a->shots[i].done;
+            if (!pending && frame > 0) a->scripted = false;
+        }
 
         /* Draw. */
         if (frame % 15 == 0) a->wet_share = wet_share(pelt_scene_instance_fur(a->inst));
