@@ -83,6 +83,7 @@ typedef struct cli_session {
     pelt_headless *gl;
     pelt_renderer *renderer;
     float background[4];
+    pelt_draw_desc draw;           /* the scene's passes (draw.*) */
     uint8_t *pixels;               /* width * height * 4 */
 } cli_session;
 

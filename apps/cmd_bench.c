@@ -182,6 +182,48 @@ static int bench_brush(cli_session *s)
     return 0;
 }
 
+/* Draws one frame with `dd` and returns its milliseconds (glFinish). */
+static double timed_draw(cli_session *s, const pelt_draw_desc *dd)
+{
+    pelt_draw_desc saved = s->draw;
+    s->draw = *dd;
+    double t0 = now_ms();
+    cli_session_draw(s);
+    glFinish();
+    double t = now_ms() - t0;
+    s->draw = saved;
+    return t;
+}
+
+/* Variants of the same frame drawn alternately, so the machine's noise hits
+ * them alike: with and without fins (their share of the frame), and with
+ * and without the inter-fur shadows when the fur has them on. */
+static int bench_variants(cli_session *s, unsigned frames)
+{
+    enum { VARIANTS = 3 };
+    double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
+    if (!t) return 1;
+    pelt_draw_desc full = s->draw, no_fins = full, no_shadow = full;
+    no_fins.no_fins = true;
+    no_shadow.no_inter_shadow = true;
+    const pelt_draw_desc *v[VARIANTS] = {&full, &no_fins, &no_shadow};
+    for (unsigned i = 0; i < frames; i++)
+        for (int k = 0; k < VARIANTS; k++) t[(size_t)k * frames + i] = timed_draw(s, v[k]);
+    stats st[VARIANTS];
+    for (int k = 0; k < VARIANTS; k++) st[k] = summarize(t + (size_t)k * frames, frames);
+    printf("draw variants, alternated (median of %u each):\n", frames);
+    print_stats("as drawn", st[0]);
+    print_stats("no fins", st[1]);
+    print_stats("no inter-sh.", st[2]);
+    if (!full.no_fins)
+        printf("  fins: %.1f%% of the frame's draw\n", 100.0 * (1.0 - st[1].median / st[0].median));
+    bool shadows = pelt_fur_get_desc(pelt_scene_instance_fur(s->instance)).look.inter_shadow;
+    if (shadows)
+        printf("  inter-fur shadows: the draw takes %.3fx as long with them\n", st[0].median / st[2].median);
+    free(t);
+    return 0;
+}
+
 int cmd_bench(int argc, char **argv)
 {
     cli_options o;
@@ -224,6 +266,7 @@ int cmd_bench(int argc, char **argv)
     pelt_render_stats rs = pelt_renderer_get_stats(s.renderer);
     printf("shell draw calls per frame: %u (%u layers), %zu triangles submitted\n",
            rs.shell_draw_calls, rs.shell_instances, rs.triangles);
+    if (bench_variants(&s, frames)) rc = 1;
     if (o.bench_clumps) {
         add_third_of_clumps(fur);
         measure(&s, sc, o.warmup, frames, t, wet);

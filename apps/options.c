@@ -20,6 +20,7 @@ void cli_error(const char *cmd, const char *fmt, ...)
 
 typedef enum flag_kind {
     FLAG_KEY,     /* value goes to a scene key as is */
+    FLAG_SWITCH,  /* no value: `key` is KEY=VALUE, set as --set would */
     FLAG_VEC3,    /* "X,Y,Z" goes to a scene key as [X,Y,Z] */
     FLAG_SIZE,    /* "WxH" */
     FLAG_MESH,    /* torus | sphere | square | FILE */
@@ -78,6 +79,17 @@ static const flag flags[] = {
     {"--dry-rate", NULL, "R", FLAG_KEY, "wetness.dry_rate", "wetness lost per second"},
     {"--mask-image", NULL, "FILE", FLAG_KEY, "wetness.mask_image", "greyscale image painted as water"},
     {"--mask-out", NULL, "FILE", FLAG_MASK_OUT, NULL, "write the wetness mask as a PNG"},
+    {"--fins", NULL, NULL, FLAG_SWITCH, "draw.fins=true",
+     "draw the fins, textured quads on the edges near the silhouette (default)"},
+    {"--no-fins", NULL, NULL, FLAG_SWITCH, "draw.fins=false", "no fins: shells alone"},
+    {"--fin-length", NULL, "X", FLAG_KEY, "fins.length",
+     "fin hair height as a multiple of the fur length (default 1)"},
+    {"--fin-density", NULL, "TEXELS", FLAG_KEY, "fins.density",
+     "width of the slab of hair in the fin texture: denser fins (default texture size / 16)"},
+    {"--inter-shadow", NULL, NULL, FLAG_SWITCH, "fur.inter_shadow=true",
+     "Kenwright's inter-fur shadows: each hair shades the hair behind it from the light"},
+    {"--shading", NULL, "MODEL", FLAG_KEY, "shading.model",
+     "hair lighting: kajiya-kay (default) or lengyel-table"},
     {"--groom", NULL, "FILE", FLAG_KEY, "fur.groom", "a groom file (PLY) to load (docs/grooming.md)"},
     {"--save-groom", NULL, "FILE", FLAG_GROOM_OUT, NULL,
      "write the groom (maps, vertex colours, groom file and strokes applied) as a PLY"},
@@ -140,6 +152,12 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     switch (f->kind) {
     case FLAG_KEY:
         return set_key(cmd, f->name, &o->scene, f->key, value);
+    case FLAG_SWITCH: {
+        const char *eq = strchr(f->key, '=');
+        char key[64];
+        snprintf(key, sizeof key, "%.*s", (int)(eq - f->key), f->key);
+        return set_key(cmd, f->name, &o->scene, key, eq + 1);
+    }
     case FLAG_VEC3: {
         /* Exactly three comma-separated numbers. */
         char *end;

@@ -19,6 +19,8 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
     memset(s, 0, sizeof *s);
     s->cmd = cmd;
     memcpy(s->background, sc->output.background, sizeof s->background);
+    s->draw = (pelt_draw_desc){.no_skin = !sc->draw.skin, .no_shells = !sc->draw.shells,
+                               .no_fins = !sc->draw.fins, .fins_unfaded = sc->draw.fins_unfaded};
     pelt_error err = {0};
     pelt_scene_instance_desc idesc = {.hooks.logger = {print_warning, (void *)cmd}};
     if (pelt_scene_instantiate(sc, &idesc, &s->instance, &err) != PELT_OK) {
@@ -69,7 +71,7 @@ void cli_session_draw(cli_session *s)
     glClearColor(bg[0], bg[1], bg[2], bg[3]);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     pelt_view view = pelt_scene_instance_view(s->instance);
-    pelt_renderer_draw(s->renderer, &view, NULL);
+    pelt_renderer_draw(s->renderer, &view, &s->draw);
 }
 
 bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h)

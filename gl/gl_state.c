@@ -37,3 +37,15 @@ void pelt__gl_state_reset(void)
     glDisable(GL_CULL_FACE);
     pelt__gl_unpack_defaults();
 }
+
+void pelt__gl_blended_hair_state(void)
+{
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    /* Alpha accumulates as coverage, so an opaque background stays opaque. */
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+}

@@ -22,6 +22,9 @@ void pelt__gl_unpack_defaults(void);
 /* Returns everything the renderer touches to GL's initial values, as
  * pelt/render.h states. */
 void pelt__gl_state_reset(void);
+/* The state of the blended hair passes (fins, shells): depth tested
+ * without depth write, no culling, blended over what is there. */
+void pelt__gl_blended_hair_state(void);
 
 /* ---- programs (gl/programs.c) ------------------------------------------ */
 
@@ -42,6 +45,12 @@ typedef struct pelt__gpu_mesh {
     GLuint vbo_tips;   /* PELT_ATTR_TIP, rewritten when the strands move */
     GLuint vbo_groom;  /* PELT_ATTR_GROOM and PELT_ATTR_HAIR_COLOR, the
                           changed range rewritten after a brush or a map */
+    /* The same data as vertex tables (bindings.glsl), for passes that fetch
+     * a vertex by index: static, the tips (with their staging copy, made
+     * once) and the groom. */
+    GLuint table_vertices, table_tips, table_groom;
+    float *tip_staging;   /* 4 floats per vertex */
+    pelt_allocator alloc;
     GLuint ebo;
     size_t vertex_count;
     size_t triangle_count;
@@ -57,6 +66,8 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
  * the groom buffer; returns bytes sent. */
 size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
+/* Binds the vertex tables to PELT_UNIT_VERTICES, _TIPS and _GROOM. */
+void pelt__gpu_mesh_bind_tables(const pelt__gpu_mesh *g);
 
 /* ---- fur textures (gl/gpu_fur.c) --------------------------------------- */
 
@@ -64,6 +75,7 @@ typedef struct pelt__gpu_fur {
     GLuint volume; /* 2D array, one slice a layer (Lengyel et al. §2.2) */
     GLuint color;  /* RGBA8, white 1x1 until the fur has a colour texture */
     GLuint mask;   /* RGBA32F wetness mask, nearest (Silva et al. §3.1) */
+    GLuint light_table; /* RG32F 32x32, Lengyel et al. §2.4 */
     unsigned color_version;
 } pelt__gpu_fur;
 
@@ -85,6 +97,7 @@ typedef struct pelt__frame_block {
     float eye[3], ambient;
     float light_dir[3], pad0_;
     float light_color[3], pad1_;
+    float view_dir[3], pad2_;
 } pelt__frame_block;
 
 typedef struct pelt__fur_block {
@@ -94,7 +107,8 @@ typedef struct pelt__fur_block {
     float fur_per_uv[2], shadow, curl_frequency;
     float curl_radius, clump_blend, clump_tightness, wet_darken;
     float color_scale, slant, pad_[2];
-    float skin_color[3], pad1_;
+    float skin_color[3], tiling;
+    float fin_length, inter_shadow, inter_shadow_step, shading_model;
 } pelt__fur_block;
 
 typedef struct pelt__gpu_blocks {

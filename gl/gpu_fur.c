@@ -51,6 +51,19 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     unsigned rect[4];
     pelt__fur_gpu_take_mask_dirty(fur, rect); /* all of it went up just now */
+
+    /* Lengyel's lighting table: it depends on the material only (P_d, P_s);
+     * the light enters through u = T.L and v = T.H per fragment. */
+    float table[PELT__FUR_GPU_LIGHT_TABLE * PELT__FUR_GPU_LIGHT_TABLE * 2];
+    pelt__fur_gpu_light_table(fur, table);
+    glGenTextures(1, &g->light_table);
+    bind(PELT_UNIT_LIGHT_TABLE, GL_TEXTURE_2D, g->light_table);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, PELT__FUR_GPU_LIGHT_TABLE, PELT__FUR_GPU_LIGHT_TABLE, 0,
+                 GL_RG, GL_FLOAT, table);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
 size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur)
@@ -89,11 +102,12 @@ void pelt__gpu_fur_bind(const pelt__gpu_fur *g)
     bind(PELT_UNIT_FUR, GL_TEXTURE_2D_ARRAY, g->volume);
     bind(PELT_UNIT_COLOR, GL_TEXTURE_2D, g->color);
     bind(PELT_UNIT_MASK, GL_TEXTURE_2D, g->mask);
+    bind(PELT_UNIT_LIGHT_TABLE, GL_TEXTURE_2D, g->light_table);
 }
 
 void pelt__gpu_fur_destroy(pelt__gpu_fur *g)
 {
-    GLuint textures[3] = {g->volume, g->color, g->mask};
-    glDeleteTextures(3, textures);
+    GLuint textures[4] = {g->volume, g->color, g->mask, g->light_table};
+    glDeleteTextures(4, textures);
     memset(g, 0, sizeof *g);
 }

@@ -33,11 +33,29 @@ pelt_status pelt__skin_pass_create(pelt__skin_pass *p, const pelt_hooks *hooks, 
 void pelt__skin_pass_draw(const pelt__skin_pass *p, const pelt__pass_frame *f);
 void pelt__skin_pass_destroy(pelt__skin_pass *p);
 
+/* All fins in one instanced draw (Lengyel et al. §2.3): one instance per
+ * mesh edge, a strip of PELT_FIN_ROWS quads up the displaced strands; the
+ * fade collapses fins away from the silhouette in the vertex stage. Owns
+ * the fin texture and the per-fin instance buffer. */
+typedef struct pelt__fin_pass {
+    GLuint program;
+    GLuint vao, vbo;    /* per instance: edge (2 uints), start (1 float) */
+    GLuint texture;     /* the fin texture, PELT_UNIT_FIN */
+    GLint unfaded;      /* uniform location: 1 draws every fin at full opacity */
+    size_t count;
+} pelt__fin_pass;
+
+pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_hooks *hooks,
+                                  pelt_error *err);
+void pelt__fin_pass_draw(const pelt__fin_pass *p, const pelt__pass_frame *f);
+void pelt__fin_pass_destroy(pelt__fin_pass *p);
+
 /* All shells in one instanced draw, blended inner to outer, depth tested
  * without depth write. */
 typedef struct pelt__shell_pass {
     GLuint program;
     GLint first_layer; /* uniform location */
+    GLint no_inter_shadow; /* uniform location */
 } pelt__shell_pass;
 
 pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks, pelt_error *err);

@@ -92,7 +92,10 @@ pelt_status pelt__gl_program_create(const char *what, const char *const *vertex_
     static const struct { const char *name; GLuint binding; } blocks[] = {
         {"pelt_frame_block", PELT_BLOCK_FRAME}, {"pelt_fur_block", PELT_BLOCK_FUR}};
     static const struct { const char *name; GLint unit; } samplers[] = {
-        {"u_fur", PELT_UNIT_FUR}, {"u_color_tex", PELT_UNIT_COLOR}, {"u_mask", PELT_UNIT_MASK}};
+        {"u_fur", PELT_UNIT_FUR},           {"u_color_tex", PELT_UNIT_COLOR},
+        {"u_mask", PELT_UNIT_MASK},         {"u_fin_tex", PELT_UNIT_FIN},
+        {"u_vertices", PELT_UNIT_VERTICES}, {"u_tips", PELT_UNIT_TIPS},
+        {"u_groom", PELT_UNIT_GROOM},       {"u_light_table", PELT_UNIT_LIGHT_TABLE}};
     for (size_t i = 0; i < sizeof blocks / sizeof blocks[0]; i++) {
         GLuint index = glGetUniformBlockIndex(*out, blocks[i].name);
         if (index != GL_INVALID_INDEX) glUniformBlockBinding(*out, index, blocks[i].binding);

@@ -16,6 +16,10 @@ extern const char pelt__shader_skin_vs[];
 extern const char pelt__shader_skin_fs[];
 extern const char pelt__shader_shell_vs[];
 extern const char pelt__shader_shell_fs[];
+extern const char pelt__shader_fins[];
+extern const char pelt__shader_fur_light[];
+extern const char pelt__shader_fin_vs[];
+extern const char pelt__shader_fin_fs[];
 
 /* Compiles and links a program. Each stage is a NULL-terminated list of
  * at most 12 source pieces, concatenated after the version header (GLSL

@@ -18,6 +18,7 @@ struct pelt_renderer {
     pelt__gpu_fur textures;
     pelt__gpu_blocks blocks;
     pelt__skin_pass skin;
+    pelt__fin_pass fins;
     pelt__shell_pass shells;
     size_t pending_upload; /* bytes uploaded since the last draw */
     pelt_render_stats stats;
@@ -46,6 +47,7 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
 
     pelt_status st = pelt__skin_pass_create(&r->skin, &hooks, err);
     if (st == PELT_OK) st = pelt__shell_pass_create(&r->shells, &hooks, err);
+    if (st == PELT_OK) st = pelt__fin_pass_create(&r->fins, fur, &hooks, err);
     if (st == PELT_OK) st = pelt__gpu_mesh_create(&r->mesh, mesh, fur, &hooks, err);
     if (st == PELT_OK) {
         pelt__gpu_fur_create(&r->textures, fur);
@@ -65,6 +67,7 @@ void pelt_renderer_destroy(pelt_renderer *r)
 {
     if (!r) return;
     pelt__shell_pass_destroy(&r->shells);
+    pelt__fin_pass_destroy(&r->fins);
     pelt__skin_pass_destroy(&r->skin);
     pelt__gpu_blocks_destroy(&r->blocks);
     pelt__gpu_fur_destroy(&r->textures);
@@ -101,10 +104,12 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
 
     glBindVertexArray(r->mesh.vao);
     pelt__gpu_fur_bind(&r->textures);
+    pelt__gpu_mesh_bind_tables(&r->mesh);
     pelt__gpu_blocks_bind(&r->blocks);
     const pelt__pass_frame frame = {&r->mesh, r->layers, draw, &stats};
     /* Frame order (DESIGN.md): skin, fins, shells. */
     if (!draw->no_skin) pelt__skin_pass_draw(&r->skin, &frame);
+    if (!draw->no_fins) pelt__fin_pass_draw(&r->fins, &frame);
     if (!draw->no_shells) pelt__shell_pass_draw(&r->shells, &frame);
     pelt__gl_state_reset();
     r->stats = stats;

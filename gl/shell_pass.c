@@ -9,9 +9,13 @@
 pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks, pelt_error *err)
 {
     const char *vs[] = {pelt__shader_fur_shape, pelt__shader_shell_vs, NULL};
-    const char *fs[] = {pelt__shader_shading, pelt__shader_clump, pelt__shader_shell_fs, NULL};
+    const char *fs[] = {pelt__shader_shading, pelt__shader_fur_light, pelt__shader_clump,
+                        pelt__shader_shell_fs, NULL};
     pelt_status st = pelt__gl_program_create("shell", vs, fs, hooks, &p->program, err);
-    if (st == PELT_OK) p->first_layer = glGetUniformLocation(p->program, "u_first_layer");
+    if (st == PELT_OK) {
+        p->first_layer = glGetUniformLocation(p->program, "u_first_layer");
+        p->no_inter_shadow = glGetUniformLocation(p->program, "u_no_inter_shadow");
+    }
     return st;
 }
 
@@ -22,16 +26,10 @@ void pelt__shell_pass_draw(const pelt__shell_pass *p, const pelt__pass_frame *f)
     unsigned count = first >= f->layers ? 0 : f->layers - first;
     if (f->draw->layer_count && f->draw->layer_count < count) count = f->draw->layer_count;
     if (count == 0) return;
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    /* Alpha accumulates as coverage, so an opaque background stays opaque. */
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+    pelt__gl_blended_hair_state();
     glUseProgram(p->program);
     glUniform1f(p->first_layer, (float)first);
+    glUniform1i(p->no_inter_shadow, f->draw->no_inter_shadow ? 1 : 0);
     glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(f->mesh->triangle_count * 3), GL_UNSIGNED_INT,
                             NULL, (GLsizei)count);
     f->stats->shell_draw_calls++;

@@ -17,7 +17,8 @@ OFFSET(pelt__frame_block, eye, 128);
 OFFSET(pelt__frame_block, ambient, 140);
 OFFSET(pelt__frame_block, light_dir, 144);
 OFFSET(pelt__frame_block, light_color, 160);
-_Static_assert(sizeof(pelt__frame_block) == 176, "std140 size of pelt_frame_block");
+OFFSET(pelt__frame_block, view_dir, 176);
+_Static_assert(sizeof(pelt__frame_block) == 192, "std140 size of pelt_frame_block");
 OFFSET(pelt__fur_block, color, 0);
 OFFSET(pelt__fur_block, layers, 12);
 OFFSET(pelt__fur_block, tip_color, 16);
@@ -34,7 +35,9 @@ OFFSET(pelt__fur_block, wet_darken, 76);
 OFFSET(pelt__fur_block, color_scale, 80);
 OFFSET(pelt__fur_block, slant, 84);
 OFFSET(pelt__fur_block, skin_color, 96);
-_Static_assert(sizeof(pelt__fur_block) == 112, "std140 size of pelt_fur_block");
+OFFSET(pelt__fur_block, tiling, 108);
+OFFSET(pelt__fur_block, fin_length, 112);
+_Static_assert(sizeof(pelt__fur_block) == 128, "std140 size of pelt_fur_block");
 #undef OFFSET
 
 static GLuint make_buffer(size_t bytes)
@@ -69,6 +72,9 @@ size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v)
     f.ambient = v->light.ambient;
     memcpy(f.light_dir, v->light.direction, sizeof f.light_dir);
     memcpy(f.light_color, v->light.color, sizeof f.light_color);
+    /* Forward is minus the third row of the view rotation. */
+    pelt_vec3 fwd = v3_norm_or(v3(-v->view[2], -v->view[6], -v->view[10]), v3(0.0f, 0.0f, -1.0f));
+    v3_store(f.view_dir, fwd);
     send(b->frame, &f, sizeof f);
     return sizeof f;
 }
@@ -94,6 +100,11 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
     k.color_scale = d.look.color_scale;
     k.slant = tanf(d.comb.slant * 3.14159265f / 180.0f); /* Lengyel et al. §3 */
     memcpy(k.skin_color, d.look.skin_color, sizeof k.skin_color);
+    k.tiling = d.look.tiling;
+    k.fin_length = d.fins.length;
+    k.inter_shadow = d.look.inter_shadow ? d.look.inter_shadow_darkness : 0.0f;
+    k.inter_shadow_step = d.look.inter_shadow_offset / (float)d.look.texture_size;
+    k.shading_model = (float)d.look.shading;
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

@@ -21,6 +21,7 @@ _Static_assert(sizeof(pelt_color_pattern) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_atlas_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_vertex_colors_use) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_brush_tool) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_shading_model) == sizeof(int), "enum size");
 
 #define PI_F 3.14159265358979f
 
@@ -94,6 +95,7 @@ void pelt_scene_defaults(pelt_scene *s)
     s->atlas.mode = PELT_ATLAS_AUTO;
     s->atlas.direction[1] = -1.0f;
 
+    s->draw.skin = s->draw.fins = s->draw.shells = true;
     s->groom.length_range[1] = 1.0f;
     s->groom.density_range[1] = 1.0f;
     s->groom.flow_strength = 1.0f;
@@ -117,6 +119,7 @@ void pelt_scene_free(pelt_scene *s)
 
 typedef enum kind {
     K_UINT,     /* unsigned, integer in [lo, hi] */
+    K_BOOL,     /* true or false into a bool */
     K_U32,      /* uint32_t seed, integer in [0, 2^32-1] */
     K_FLOAT,    /* float in [lo, hi] */
     K_VEC,      /* `count` floats, each in [lo, hi] */
@@ -152,6 +155,7 @@ static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
 static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
+static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
 /* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
  * The scene format names them as the issue does; the preset table spells two
  * of them differently, so both spellings are accepted (same index). */
@@ -203,7 +207,20 @@ static const key_def scene_keys[] = {
     FLT("fur.curl_radius", fur.look.curl_radius, 0, BIG, 0),
     FLT("fur.slant", fur.comb.slant, 0, 60, 0),
     VEC("fur.skin_color", fur.look.skin_color, 3, 0, 1, 0),
+    {"fur.inter_shadow", K_BOOL, OFF(fur.look.inter_shadow), 0, 0, 0, 0, 0, NULL},
+    FLT("fur.inter_shadow_offset", fur.look.inter_shadow_offset, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    FLT("fur.inter_shadow_darkness", fur.look.inter_shadow_darkness, 0, 1, F_LO_OPEN | F_ZERO_OK),
+    ENUM("shading.model", fur.look.shading, shading_names),
+    FLT("shading.diffuse_power", fur.look.diffuse_power, 0, 256, F_LO_OPEN | F_ZERO_OK),
     PATH("fur.groom", groom.file),
+    FLT("fins.length", fur.fins.length, 0, 8, F_LO_OPEN | F_ZERO_OK),
+    FLT("fins.density", fur.fins.density, 0, 4096, F_LO_OPEN | F_ZERO_OK),
+    FLT("fins.curl", fur.fins.curl, 0, 64, 0),
+    FLT("fins.curl_turns", fur.fins.curl_turns, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    {"draw.skin", K_BOOL, OFF(draw.skin), 0, 0, 0, 0, 0, NULL},
+    {"draw.fins", K_BOOL, OFF(draw.fins), 0, 0, 0, 0, 0, NULL},
+    {"draw.shells", K_BOOL, OFF(draw.shells), 0, 0, 0, 0, 0, NULL},
+    {"draw.fins_unfaded", K_BOOL, OFF(draw.fins_unfaded), 0, 0, 0, 0, 0, NULL},
     PATH("fur.length_map", groom.length_map),
     RANGE("fur.length_range", groom.length_range[0], groom.length_range[1], 0, PELT_GROOM_MAX_LENGTH),
     PATH("fur.density_map", groom.density_map),
@@ -512,6 +529,10 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
     switch (d->k) {
     case K_UINT:
         if ((st = number(c, d, key, v, true, &x)) == PELT_OK) *(unsigned *)(void *)field = (unsigned)x;
+        break;
+    case K_BOOL:
+        if (!cJSON_IsBool(v)) return bad(c, key, "true or false", v);
+        *(bool *)(void *)field = cJSON_IsTrue(v);
         break;
     case K_U32:
         if ((st = number(c, d, key, v, true, &x)) == PELT_OK) *(uint32_t *)(void *)field = (uint32_t)x;

@@ -268,8 +268,9 @@ static bool brush_at_pixel(pelt_scene_instance *inst, float px, float py, const 
         if (!pelt_view_pixel_ray(v, px + drag[0], py + drag[1], o2, d2)) return false;
         pelt_vec3 to_hit = v3_sub(v3_load(p), v3_load(o));
         pelt_vec3 dir2 = v3_norm_or(v3_load(d2), v3(0.0f, 0.0f, 0.0f));
-        pelt_vec3 q = v3_mad(v3_load(o2), dir2, v3_len(to_hit));
-        for (int k = 0; k < 3; k++) local.delta[k] += (&q.x)[k] - p[k];
+        float q[3];
+        v3_store(q, v3_mad(v3_load(o2), dir2, v3_len(to_hit)));
+        for (int k = 0; k < 3; k++) local.delta[k] += q[k] - p[k];
     }
     return pelt_fur_brush(inst->fur, p, &local, NULL, NULL) == PELT_OK;
 }
@@ -280,8 +281,13 @@ static pelt_status apply_strokes(pelt_scene_instance *inst, const pelt_scene *sc
     for (size_t i = 0; i < sc->groom.stroke_count; i++) {
         const pelt_scene_stroke *s = &sc->groom.strokes[i];
         if (isfinite(s->at[0])) {
+            /* World radius and delta to mesh units, as at a pixel. */
+            pelt_brush local = s->brush;
+            float scale = mesh_units(&inst->view);
+            local.radius *= scale;
+            for (int k = 0; k < 3; k++) local.delta[k] *= scale;
             pelt_error e = {0};
-            if (pelt_fur_brush(inst->fur, s->at, &s->brush, NULL, &e) != PELT_OK)
+            if (pelt_fur_brush(inst->fur, s->at, &local, NULL, &e) != PELT_OK)
                 return pelt__fail(err, e.status, "strokes[%zu]: %s", i, e.message);
             continue;
         }

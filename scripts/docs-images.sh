@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Renders every picture under docs/images/ into OUTDIR with the commands the
-# docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/atlas.md;
+# docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/gallery-grooming.md,
+# docs/gallery-fins.md, docs/atlas.md;
 # README.md only shows pictures of gallery.md), so that the result can be
 # compared with the committed pictures by scripts/docs-images-compare.sh.
 #
@@ -15,7 +16,8 @@
 #   DOCS_IMAGES      space-separated subset of picture groups to render (default all):
 #                    default bunny_dry elephant bunny_combed elephant_combed
 #                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water
-#                    wind_square turntable curl
+#                    wind_square turntable curl groom_torus groom_bunny groom_maps
+#                    fins_torus fins_bunny inter_shadow
 #
 # Each command runs in its own fresh working directory (symlinks to the source
 # tree's top-level entries, an empty docs/images/) with its own empty
@@ -77,8 +79,10 @@ fresh() {
   local w
   w="$(mktemp -d "$TMP/work.XXXXXX")"
   local e
+  # Not docs/ (made empty below) and no top-level picture: a command without
+  # -o writes pelt.png here, and must not write through a link into the tree.
   for e in "$ROOT"/*; do
-    [ "$(basename "$e")" = docs ] || ln -s "$e" "$w/"
+    case "$(basename "$e")" in docs|*.png) ;; *) ln -s "$e" "$w/" ;; esac
   done
   mkdir -p "$w/docs/images" "$w/.cache"
   echo "$w"
@@ -191,11 +195,79 @@ img_curl() {
   done
 }
 
+# docs/gallery-grooming.md, Lengyel Fig. 4 h, i, k, l by scripted strokes.
+img_groom_torus() {
+  pelt render --size 480x360 -o groom_torus_h.png \
+    --set 'strokes=[{"tool":"length","at":[0,0,0],"radius":10,"amount":1}]'
+  pelt render --size 480x360 -o groom_torus_i.png \
+    --set 'strokes=[{"tool":"comb","at":[0,0,0],"radius":10,"delta":[0.09,0,0]}]'
+  pelt render --size 480x360 -o groom_torus_k.png \
+    --set 'strokes=[{"tool":"color","pixel":[250,250],"radius":0.35,"color":[0.2,0.5,1],"strength":0.6}]'
+  pelt render --size 480x360 -o groom_torus_l.png \
+    --set 'strokes=[{"tool":"comb","pixel":[250,250],"radius":0.35,"drag":[40,0]}]'
+  for F in h i k l; do collect groom_torus_$F.png groom_torus_$F.png; done
+}
+img_groom_bunny() {
+  B="--mesh $M/bunny00.off --size 480x360"
+  pelt render $B -o groom_bunny_h.png --set 'strokes=[{"tool":"length","at":[0,0,0],"radius":10,"amount":1}]'
+  pelt render $B -o groom_bunny_i.png --set 'strokes=[{"tool":"comb","at":[0,0,0],"radius":10,"delta":[0,-0.025,0]}]'
+  pelt render $B -o groom_bunny_k.png \
+    --set 'strokes=[{"tool":"color","pixel":[250,235],"radius":0.12,"color":[0.2,0.5,1],"strength":0.6}]'
+  pelt render $B -o groom_bunny_l.png --set 'strokes=[{"tool":"comb","pixel":[250,235],"radius":0.12,"drag":[60,-20]}]'
+  pelt render $B -o groom_bunny_paint.png --set 'strokes=[
+      {"tool":"density","pixel":[92,160],"radius":0.1,"amount":0},
+      {"tool":"color","pixel":[235,70],"radius":0.2,"color":[0.95,0.95,0.92]},
+      {"tool":"color","pixel":[270,200],"radius":0.25,"color":[0.06,0.05,0.04]}]'
+  for F in h i k l paint; do collect groom_bunny_$F.png groom_bunny_$F.png; done
+}
+
+# docs/gallery-grooming.md, maps and vertex colours.
+img_groom_maps() {
+  pelt render scenes/groom-stripes.json --size 480x360 -o groom_stripes.png
+  pelt render scenes/groom-bald.json --size 480x360 -o groom_bald.png
+  pelt render scenes/groom-flow.json --size 480x360 -o groom_flow.png
+  pelt render --mesh tests/data/meshes/swirl_colors.ply --set fur.vertex_colors=hair \
+    --pitch 70 --yaw 0 --size 480x360 -o groom_vertex_colors.png
+  for F in stripes bald flow vertex_colors; do collect groom_$F.png groom_$F.png; done
+}
+
+# docs/gallery-fins.md: Lengyel Fig. 4 a-e, Kenwright Fig. 1/3, the table.
+img_fins_torus() {
+  pelt render --size 480x360 --set draw.shells=false --no-fins -o fins_torus_a.png
+  pelt render --size 480x360 --set draw.shells=false -o fins_torus_b.png
+  pelt render --size 480x360 --no-fins -o fins_torus_c.png
+  pelt render --size 480x360 -o fins_torus_d.png
+  pelt render --size 480x360 --set draw.shells=false --set draw.fins_unfaded=true -o fins_torus_e.png
+  for F in a b c d e; do collect fins_torus_$F.png fins_torus_$F.png; done
+}
+img_fins_bunny() {
+  B="--mesh $M/bunny00.off --size 480x360"
+  pelt render $B --set draw.shells=false --set draw.fins=false -o fins_bunny_a.png
+  pelt render $B --set draw.shells=false -o fins_bunny_b.png
+  pelt render $B --no-fins -o fins_bunny_c.png
+  pelt render $B -o fins_bunny_d.png
+  pelt render $B --set draw.shells=false --set draw.fins_unfaded=true -o fins_bunny_e.png
+  for F in a b c d e; do collect fins_bunny_$F.png fins_bunny_$F.png; done
+}
+img_inter_shadow() {
+  K="--set fur.color=[0.6,0.45,0.3] --set fur.tip_color=[0.6,0.45,0.3] --set fur.specular=[0,0,0] --size 480x360"
+  pelt render --mesh square $K --pitch 50 --distance 1.6 -o kenwright_off.png
+  pelt render --mesh square $K --pitch 50 --distance 1.6 --inter-shadow -o kenwright_on.png
+  pelt render $K --distance 2.4 -o kenwright_torus_off.png
+  pelt render $K --distance 2.4 --inter-shadow -o kenwright_torus_on.png
+  pelt render --mesh $M/bunny00.off $K -o kenwright_bunny_off.png
+  pelt render --mesh $M/bunny00.off $K --inter-shadow -o kenwright_bunny_on.png
+  pelt render --size 480x360 --shading lengyel-table -o lengyel_table.png
+  for F in kenwright_off kenwright_on kenwright_torus_off kenwright_torus_on kenwright_bunny_off \
+           kenwright_bunny_on lengyel_table; do collect $F.png $F.png; done
+}
+
 # ---- Running them.
 
 all="default bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny whirl
-     bunny_wet bunny_rain word_in_water wind_square turntable curl"
-needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain "
+     bunny_wet bunny_rain word_in_water wind_square turntable curl groom_torus groom_bunny groom_maps
+     fins_torus fins_bunny inter_shadow"
+needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow "
 groups="${DOCS_IMAGES:-$all}"
 
 now() { date +%s.%N; }

@@ -49,6 +49,12 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->wet.clump_tightness == 0.0f) d->wet.clump_tightness = 0.9f;
     if (d->wet.darken == 0.0f) d->wet.darken = 0.35f;
     if (d->look.color_scale == 0.0f) d->look.color_scale = 1.0f;
+    if (d->look.inter_shadow_offset == 0.0f) d->look.inter_shadow_offset = 4.0f;
+    if (d->look.inter_shadow_darkness == 0.0f) d->look.inter_shadow_darkness = 0.8f;
+    if (d->look.diffuse_power == 0.0f) d->look.diffuse_power = 1.0f;
+    if (d->fins.length == 0.0f) d->fins.length = 1.0f;
+    if (d->fins.density == 0.0f) d->fins.density = (float)d->look.texture_size / 16.0f;
+    if (d->fins.curl_turns == 0.0f) d->fins.curl_turns = 2.0f;
 }
 
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
@@ -91,6 +97,19 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour scale must be positive");
     if (!isfinite(d->look.curl_frequency) || !isfinite(d->look.curl_radius) || d->look.curl_radius < 0.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
+    if (!(d->look.inter_shadow_offset > 0.0f && d->look.inter_shadow_offset <= 64.0f) ||
+        !(d->look.inter_shadow_darkness > 0.0f && d->look.inter_shadow_darkness <= 1.0f) ||
+        !(d->look.diffuse_power > 0.0f && d->look.diffuse_power <= 256.0f) ||
+        (unsigned)d->look.shading > PELT_SHADING_LENGYEL_TABLE)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "inter-fur shadow offset must be in (0, 64] texels, darkness in (0, 1], "
+                          "diffuse power in (0, 256], shading a known model");
+    if (!(d->fins.length > 0.0f && d->fins.length <= 8.0f) || !(d->fins.density > 0.0f) ||
+        !(d->fins.density <= (float)d->look.texture_size) || !(d->fins.curl >= 0.0f && d->fins.curl <= 64.0f) ||
+        !(d->fins.curl_turns > 0.0f && d->fins.curl_turns <= 64.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "fin length must be in (0, 8], density in (0, texture size], curl in [0, 64] "
+                          "texels, curl turns in (0, 64]");
     return PELT_OK;
 }
 
@@ -177,15 +196,25 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
     if (st == PELT_OK) st = pelt__rain_create(mesh, &f->desc.hooks.allocator, &f->rain, err);
     if (st == PELT_OK) st = pelt__groom_init(&f->groom, mesh->vertex_count, &f->desc.hooks.allocator, err);
+    if (st == PELT_OK)
+        st = pelt__fin_edges_build(mesh, d.seed, &f->desc.hooks.allocator, &f->fin_edges, &f->fin_count, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
     }
-    if (!f->texture || !f->fur_uvs) {
+    /* The fin texture: the same hair sideways, a quarter as tall as wide. */
+    pelt__fintex_desc fd = {td, d.look.texture_size / 4 < 8 ? 8 : d.look.texture_size / 4, d.fins.density,
+                            d.fins.curl, d.fins.curl_turns};
+    size_t fin_bytes = pelt__fintex_bytes(&fd);
+    f->fin_texture = fin_bytes ? pelt__alloc(a, fin_bytes) : NULL;
+    if (!f->texture || !f->fur_uvs || !f->fin_texture) {
         pelt_fur_destroy(f);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
     }
     pelt__furtex_generate(&td, f->texture);
+    pelt__fintex_generate(&fd, f->fin_texture);
+    f->fin_width = d.look.texture_size;
+    f->fin_height = fd.height;
     compute_fur_uvs(mesh, d.look.tiling, f->fur_uvs, f->fur_per_uv);
     f->tips_version = 1;
     *out = f;
@@ -220,6 +249,8 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__bvh_destroy(f->bvh);
     pelt__rain_destroy(f->rain);
     pelt__groom_free(&f->groom);
+    pelt__free(&a, f->fin_edges);
+    pelt__free(&a, f->fin_texture);
     pelt__free(&a, f);
 }
 

@@ -2,6 +2,7 @@
 #include "core/fur/fur_gpu.h"
 
 #include "core/fur/fur_internal.h"
+#include "core/fur/shading.h"
 
 const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *f) { return f->mesh; }
 
@@ -56,4 +57,24 @@ const void *pelt__fur_gpu_groom(const pelt_fur *f, size_t *stride)
 bool pelt__fur_gpu_take_groom_dirty(pelt_fur *f, size_t range[2])
 {
     return pelt__groom_take_dirty(&f->groom, range);
+}
+
+const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *f, size_t *count)
+{
+    *count = f->fin_count;
+    return f->fin_edges;
+}
+
+const uint8_t *pelt__fur_gpu_fin_texture(const pelt_fur *f, unsigned *width, unsigned *height)
+{
+    *width = f->fin_width;
+    *height = f->fin_height;
+    return f->fin_texture;
+}
+
+_Static_assert(PELT__FUR_GPU_LIGHT_TABLE == PELT__LIGHT_TABLE, "one table size");
+
+void pelt__fur_gpu_light_table(const pelt_fur *f, float *out)
+{
+    pelt__lengyel_table(f->desc.look.diffuse_power, f->desc.look.shininess, out);
 }

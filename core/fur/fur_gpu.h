@@ -8,6 +8,8 @@
 
 #include "pelt/fur.h"
 
+#include "core/fur/fins.h"
+
 /* The mesh the fur was made for. */
 const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *fur);
 
@@ -33,6 +35,17 @@ const void *pelt__fur_gpu_groom(const pelt_fur *fur, size_t *stride);
 /* Takes the range of vertices [range[0], range[1]) whose groom changed
  * since the last take; false when nothing changed. */
 bool pelt__fur_gpu_take_groom_dirty(pelt_fur *fur, size_t range[2]);
+
+/* Fins (core/fur/fins.h): one per mesh edge, and their texture (RGBA8,
+ * premultiplied, width along the fin, row 0 at the root). */
+const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *fur, size_t *count);
+const uint8_t *pelt__fur_gpu_fin_texture(const pelt_fur *fur, unsigned *width, unsigned *height);
+
+/* Lengyel et al.'s §2.4 hair lighting table for the fur's material
+ * (core/fur/shading.h: pelt__lengyel_table): 32x32 texels of (diffuse,
+ * specular). */
+#define PELT__FUR_GPU_LIGHT_TABLE 32
+void pelt__fur_gpu_light_table(const pelt_fur *fur, float *out);
 
 /* The colour texture, RGBA8 width x height, or NULL when none was set;
  * *version changes whenever it is set. */

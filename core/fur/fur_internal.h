@@ -5,6 +5,7 @@
 #include "pelt/fur.h"
 
 #include "core/mesh/raycast.h"
+#include "core/fur/fins.h"
 #include "core/fur/groom.h"
 #include "core/fur/strand.h"
 #include "core/wet/mask.h"
@@ -32,6 +33,10 @@ struct pelt_fur {
     pelt__rain *rain;        /* rain and random drops (core/wet/rain.h) */
     float dry_rate;
     pelt__groom groom;       /* per-vertex colour, length, density, lean */
+    pelt__fin_edge *fin_edges; /* one fin per mesh edge (Lengyel §2.3) */
+    size_t fin_count;
+    uint8_t *fin_texture;    /* RGBA8 fin texture, see pelt__fintex_generate */
+    unsigned fin_width, fin_height;
 };
 
 /* Fills the zero fields of `d` with defaults for `mesh`. */

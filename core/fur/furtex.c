@@ -27,24 +27,61 @@ typedef struct strand {
 
 enum { SUBSAMPLES = 4 };
 
-/* Adds a soft-edged disc of radius r at (cx, cy) to a slice, wrapping
- * toroidally. Coverage is accumulated as a union in the alpha byte; the
- * strand covering a texel most sets its shade, height along the strand and
- * id (red, green, blue). */
-static void splat(uint8_t *slice, unsigned size, float cx, float cy, float r, float weight,
-                  float shade, float along, float id)
+/* The strands of a tile, the same sequence for every slice and for the
+ * fin texture: two seeded streams, one for the strand and one for its id
+ * (drawn apart so the strands stay what they were before ids existed). */
+typedef struct strand_stream {
+    pelt__rng shape, id;
+    float size, radius;
+} strand_stream;
+
+static strand_stream strands_begin(const pelt__furtex_desc *d)
+{
+    strand_stream s = {pelt__rng_seed(d->seed, 0x73747261ULL), pelt__rng_seed(d->seed, 0x69647321ULL),
+                       (float)d->size, d->strand_radius};
+    return s;
+}
+
+static size_t strand_count(const pelt__furtex_desc *d)
+{
+    /* Scale the strand count with the texture area so density means the
+     * same thing at every resolution (it is given per 256x256 tile). */
+    float size = (float)d->size;
+    return (size_t)(d->density * (size * size) / (256.0f * 256.0f) + 0.5f);
+}
+
+static strand strands_next(strand_stream *s)
+{
+    strand st;
+    st.x = pelt__rng_float(&s->shape) * s->size;
+    st.y = pelt__rng_float(&s->shape) * s->size;
+    st.lean_x = pelt__rng_range(&s->shape, -1.0f, 1.0f) * s->radius * 2.0f;
+    st.lean_y = pelt__rng_range(&s->shape, -1.0f, 1.0f) * s->radius * 2.0f;
+    st.length = pelt__rng_range(&s->shape, 0.6f, 1.0f);
+    st.shade = pelt__rng_range(&s->shape, 0.65f, 1.0f);
+    st.id = pelt__rng_float(&s->id);
+    return st;
+}
+
+/* Adds a soft-edged disc of radius r at (cx, cy) to a w x h image, wrapping
+ * in x, and in y when wrap_y (else clipped). Coverage is accumulated as a
+ * union in the alpha byte; the strand covering a texel most sets its shade,
+ * height along the strand and id (red, green, blue). */
+static void splat(uint8_t *img, unsigned w, unsigned h, bool wrap_y, float cx, float cy, float r,
+                  float weight, float shade, float along, float id)
 {
     int x0 = (int)floorf(cx - r - 1.0f), x1 = (int)ceilf(cx + r + 1.0f);
     int y0 = (int)floorf(cy - r - 1.0f), y1 = (int)ceilf(cy + r + 1.0f);
-    int n = (int)size;
+    int nw = (int)w, nh = (int)h;
     for (int y = y0; y <= y1; y++) {
+        if (!wrap_y && (y < 0 || y >= nh)) continue;
         for (int x = x0; x <= x1; x++) {
             float dx = (float)x + 0.5f - cx, dy = (float)y + 0.5f - cy;
             float c = r + 0.5f - sqrtf(dx * dx + dy * dy);
             if (c <= 0.0f) continue;
             c = (c > 1.0f ? 1.0f : c) * weight;
-            int wx = ((x % n) + n) % n, wy = ((y % n) + n) % n;
-            uint8_t *t = slice + ((size_t)wy * size + (size_t)wx) * 4;
+            int wx = ((x % nw) + nw) % nw, wy = ((y % nh) + nh) % nh;
+            uint8_t *t = img + ((size_t)wy * w + (size_t)wx) * 4;
             float old = t[3] / 255.0f;
             if (c >= old) {
                 t[0] = (uint8_t)(shade * 255.0f + 0.5f);
@@ -56,6 +93,18 @@ static void splat(uint8_t *slice, unsigned size, float cx, float cy, float r, fl
     }
 }
 
+/* Premultiply by coverage so mipmaps average colour correctly (a
+ * straight-alpha average would mix in the black of empty texels). */
+static void premultiply(uint8_t *img, size_t texels)
+{
+    for (size_t i = 0; i < texels; i++) {
+        uint8_t *t = img + i * 4;
+        t[0] = (uint8_t)((t[0] * t[3] + 127) / 255);
+        t[1] = (uint8_t)((t[1] * t[3] + 127) / 255);
+        t[2] = (uint8_t)((t[2] * t[3] + 127) / 255);
+    }
+}
+
 void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
 {
     size_t texels = (size_t)d->size * d->size;
@@ -64,10 +113,7 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
     memset(rgba, 0, bytes);
 
     pelt__rng rng = pelt__rng_seed(d->seed, 0x6675722dULL);
-    float size = (float)d->size;
-    /* Scale the strand count with the texture area so density means the
-     * same thing at every resolution (it is given per 256x256 tile). */
-    size_t count = (size_t)(d->density * (size * size) / (256.0f * 256.0f) + 0.5f);
+    size_t count = strand_count(d);
 
     /* Skin: opaque, dark roots with a little noise. */
     for (size_t i = 0; i < texels; i++) {
@@ -82,19 +128,10 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
         /* The slab of this shell spans heights (n/N, (n+1)/N]. */
         float z_lo = (float)layer / (float)d->layers;
         float z_hi = (float)(layer + 1) / (float)d->layers;
-        /* The same strands for every slice: re-seed per slice. */
-        pelt__rng srng = pelt__rng_seed(d->seed, 0x73747261ULL);
-        pelt__rng idrng = pelt__rng_seed(d->seed, 0x69647321ULL);
+        /* The same strands for every slice. */
+        strand_stream stream = strands_begin(d);
         for (size_t s = 0; s < count; s++) {
-            strand st;
-            st.x = pelt__rng_float(&srng) * size;
-            st.y = pelt__rng_float(&srng) * size;
-            st.lean_x = pelt__rng_range(&srng, -1.0f, 1.0f) * d->strand_radius * 2.0f;
-            st.lean_y = pelt__rng_range(&srng, -1.0f, 1.0f) * d->strand_radius * 2.0f;
-            st.length = pelt__rng_range(&srng, 0.6f, 1.0f);
-            st.shade = pelt__rng_range(&srng, 0.65f, 1.0f);
-            /* Drawn from its own stream, so the strands above stay as they were. */
-            st.id = pelt__rng_float(&idrng);
+            strand st = strands_next(&stream);
             if (z_lo >= st.length) continue;
             for (int k = 0; k < SUBSAMPLES; k++) {
                 float z = z_lo + (z_hi - z_lo) * ((float)k + 0.5f) / SUBSAMPLES;
@@ -106,16 +143,52 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
                 /* Thin discs still cover a fraction of a texel. */
                 float weight = r < 0.5f ? r * 2.0f : 1.0f;
                 /* Sub-samples of the tall filter each add a share. */
-                splat(slice, d->size, cx, cy, r, weight * (2.0f / SUBSAMPLES), st.shade, along, st.id);
+                splat(slice, d->size, d->size, true, cx, cy, r, weight * (2.0f / SUBSAMPLES), st.shade,
+                      along, st.id);
             }
         }
-        /* Premultiply by coverage so mipmaps average colour correctly (a
-         * straight-alpha average would mix in the black of empty texels). */
-        for (size_t i = 0; i < texels; i++) {
-            uint8_t *t = slice + i * 4;
-            t[0] = (uint8_t)((t[0] * t[3] + 127) / 255);
-            t[1] = (uint8_t)((t[1] * t[3] + 127) / 255);
-            t[2] = (uint8_t)((t[2] * t[3] + 127) / 255);
+        premultiply(slice, texels);
+    }
+}
+
+size_t pelt__fintex_bytes(const pelt__fintex_desc *f)
+{
+    size_t w = f->hair.size, h = f->height;
+    if (w == 0 || w > 8192 || h == 0 || h > 8192) return 0;
+    return w * h * 4;
+}
+
+/* Lengyel et al. §2.2, the fin texture: the strands rooted in a slab of
+ * the tile (root y in [0, slab)) seen from the side, x along the fin and
+ * the height up the image (row 0 at the root). Curl adds a sideways sine
+ * with a phase per strand, so fin hair can be curlier than shell hair. */
+void pelt__fintex_generate(const pelt__fintex_desc *f, uint8_t *rgba)
+{
+    size_t bytes = pelt__fintex_bytes(f);
+    if (bytes == 0) return;
+    memset(rgba, 0, bytes);
+    const pelt__furtex_desc *d = &f->hair;
+    unsigned w = d->size, h = f->height;
+    float slab = f->slab > 0.0f ? fminf(f->slab, (float)d->size) : 1.0f;
+    size_t count = strand_count(d);
+    strand_stream stream = strands_begin(d);
+    pelt__rng phase = pelt__rng_seed(d->seed, 0x66696e21ULL);
+    /* Steps of half a texel up the strand; the radius in texels of the fin
+     * is the shell's (both textures tile the same world width). */
+    for (size_t s = 0; s < count; s++) {
+        strand st = strands_next(&stream);
+        float ph = pelt__rng_float(&phase) * 6.2831853f;
+        if (st.y >= slab) continue;
+        int steps = (int)ceilf(st.length * (float)h * 2.0f);
+        for (int k = 0; k <= steps; k++) {
+            float z = st.length * (float)k / (float)(steps > 0 ? steps : 1);
+            float along = z / st.length;
+            float r = d->strand_radius * (1.0f - d->taper * along);
+            if (r < 0.15f) r = 0.15f;
+            float cx = st.x + st.lean_x * z + f->curl * sinf(f->curl_turns * 6.2831853f * z + ph);
+            float weight = r < 0.5f ? r * 2.0f : 1.0f;
+            splat(rgba, w, h, false, cx, z * (float)h, r, weight * 0.5f, st.shade, along, st.id);
         }
     }
+    premultiply(rgba, (size_t)w * h);
 }

@@ -5,6 +5,8 @@
 
 #include "pelt/base.h"
 
+#include <stdbool.h>
+
 typedef struct pelt__furtex_desc {
     unsigned size;        /* slice width = height in texels */
     unsigned layers;      /* shell layers N; the volume has N + 1 slices */
@@ -25,5 +27,24 @@ size_t pelt__furtex_bytes(const pelt__furtex_desc *d);
  * length, B = the strand's id, uniform in [0,1] (grooming's density
  * keeps strands whose id is below it); A = coverage. The volume tiles in both texture axes. Deterministic for a seed. */
 void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba);
+
+/* The fin texture (Lengyel et al. 2001 §2.2): the same hair, seen from the
+ * side. The strands of `hair` whose roots lie in a slab of `slab` texels
+ * across the tile are composited sideways: hair.size texels along the fin
+ * (tileable), `height` rows from the root (row 0) to the tip. The slab's
+ * width sets how dense a fin's hair is. `curl` (texels) and `curl_turns`
+ * (turns over the full height) bend each strand into a sine with its own
+ * phase: fin hair may be curlier than the shells'. Same channels as the
+ * volume, premultiplied. */
+typedef struct pelt__fintex_desc {
+    pelt__furtex_desc hair; /* layers unused */
+    unsigned height;        /* rows */
+    float slab;             /* texels, > 0 */
+    float curl, curl_turns;
+} pelt__fintex_desc;
+
+/* width * height * 4, or 0 when a side is 0 or above 8192. */
+size_t pelt__fintex_bytes(const pelt__fintex_desc *f);
+void pelt__fintex_generate(const pelt__fintex_desc *f, uint8_t *rgba);
 
 #endif

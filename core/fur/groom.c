@@ -39,7 +39,6 @@ void pelt__groom_free(pelt__groom *g)
     g->count = 0;
 }
 
-static float clampf(float x, float lo, float hi) { return x < lo ? lo : x > hi ? hi : x; }
 
 static uint8_t to_byte(float x) { return (uint8_t)(clampf(x, 0.0f, 1.0f) * 255.0f + 0.5f); }
 

@@ -32,3 +32,26 @@ pelt_vec3 pelt__groom_tip_color(pelt_vec3 color, pelt_vec3 tip, const float c[4]
 }
 
 bool pelt__groom_keeps(float id, float density) { return density >= 1.0f || id < density; }
+
+void pelt__lengyel_lighting(float u, float v, float pd, float ps, float *diffuse, float *specular)
+{
+    *diffuse = powf(fmaxf(0.0f, 1.0f - u * u), 0.5f * pd);
+    *specular = powf(fmaxf(0.0f, 1.0f - v * v), 0.5f * ps);
+}
+
+void pelt__lengyel_table(float pd, float ps, float out[PELT__LIGHT_TABLE * PELT__LIGHT_TABLE * 2])
+{
+    for (int j = 0; j < PELT__LIGHT_TABLE; j++)
+        for (int i = 0; i < PELT__LIGHT_TABLE; i++) {
+            float u = 2.0f * ((float)i + 0.5f) / PELT__LIGHT_TABLE - 1.0f;
+            float v = 2.0f * ((float)j + 0.5f) / PELT__LIGHT_TABLE - 1.0f;
+            float *t = out + 2 * (j * PELT__LIGHT_TABLE + i);
+            pelt__lengyel_lighting(u, v, pd, ps, &t[0], &t[1]);
+        }
+}
+
+void pelt__inter_shadow_offset(pelt_vec3 l, pelt_vec3 u, pelt_vec3 v, float step, float out[2])
+{
+    out[0] = v3_dot(l, u) * step;
+    out[1] = v3_dot(l, v) * step;
+}

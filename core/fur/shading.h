@@ -18,6 +18,21 @@ void pelt__kajiya_kay(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p, float *dif
 /* Silva et al. Eq. 6 shadow factor gamma = (K - 1 + h) / K, K >= 1. */
 float pelt__shadow_factor(float k_shadow, float h);
 
+/* Lengyel et al. §2.4 hair lighting: (1 - u^2)^(P_d/2) and (1 - v^2)^(P_s/2)
+ * for u = T.L, v = T.H (K_a, K_d, K_s are applied by the caller). */
+void pelt__lengyel_lighting(float u, float v, float pd, float ps, float *diffuse, float *specular);
+
+/* The 32x32 table of it (PELT__LIGHT_TABLE texels a side, 2 floats each:
+ * diffuse, specular), texel (i, j) at u = 2 (i + 0.5) / 32 - 1, v likewise:
+ * the shaders read it with bilinear filtering at (u, v) * 0.5 + 0.5. */
+#define PELT__LIGHT_TABLE 32
+void pelt__lengyel_table(float pd, float ps, float out[PELT__LIGHT_TABLE * PELT__LIGHT_TABLE * 2]);
+
+/* Kenwright's inter-fur shadow: the fur-texture offset (in tiles) towards
+ * the light L in the tangent frame (u, v), `step` tiles long at full
+ * tangency. */
+void pelt__inter_shadow_offset(pelt_vec3 l, pelt_vec3 u, pelt_vec3 v, float step, float out[2]);
+
 /* Grooming (Lengyel et al. §3): the hair colour c (rgb, weight c[3]) over
  * the look's root colour, and the tip colour brightened by the look's own
  * tip / root ratio (per channel, root at least 0.01, result at most 1). */

@@ -11,6 +11,7 @@ layout(std140) uniform pelt_frame_block {
     float u_ambient;     // ambient fraction of the hair colour
     vec3 u_light_dir;    // towards the light, not unit
     vec3 u_light_color;
+    vec3 u_view_dir;     // the camera's forward direction (the infinite viewer)
 };
 
 // Per fur, uploaded when it changes: the look (Silva et al. Eq. 4-6).
@@ -31,4 +32,9 @@ layout(std140) uniform pelt_fur_block {
     float u_color_scale;     // colour texture repeats per uv unit
     float u_slant;           // tan of the comb angle (Lengyel et al. §3)
     vec3 u_skin_color;       // bare skin where grooming thins the hair
+    float u_tiling;          // fur tiles per world unit (the fins' texture scale)
+    float u_fin_length;      // fin hair height, multiple of the strand length
+    float u_inter_shadow;    // Kenwright's shadow opacity, 0 = off
+    float u_inter_shadow_step; // its step towards the light, fur tiles
+    float u_shading_model;   // 0 Kajiya-Kay, 1 Lengyel's table
 };

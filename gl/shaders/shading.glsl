@@ -33,3 +33,17 @@ bool groom_keeps(float id, float density)
 {
     return density >= 1.0 || id < density;
 }
+
+// Lengyel et al. §2.4: the (diffuse, specular) factors of the hair
+// lighting table, read with bilinear filtering (pelt__lengyel_table).
+vec2 lengyel_lookup(sampler2D table, vec3 T, vec3 L, vec3 H)
+{
+    return texture(table, vec2(dot(T, L), dot(T, H)) * 0.5 + 0.5).rg;
+}
+
+// Kenwright's inter-fur shadow: the fur-texture step towards the light in
+// the tangent frame (pelt__inter_shadow_offset).
+vec2 inter_shadow_offset(vec3 L, vec3 u, vec3 v, float step)
+{
+    return vec2(dot(L, u), dot(L, v)) * step;
+}

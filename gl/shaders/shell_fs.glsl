@@ -6,6 +6,8 @@ in vec3 v_world;
 in vec3 v_tangent;
 in vec3 v_normal;
 in float v_h;
+in vec3 v_frame_u;
+in vec3 v_frame_v;
 in float v_density;
 in vec4 v_hair_color;
 flat in float v_layer;
@@ -13,6 +15,7 @@ flat in float v_layer;
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
 uniform sampler2D u_mask;          // PELT_UNIT_MASK
+uniform int u_no_inter_shadow;     // the shell pass's own: 1 skips inter-fur shadows
 
 out vec4 o_color;
 
@@ -35,20 +38,20 @@ void main()
                             CLUMP_MAX_PULL);
         hair.a = clump_coverage(hair.a, k);
     }
-    if (hair.a < 0.05) discard;
-    vec3 T = normalize(v_tangent);
-    vec3 L = normalize(u_light_dir);
-    vec3 E = normalize(v_world - u_eye);
-    vec2 kk = kajiya_kay(T, L, E, u_shininess);
+    if (hair.a < 0.05) {
+        // Kenwright: no hair here, but the hair a step towards the light
+        // casts its shadow on what lies below, with that hair's coverage.
+        if (u_inter_shadow <= 0.0 || u_no_inter_shadow != 0) discard;
+        vec2 step = inter_shadow_offset(normalize(u_light_dir), normalize(v_frame_u),
+                                        normalize(v_frame_v), u_inter_shadow_step);
+        float caster = texture(u_fur, vec3(v_fur_uv + d * u_fur_per_uv + step, v_layer + 1.0)).a;
+        if (caster < 0.05) discard;
+        o_color = vec4(0.0, 0.0, 0.0, caster * u_inter_shadow);
+        return;
+    }
     vec3 root = groom_root_color(u_color, v_hair_color);
     vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
     vec3 base = mix(root, tip, hair.g) * texture(u_color_tex, (v_uv + d) * u_color_scale).rgb * hair.r;
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
-    // Hair on the side of the body facing away from the light is in the
-    // body's shadow: Kajiya-Kay alone would light it as brightly.
-    float facing = clamp(dot(normalize(v_normal), L) * 0.8 + 0.35, 0.0, 1.0);
-    float gamma = shadow_factor(u_shadow, v_h);
-    vec3 lit = base * (u_ambient + kk.x * facing * u_light_color)
-             + u_specular * kk.y * facing * u_light_color;
-    o_color = vec4(gamma * lit, hair.a);
+    o_color = vec4(fur_light(base, v_tangent, v_normal, v_world, v_h), hair.a);
 }

@@ -22,6 +22,8 @@ out vec3 v_world;
 out vec3 v_tangent;
 out vec3 v_normal;
 out float v_h;
+out vec3 v_frame_u;  // the surface's tangent frame in the world (inter-fur shadows)
+out vec3 v_frame_v;
 out float v_density;
 out vec4 v_hair_color;
 flat out float v_layer;
@@ -47,6 +49,8 @@ void main()
     v_world = world.xyz;
     v_tangent = mat3(u_model) * t;
     v_normal = mat3(u_model) * n;
+    v_frame_u = mat3(u_model) * u;
+    v_frame_v = mat3(u_model) * v;
     v_uv = a_uv;
     v_fur_uv = a_fur_uv;
     v_h = h;

@@ -19,6 +19,14 @@ typedef enum pelt_color_pattern {
     PELT_COLOR_PATTERN_NOISE
 } pelt_color_pattern;
 
+/* The hair lighting model: Kajiya-Kay evaluated per fragment (Silva et
+ * al. Eq. 6), or Lengyel et al.'s §2.4 table K_a + K_d (1 - u^2)^(P_d/2) +
+ * K_s (1 - v^2)^(P_s/2), u = T.L, v = T.H, read from a 32x32 texture. */
+typedef enum pelt_shading_model {
+    PELT_SHADING_KAJIYA_KAY = 0,
+    PELT_SHADING_LENGYEL_TABLE
+} pelt_shading_model;
+
 /* How the fur looks: the synthesized hair volume (Lengyel et al. 2001
  * §2.2), its tiling, the colours and Kajiya-Kay shading (Silva et al. Eq. 6)
  * and curl (Silva Eq. 4). A zero field means its default. */
@@ -39,6 +47,15 @@ typedef struct pelt_fur_look {
     float shadow;            /* K_shadow >= 1 of Silva Eq. 6, default 2 */
     float curl_frequency;    /* omega of Silva Eq. 4 (radians over the length), default 0 */
     float curl_radius;       /* K_alpha of Silva Eq. 4 in world units, default 0 */
+    /* Kenwright's inter-fur shadows: where a shell has no hair but the hair
+       a small step towards the light does, that hair's shadow darkens what
+       lies below. Off by default. */
+    bool inter_shadow;
+    float inter_shadow_offset;   /* the step in fur-texture texels, default 4 */
+    float inter_shadow_darkness; /* opacity of the shadow, (0, 1], default 0.8 */
+    pelt_shading_model shading;  /* default PELT_SHADING_KAJIYA_KAY */
+    float diffuse_power;         /* P_d of Lengyel's table, default 1 (= Kajiya-Kay's
+                                    diffuse); its P_s is `shininess` */
 } pelt_fur_look;
 
 /* Strand dynamics (Silva et al. §3.2.1, Eq. 2): tip mass, spring constant
@@ -65,6 +82,19 @@ typedef struct pelt_fur_comb {
                                 along the fur texture's u axis; default 0 */
 } pelt_fur_comb;
 
+/* Fins (Lengyel et al. §2.2-2.3): quads on the mesh edges near the
+ * silhouette, textured with the same hair seen from the side. */
+typedef struct pelt_fur_fins {
+    float length;            /* fin hair height as a multiple of the fur
+                                length, default 1 (Lengyel Fig. 5 used longer) */
+    float density;           /* width in texels of the slab of hair composited
+                                into the fin texture: wider = denser fins,
+                                default texture_size / 16 */
+    float curl;              /* sideways sine amplitude of fin hair in texels,
+                                default 0 (curlier than the shells when > 0) */
+    float curl_turns;        /* turns of that sine over the height, default 2 */
+} pelt_fur_fins;
+
 /* Fur parameters, one home each. A zero field means its documented
  * default; the defaults are the paper's Table 1 set-up (16 layers, 256x256
  * fur texture and wetness mask). These are the only defaults: the strands
@@ -79,6 +109,7 @@ typedef struct pelt_fur_desc {
     pelt_fur_dynamics dynamics;
     pelt_fur_wet wet;
     pelt_fur_comb comb;
+    pelt_fur_fins fins;
     pelt_hooks hooks;        /* allocator and logger, kept by the fur: every
                                 block it owns (texture, strands, mask, BVH,
                                 surface index, rain, colour) and its scratch

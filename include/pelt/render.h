@@ -28,6 +28,9 @@ typedef struct pelt_renderer_desc {
 typedef struct pelt_draw_desc {
     bool no_skin;   /* skip the opaque skin pass */
     bool no_shells; /* skip the shells (for measuring) */
+    bool no_fins;   /* skip the fins (Lengyel et al. §2.3; drawn by default) */
+    bool fins_unfaded; /* draw every fin at full opacity (Lengyel Fig. 4e) */
+    bool no_inter_shadow; /* skip the fur's inter-fur shadows (for measuring) */
     /* Draw only shells first_layer .. first_layer + layer_count - 1
      * (layer_count 0 = through the outermost): for inspecting one height
      * of the fur, and for level of detail. Still one instanced draw. */
@@ -39,6 +42,9 @@ typedef struct pelt_render_stats {
     unsigned skin_draw_calls;  /* 1 when the skin was drawn, else 0 */
     unsigned shell_draw_calls; /* 1 when shells were drawn: all in one instanced draw */
     unsigned shell_instances;  /* shell layers that draw covered */
+    unsigned fin_draw_calls;   /* 1 when fins were drawn: all in one instanced draw */
+    size_t fins;               /* fins (mesh edges) that draw submitted; the
+                                  faded-out ones collapse in the vertex stage */
     size_t triangles;          /* triangles submitted by all passes, every shell
                                   layer counted */
     size_t upload_bytes;       /* bytes sent to GL for this frame: pelt_renderer_upload

@@ -116,6 +116,12 @@ typedef struct pelt_scene_wetness {
     float mask_image_wetness;
 } pelt_scene_wetness;
 
+/* Which passes draw (pelt_draw_desc): all of them by default. */
+typedef struct pelt_scene_draw {
+    bool skin, fins, shells;
+    bool fins_unfaded;   /* every fin at full opacity (Lengyel Fig. 4e) */
+} pelt_scene_draw;
+
 /* What the mesh file's vertex colours are, besides a possible flow map
  * for the atlas (atlas.direction_from). */
 typedef enum pelt_vertex_colors_use {
@@ -202,6 +208,7 @@ typedef struct pelt_scene {
     pelt_scene_animation animation;
     pelt_scene_wetness wetness;
     pelt_scene_atlas atlas;
+    pelt_scene_draw draw;   /* default skin, fins and shells on */
     pelt_scene_groom groom; /* JSON keys "fur.groom", "fur.length_map"...
                                and the top-level "strokes" list */
 } pelt_scene;

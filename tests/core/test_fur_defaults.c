@@ -66,6 +66,14 @@ static void zero_desc_gets_every_documented_default(void)
     check_rgb(d.look.color, 0.55f, 0.34f, 0.18f);
     check_rgb(d.look.tip_color, 1.0f, 0.82f, 0.58f);
     check_rgb(d.look.skin_color, 0.78f, 0.56f, 0.47f);
+    CHECK_NEAR(d.fins.length, 1.0f, 0);
+    CHECK(!d.look.inter_shadow && d.look.shading == PELT_SHADING_KAJIYA_KAY);
+    CHECK_NEAR(d.look.inter_shadow_offset, 4.0f, 0);
+    CHECK_NEAR(d.look.inter_shadow_darkness, 0.8f, 0);
+    CHECK_NEAR(d.look.diffuse_power, 1.0f, 0);
+    CHECK_NEAR(d.fins.density, d.look.texture_size / 16.0f, 0);
+    CHECK_NEAR(d.fins.curl, 0.0f, 0);
+    CHECK_NEAR(d.fins.curl_turns, 2.0f, 0);
     CHECK_REL(d.look.color_scale, 1.0f);
     check_rgb(d.look.specular, 0.9f, 0.85f, 0.8f);
     CHECK_REL(d.look.shininess, 20.0f);

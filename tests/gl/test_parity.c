@@ -4,6 +4,7 @@
 #include "support/gl_test.h"
 
 #include "core/wet/clump.h"
+#include "core/fur/fins.h"
 #include "core/fur/fur_shape.h"
 #include "core/wet/mask.h"
 #include "core/fur/shading.h"
@@ -271,6 +272,104 @@ static void groom_glsl_matches_c(void)
     }
 }
 
+static const char fins_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, u, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, u, tip, h, s);\n"
+    "  vec3 pb = tip + u * 0.3, nb = normalize(n + 0.4 * u);\n"
+    "  vec3 fn = fin_normal(vec3(0.1, -0.2, 0.3), pb, n, nb);\n"
+    "  vec2 step = inter_shadow_offset(normalize(tip), u, cross(n, u), 0.01 + s * 0.02);\n"
+    "  o = vec4(fn, fin_fade(fn, normalize(vec3(h - 0.5, 0.3, -1.0))));\n"
+    "  if (u_which == 1) o = vec4(step, 0.0, 0.0);\n"
+    "}\n";
+
+/* Fins (Lengyel §2.3): the fin normal and the fade; Kenwright's step
+ * towards the light; against core/fur/fins.c and shading.c. */
+static void fins_and_inter_shadow_glsl_match_c(void)
+{
+    for (int which = 0; which < 2; which++) {
+        char define[64];
+        snprintf(define, sizeof define, "#define u_which %d\n", which);
+        const char *fs[] = {pelt__shader_fins, pelt__shader_shading, inputs_glsl, define, fins_main, NULL};
+        CHECK(gl_test_eval(gl, fs, W, H, out));
+        double worst = 0.0;
+        int faded = 0, shown = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                pelt_vec3 n, u, tip;
+                float h, s;
+                cell_inputs((float)x, (float)y, &n, &u, &tip, &h, &s);
+                const float *g = out + 4 * (y * W + x);
+                float r[4];
+                if (which == 0) {
+                    pelt_vec3 pb = v3_add(tip, v3_scale(u, 0.3f));
+                    pelt_vec3 nb = v3_norm_or(v3_add(n, v3_scale(u, 0.4f)), n);
+                    pelt_vec3 fn = pelt__fin_normal(v3(0.1f, -0.2f, 0.3f), pb, n, nb);
+                    float fade = pelt__fin_fade(fn, v3_norm_or(v3(h - 0.5f, 0.3f, -1.0f), n));
+                    r[0] = fn.x, r[1] = fn.y, r[2] = fn.z, r[3] = fade;
+                    faded += fade == 0.0f;
+                    shown += fade > 0.5f;
+                } else {
+                    pelt__inter_shadow_offset(v3_norm_or(tip, n), u, v3_cross(n, u), 0.01f + s * 0.02f, r);
+                    r[2] = r[3] = 0.0f;
+                }
+                for (int k = 0; k < 4; k++) worst = fmax(worst, fabs(g[k] - r[k]));
+            }
+        printf("  %s: worst |GLSL - C| = %.3g", which ? "inter_shadow_offset" : "fin_normal, fin_fade", worst);
+        if (which == 0) printf(" (%d cells faded out, %d above 0.5)", faded, shown);
+        printf("\n");
+        if (which == 0) CHECK(faded > 100 && shown > 100); /* both sides of the fade seen */
+        CHECK(worst < 2e-4);
+    }
+}
+
+static const char table_main[] =
+    "uniform sampler2D u_table;\n"
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  vec3 T = vec3(1.0, 0.0, 0.0);\n"
+    "  float a = -0.98 + 1.96 * c.x / 63.0, b = -0.98 + 1.96 * c.y / 47.0;\n"
+    "  vec3 L = vec3(a, sqrt(1.0 - a * a), 0.0), H = vec3(b, 0.0, sqrt(1.0 - b * b));\n"
+    "  o = vec4(lengyel_lookup(u_table, T, L, H), 0.0, 0.0);\n"
+    "}\n";
+
+/* Lengyel §2.4: the 32x32 table as the shaders read it (bilinear) against
+ * the formula, u = T.L and v = T.H over (-0.98, 0.98), P_d 1 and P_s 20:
+ * the table's own interpolation error, at most 0.02 for the specular and
+ * 0.06 for the diffuse (sqrt(1 - u^2) turns steep as |u| nears 1). */
+static void lengyel_table_lookup_matches_the_formula(void)
+{
+    enum { T = PELT__LIGHT_TABLE };
+    float table[T * T * 2];
+    pelt__lengyel_table(1.0f, 20.0f, table);
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32F, T, T, 0, GL_RG, GL_FLOAT, table);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    const char *fs[] = {pelt__shader_shading, table_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst_d = 0.0, worst_s = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float u = -0.98f + 1.96f * (float)x / 63.0f, v = -0.98f + 1.96f * (float)y / 47.0f;
+            float d, s;
+            pelt__lengyel_lighting(u, v, 1.0f, 20.0f, &d, &s);
+            const float *g = out + 4 * (y * W + x);
+            worst_d = fmax(worst_d, fabs(g[0] - d));
+            worst_s = fmax(worst_s, fabs(g[1] - s));
+        }
+    printf("  table lookup vs formula: worst diffuse error %.4f, specular %.4f\n", worst_d, worst_s);
+    CHECK(worst_d < 0.06 && worst_s < 0.02);
+    glDeleteTextures(1, &tex);
+}
+
 int main(void)
 {
     gl = gl_test_open(W, H, true);
@@ -280,6 +379,8 @@ int main(void)
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
     RUN(groom_glsl_matches_c);
+    RUN(fins_and_inter_shadow_glsl_match_c);
+    RUN(lengyel_table_lookup_matches_the_formula);
     pelt_headless_destroy(gl);
     return check_summary();
 }

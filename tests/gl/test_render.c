@@ -34,7 +34,7 @@ static void golden_square_default_fur(void)
 static void fur_covers_beyond_bare_silhouette(void)
 {
     pelt_fur_desc d = {0};
-    pelt_draw_desc bare = {.no_shells = true};
+    pelt_draw_desc bare = {.no_shells = true, .no_fins = true};
     uint8_t *skin = gl_test_render(gl, torus, &d, &torus_cam, &bare, NULL, NULL);
     uint8_t *fur = gl_test_render(gl, torus, &d, &torus_cam, NULL, NULL, NULL);
     CHECK(skin && fur);
@@ -75,7 +75,7 @@ static void shells_are_one_instanced_draw(void)
         pelt_fur_desc d = {.layers = layer_counts[k]};
         pelt_fur *fur = NULL;
         pelt_renderer *r = NULL;
-        pelt_draw_desc shells_only = {.no_skin = true};
+        pelt_draw_desc shells_only = {.no_skin = true, .no_fins = true};
         CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
         CHECK(pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
         if (!r) {
@@ -271,7 +271,7 @@ static void clumps_grow_thinner_toward_the_tips(void)
     const unsigned layers[] = {1, 4, 7, 10};
     double dry_r[4], wet_r[4];
     for (int k = 0; k < 4; k++) {
-        pelt_draw_desc one = {.no_skin = true, .first_layer = layers[k], .layer_count = 1};
+        pelt_draw_desc one = {.no_skin = true, .no_fins = true, .first_layer = layers[k], .layer_count = 1};
         uint8_t *dry = gl_test_render(gl, square, &d, &top, &one, NULL, NULL);
         uint8_t *wet = gl_test_render(gl, square, &d, &top, &one, one_big_clump, NULL);
         CHECK(dry && wet);
@@ -314,8 +314,10 @@ static void renderer_allocates_through_its_hooks(void)
     counting_allocator counts = {0, 0};
     pelt_renderer_desc rd = {.hooks.allocator = {count_alloc, count_free, &counts}};
     CHECK(pelt_renderer_create(square, fur, &rd, &r, NULL) == PELT_OK);
-    CHECK(counts.allocs == 2); /* the renderer, the interleaved vertex array */
-    CHECK(counts.frees == 1);
+    /* The renderer, the interleaved vertex array and the vertex table (both
+     * freed before return), the staging copy of the tips. */
+    CHECK(counts.allocs == 4);
+    CHECK(counts.frees == 2);
     pelt_renderer_destroy(r);
     CHECK(counts.allocs == counts.frees);
     pelt_renderer_desc half = {.hooks.allocator = {count_alloc, NULL, &counts}};
@@ -407,6 +409,28 @@ static void uniform_blocks_match_their_c_structs(void)
     pelt__gl_state_reset();
 }
 
+static int cmp_u64(const void *x, const void *y)
+{
+    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return (a > b) - (a < b);
+}
+
+/* Distinct edges of a mesh: every triangle side once, shared or not. */
+static size_t count_edges(const pelt_mesh *m)
+{
+    pelt_mesh_data d = pelt_mesh_get_data(m);
+    uint64_t *k = malloc(d.triangle_count * 3 * sizeof *k);
+    for (size_t i = 0; i < d.triangle_count * 3; i++) {
+        uint64_t a = d.indices[i], b = d.indices[i % 3 == 2 ? i - 2 : i + 1];
+        k[i] = a < b ? a << 32 | b : b << 32 | a;
+    }
+    qsort(k, d.triangle_count * 3, sizeof *k, cmp_u64);
+    size_t n = 0;
+    for (size_t i = 0; i < d.triangle_count * 3; i++) n += i == 0 || k[i] != k[i - 1];
+    free(k);
+    return n;
+}
+
 /* The stats of a draw: per-pass draw calls, layers, triangles, and the
  * bytes the frame uploaded (only what changed goes up). */
 static void stats_count_passes_layers_and_uploads(void)
@@ -429,22 +453,24 @@ static void stats_count_passes_layers_and_uploads(void)
     pelt_renderer_draw(r, &v, NULL);
     st = pelt_renderer_get_stats(r);
     CHECK(st.skin_draw_calls == 1 && st.shell_draw_calls == 1 && st.shell_instances == 16);
-    CHECK(st.triangles == tris * 17);
+    /* One fin per edge (counted here by brute force), all in one draw. */
+    CHECK(st.fin_draw_calls == 1 && st.fins == count_edges(torus));
+    CHECK(st.triangles == tris * 17 + st.fins * 2 * PELT_FIN_ROWS);
     CHECK(st.upload_bytes == sizeof(pelt__frame_block)); /* nothing changed since create */
 
     pelt_fur_step(fur, 1.0f / 60.0f, &(pelt_forces){0});
     pelt_fur_add_droplet(fur, &(pelt_droplet){{0.5f, 0.5f}, 0.05f, 1.0f}, NULL);
     pelt_renderer_upload(r); /* counted with the next draw */
-    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.first_layer = 4, .layer_count = 3});
+    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_fins = true, .first_layer = 4, .layer_count = 3});
     st = pelt_renderer_get_stats(r);
     CHECK(st.shell_instances == 3 && st.triangles == tris * 4);
     printf("  upload after a step and a droplet: %zu bytes\n", st.upload_bytes);
     CHECK(st.upload_bytes > sizeof(pelt__frame_block) + verts * 3 * sizeof(float));
 
-    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .first_layer = 16});
+    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .no_fins = true, .first_layer = 16});
     st = pelt_renderer_get_stats(r);
     CHECK(st.skin_draw_calls == 0 && st.shell_draw_calls == 0 && st.triangles == 0);
-    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_shells = true});
+    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_shells = true, .no_fins = true});
     st = pelt_renderer_get_stats(r);
     CHECK(st.skin_draw_calls == 1 && st.shell_draw_calls == 0 && st.triangles == tris);
     pelt_renderer_destroy(r);

@@ -1,0 +1,33 @@
+// Fin fragments: the fin texture (the same hair seen from the side), faded
+// in near the silhouette, lit like the shells (fur_light.glsl); wet fins
+// darken like the shells (their curl is already lost in the vertex stage).
+in vec2 v_uv;
+in vec2 v_fin_uv;
+in vec3 v_world;
+in vec3 v_tangent;
+in vec3 v_normal;
+in float v_h;
+in float v_density;
+in float v_fade;
+in vec4 v_hair_color;
+
+uniform sampler2D u_fin_tex;   // PELT_UNIT_FIN
+uniform sampler2D u_color_tex; // PELT_UNIT_COLOR
+uniform sampler2D u_mask;      // PELT_UNIT_MASK
+
+out vec4 o_color;
+
+void main()
+{
+    vec4 hair = texture(u_fin_tex, v_fin_uv);
+    hair.rgb /= max(hair.a, 1e-3); // premultiplied
+    if (!groom_keeps(hair.b, v_density)) discard;
+    float a = hair.a * v_fade;
+    if (a < 0.05) discard;
+    float rho = textureLod(u_mask, v_uv, 0.0).a;
+    vec3 root = groom_root_color(u_color, v_hair_color);
+    vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
+    vec3 base = mix(root, tip, hair.g) * texture(u_color_tex, v_uv * u_color_scale).rgb * hair.r;
+    base *= 1.0 - u_wet_darken * rho;
+    o_color = vec4(fur_light(base, v_tangent, v_normal, v_world, v_h), a);
+}

@@ -1,0 +1,86 @@
+// All fins in one instanced draw: the instance is the edge, the vertex a
+// point of a strip up the fin (row = gl_VertexID / 2 of PELT_FIN_ROWS + 1,
+// side = gl_VertexID % 2: vertex a or b). Each side rises along its
+// vertex's displaced strand, the same beta + phi + shear as the shells
+// (shell_vs.glsl), so fins bend, curl and comb with them. A fin the fade
+// makes invisible collapses to one point outside the view: no fragments.
+layout(location = PELT_ATTR_FIN_EDGE) in uvec2 a_edge;
+layout(location = PELT_ATTR_FIN_START) in float a_start;
+
+uniform highp sampler2D u_vertices; // PELT_UNIT_VERTICES
+uniform highp sampler2D u_tips;     // PELT_UNIT_TIPS
+uniform highp usampler2D u_groom;   // PELT_UNIT_GROOM
+uniform sampler2D u_mask;           // PELT_UNIT_MASK
+uniform int u_unfaded;              // 1: no fade (Lengyel Fig. 4e, for comparison)
+
+out vec2 v_uv;
+out vec2 v_fin_uv;
+out vec3 v_world;
+out vec3 v_tangent;
+out vec3 v_normal;
+out float v_h;
+out float v_density;
+out float v_fade;
+out vec4 v_hair_color;
+
+ivec2 table_at(int i)
+{
+    return ivec2(i % PELT_TABLE_WIDTH, i / PELT_TABLE_WIDTH);
+}
+
+vec4 vertex_texel(uint v, int k)
+{
+    return texelFetch(u_vertices, table_at(int(v) * PELT_TABLE_TEXELS + k), 0);
+}
+
+uint groom_word(uint v, int k)
+{
+    return texelFetch(u_groom, table_at(int(v) * PELT_GROOM_WORDS + k), 0).r;
+}
+
+void main()
+{
+    vec3 pa = vertex_texel(a_edge.x, 0).xyz, pb = vertex_texel(a_edge.y, 0).xyz;
+    vec3 na = vertex_texel(a_edge.x, 1).xyz, nb = vertex_texel(a_edge.y, 1).xyz;
+    vec3 fin_n = normalize(mat3(u_model) * fin_normal(pa, pb, na, nb));
+    v_fade = u_unfaded != 0 ? 1.0 : fin_fade(fin_n, u_view_dir);
+    // The fragment stage drops coverage below 0.05, so a fin faded below
+    // that draws nothing: collapse it here, before its vertex fetches.
+    if (v_fade < 0.05) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        return;
+    }
+    int side = gl_VertexID % 2;
+    float h = float(gl_VertexID / 2) / float(PELT_FIN_ROWS);
+    uint vi = side == 0 ? a_edge.x : a_edge.y;
+    vec4 t0 = vertex_texel(vi, 0);
+    vec3 n = normalize(vertex_texel(vi, 1).xyz);
+    vec3 u = normalize(vertex_texel(vi, 2).xyz);
+    vec3 v = cross(n, u) * t0.w;
+    vec4 uvs = vertex_texel(vi, 3);
+    vec3 comb = vertex_texel(vi, 4).xyz;
+    vec3 tip = texelFetch(u_tips, table_at(int(vi)), 0).xyz;
+    vec2 lean = vec2(uintBitsToFloat(groom_word(vi, 0)), uintBitsToFloat(groom_word(vi, 1)));
+    float s = uintBitsToFloat(groom_word(vi, 2)) * u_fin_length;
+    uint c = groom_word(vi, 4);
+    v_hair_color = vec4(float(c & 255u), float((c >> 8) & 255u), float((c >> 16) & 255u),
+                        float(c >> 24)) / 255.0;
+    v_density = uintBitsToFloat(groom_word(vi, 3));
+    float rho = textureLod(u_mask, uvs.xy, 0.0).a;
+    float L = u_length * s;
+    float K = u_curl_radius * s;
+    vec3 shear = fur_groom_shear(comb, u_slant, u, v, lean);
+    vec3 offset = fur_bend(n, L, tip * s, h) + fur_curl(u, v, u_curl_frequency, K, rho, h)
+                + fur_comb(shear, L, 1.0, h);
+    vec3 t = fur_tangent_combed(n, L, tip * s, u, v, shear, u_curl_frequency, K, rho, 1.0, h);
+    vec4 world = u_model * vec4(t0.xyz + offset, 1.0);
+    // Along the fin: the edge's world length at the shells' texture scale.
+    float edge = length(mat3(u_model) * (pb - pa)) * u_tiling;
+    v_fin_uv = vec2(a_start + float(side) * edge, h);
+    v_uv = uvs.xy;
+    v_world = world.xyz;
+    v_tangent = mat3(u_model) * t;
+    v_normal = mat3(u_model) * n;
+    v_h = h;
+    gl_Position = u_view_proj * world;
+}

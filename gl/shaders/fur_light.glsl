@@ -1,0 +1,22 @@
+// The light on a hair fragment, shared by the shells and the fins: the
+// hair model (Kajiya-Kay, Silva Eq. 6, or Lengyel's §2.4 table; both in
+// shading.glsl) with the displaced strand's tangent T, the body's own
+// shadow on hair facing away from the light, and gamma(h). Reads the
+// uniform blocks, so it comes after blocks.glsl.
+uniform sampler2D u_light_table; // PELT_UNIT_LIGHT_TABLE
+
+vec3 fur_light(vec3 base, vec3 tangent, vec3 normal, vec3 world, float h)
+{
+    vec3 T = normalize(tangent);
+    vec3 L = normalize(u_light_dir);
+    vec3 E = normalize(world - u_eye);
+    vec2 kk = u_shading_model > 0.5 ? lengyel_lookup(u_light_table, T, L, normalize(L - E))
+                                    : kajiya_kay(T, L, E, u_shininess);
+    // Hair on the side of the body facing away from the light is in the
+    // body's shadow: Kajiya-Kay alone would light it as brightly.
+    float facing = clamp(dot(normalize(normal), L) * 0.8 + 0.35, 0.0, 1.0);
+    float gamma = shadow_factor(u_shadow, h);
+    vec3 lit = base * (u_ambient + kk.x * facing * u_light_color)
+             + u_specular * kk.y * facing * u_light_color;
+    return gamma * lit;
+}

@@ -1,0 +1,251 @@
+/* Fins (Lengyel et al. 2001 §2.2-2.3) and Kenwright's inter-fur shadows,
+ * by what they are for: fins widen the silhouette, fade away where the
+ * surface faces the viewer, stay on the strands under a gale, and are one
+ * draw call; inter-fur shadows make single hairs stand out on constant-
+ * colour fur. */
+#include "support/gl_test.h"
+
+#include "core/base/vec.h"
+#include "gl/shaders/bindings.glsl"
+
+enum { W = 240, H = 180 };
+#define NPX ((size_t)W * H)
+#define DT (1.0f / 60.0f)
+
+static pelt_headless *gl;
+
+static bool covered(const uint8_t *px, size_t i) { return gl_test_coverage(px + 4 * i, 1) == 1; }
+
+/* Covered pixels of `a` within `r` pixels of a covered pixel of `b`. */
+static bool near_covered(const uint8_t *b, int x, int y, int r)
+{
+    for (int dy = -r; dy <= r; dy++)
+        for (int dx = -r; dx <= r; dx++) {
+            int xx = x + dx, yy = y + dy;
+            if (xx >= 0 && yy >= 0 && xx < W && yy < H && covered(b, (size_t)yy * W + (size_t)xx))
+                return true;
+        }
+    return false;
+}
+
+typedef struct motion {
+    pelt_forces forces;
+    float seconds;
+} motion;
+
+static void run_motion(pelt_fur *fur, void *user)
+{
+    const motion *mo = user;
+    for (int i = 0; i < (int)(mo->seconds / DT + 0.5f); i++) pelt_fur_step(fur, DT, &mo->forces);
+}
+
+static pelt_mesh *torus, *square, *sphere;
+static const pelt_camera torus_cam = {30.0f, 25.0f, 3.2f, 40.0f, {0, 0, 0}};
+
+/* (i) A band of 1..6 px just outside the silhouette the shells alone make
+ * is background without fins (by construction); fins cover at least a
+ * fifth of it. */
+static void fins_widen_the_silhouette(void)
+{
+    const pelt_fur_desc d = {.length = 0.15f};
+    const pelt_draw_desc shells = {.no_fins = true};
+    uint8_t *a = gl_test_render(gl, torus, &d, &torus_cam, &shells, NULL, NULL);
+    uint8_t *b = gl_test_render(gl, torus, &d, &torus_cam, NULL, NULL, NULL);
+    CHECK(a && b);
+    if (a && b) {
+        size_t band = 0, without = 0, with = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                size_t i = (size_t)y * W + (size_t)x;
+                if (near_covered(a, x, y, 0) || !near_covered(a, x, y, 6)) continue;
+                band++;
+                without += covered(a, i);
+                with += covered(b, i);
+            }
+        printf("  band of %zu px outside the shells' silhouette: %zu fur px without fins, %zu with\n",
+               band, without, with);
+        CHECK(band > 500);
+        CHECK(without == 0);
+        CHECK(with * 5 >= band);
+    }
+    free(a);
+    free(b);
+}
+
+/* (ii) Seen head-on, a flat furry square renders the same with and without
+ * fins (every fin faces away: the fade is 0); at a grazing view fins add
+ * coverage above the fur. */
+static void fins_fade_head_on_and_show_at_grazing_views(void)
+{
+    const pelt_fur_desc d = {.length = 0.2f};
+    const pelt_camera head_on = {0.0f, 89.0f, 3.0f, 40.0f, {0, 0, 0}};
+    const pelt_camera grazing = {0.0f, 6.0f, 3.0f, 40.0f, {0, 0, 0}};
+    const pelt_draw_desc shells = {.no_fins = true};
+    uint8_t *a = gl_test_render(gl, square, &d, &head_on, &shells, NULL, NULL);
+    uint8_t *b = gl_test_render(gl, square, &d, &head_on, NULL, NULL, NULL);
+    uint8_t *c = gl_test_render(gl, square, &d, &grazing, &shells, NULL, NULL);
+    uint8_t *e = gl_test_render(gl, square, &d, &grazing, NULL, NULL, NULL);
+    CHECK(a && b && c && e);
+    if (a && b && c && e) {
+        double sum = 0.0;
+        size_t off = 0, added = 0;
+        for (size_t i = 0; i < NPX; i++) {
+            int worst = 0;
+            for (int k = 0; k < 3; k++) {
+                int diff = abs((int)a[4 * i + k] - (int)b[4 * i + k]);
+                sum += diff;
+                if (diff > worst) worst = diff;
+            }
+            off += worst > 32;
+            added += covered(e, i) && !covered(c, i);
+        }
+        double mean = sum / (3.0 * (double)NPX);
+        printf("  head-on: mean difference %.3f, %zu px off by > 32; grazing: fins add %zu px\n", mean,
+               off, added);
+        CHECK(mean <= 1.0 && off <= NPX / 100); /* the golden tolerance */
+        CHECK(added > 200);
+    }
+    free(a), free(b), free(c), free(e);
+}
+
+static motion gale(void)
+{
+    motion mo = {pelt_forces_default(), 1.0f};
+    mo.forces.wind[0] = 60.0f;
+    mo.forces.wind[2] = 25.0f;
+    mo.forces.gust_strength = 1.0f;
+    return mo;
+}
+
+/* Fin pixels farther than 3 px from the skin and shells of a render: fins
+ * that came apart from the fur. */
+static size_t detached(const uint8_t *fins, const uint8_t *fur, size_t *total)
+{
+    size_t n = 0;
+    *total = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            if (!covered(fins, (size_t)y * W + (size_t)x)) continue;
+            (*total)++;
+            n += !near_covered(fur, x, y, 3);
+        }
+    return n;
+}
+
+/* (iii) Under a gale the fins bend with the shells: fewer than 1% of the
+ * fin pixels lie more than 3 px from the skin and shells. The control
+ * draws fins that stayed at rest while the shells blew: they come apart. */
+static void fins_stay_on_the_fur_in_a_gale(void)
+{
+    const pelt_fur_desc d = {.length = 0.25f};
+    motion blow = gale(), rest = {pelt_forces_default(), 1.0f};
+    const pelt_draw_desc fins_only = {.no_skin = true, .no_shells = true};
+    const pelt_draw_desc fur_only = {.no_fins = true};
+    uint8_t *fur = gl_test_render(gl, torus, &d, &torus_cam, &fur_only, run_motion, &blow);
+    uint8_t *fins = gl_test_render(gl, torus, &d, &torus_cam, &fins_only, run_motion, &blow);
+    uint8_t *still = gl_test_render(gl, torus, &d, &torus_cam, &fins_only, run_motion, &rest);
+    CHECK(fur && fins && still);
+    if (fur && fins && still) {
+        size_t total, total_still;
+        size_t apart = detached(fins, fur, &total), apart_still = detached(still, fur, &total_still);
+        printf("  gale: %zu of %zu fin px off the fur; fins left at rest: %zu of %zu\n", apart, total,
+               apart_still, total_still);
+        CHECK(total > 500);
+        CHECK(apart * 100 < total);
+        CHECK(apart_still * 100 >= total_still); /* the check sees fins that come apart */
+    }
+    free(fur), free(fins), free(still);
+}
+
+/* Luminance standard deviation over the pixels covered in both images. */
+static double luminance_sd(const uint8_t *px, const uint8_t *mask)
+{
+    double sum = 0.0, sum2 = 0.0;
+    size_t n = 0;
+    for (size_t i = 0; i < NPX; i++) {
+        if (!covered(mask, i)) continue;
+        double l = 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
+        sum += l, sum2 += l * l, n++;
+    }
+    if (n < 2) return 0.0;
+    double m = sum / (double)n;
+    return sqrt(fmax(0.0, sum2 / (double)n - m * m));
+}
+
+/* (iv) Constant-colour fur (one colour root to tip, no highlight): with
+ * Kenwright's inter-fur shadows the luminance varies at least 1.25 times
+ * as much inside the fur: single hairs stand out. */
+static void inter_fur_shadows_make_hairs_stand_out(void)
+{
+    pelt_fur_desc d = {.length = 0.15f,
+                       .look = {.color = {0.6f, 0.45f, 0.3f}, .tip_color = {0.6f, 0.45f, 0.3f},
+                                .specular = {1e-6f, 1e-6f, 1e-6f}}};
+    const pelt_camera cam = {0.0f, 60.0f, 1.6f, 40.0f, {0, 0, 0}};
+    uint8_t *a = gl_test_render(gl, square, &d, &cam, NULL, NULL, NULL);
+    d.look.inter_shadow = true;
+    uint8_t *b = gl_test_render(gl, square, &d, &cam, NULL, NULL, NULL);
+    CHECK(a && b);
+    if (a && b) {
+        double sa = luminance_sd(a, a), sb = luminance_sd(b, a);
+        printf("  luminance sd inside the fur: %.2f without, %.2f with inter-fur shadows (x%.2f)\n", sa,
+               sb, sa > 0 ? sb / sa : 0.0);
+        CHECK(sa > 1.0);
+        CHECK(sb >= 1.25 * sa);
+    }
+    free(a), free(b);
+}
+
+/* (vi) One draw call for all fins whatever the mesh; GL's primitive count
+ * is the fins' strips, fins x 2 x PELT_FIN_ROWS triangles. */
+static void all_fins_are_one_draw_call(void)
+{
+    const pelt_mesh *meshes[] = {torus, square, sphere};
+    for (int k = 0; k < 3; k++) {
+        pelt_fur *fur = NULL;
+        pelt_renderer *r = NULL;
+        CHECK(pelt_fur_create(meshes[k], &(pelt_fur_desc){.look.texture_size = 32}, &fur, NULL) == PELT_OK);
+        CHECK(pelt_renderer_create(meshes[k], fur, NULL, &r, NULL) == PELT_OK);
+        if (!r) {
+            pelt_fur_destroy(fur);
+            continue;
+        }
+        pelt_view v;
+        memset(&v, 0, sizeof v);
+        pelt_camera_to_view(&torus_cam, (float)W / H, &v);
+        GLuint q;
+        glGenQueries(1, &q);
+        glBeginQuery(GL_PRIMITIVES_GENERATED, q);
+        pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .no_shells = true});
+        glEndQuery(GL_PRIMITIVES_GENERATED);
+        GLuint prims = 0;
+        glGetQueryObjectuiv(q, GL_QUERY_RESULT, &prims);
+        glDeleteQueries(1, &q);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        size_t edges = pelt_mesh_get_data(meshes[k]).triangle_count; /* at least */
+        printf("  mesh %d: %u fin draw call(s), %zu fins, %u primitives\n", k, st.fin_draw_calls,
+               st.fins, prims);
+        CHECK(st.fin_draw_calls == 1 && st.fins >= edges);
+        CHECK(prims == st.fins * 2 * PELT_FIN_ROWS);
+        pelt_renderer_destroy(r);
+        pelt_fur_destroy(fur);
+    }
+}
+
+int main(void)
+{
+    gl = gl_test_open(W, H, false);
+    if (!gl) return check_skip("no OpenGL context");
+    CHECK(pelt_mesh_torus(1.0f, 0.4f, 78, 60, &torus, NULL) == PELT_OK);
+    CHECK(pelt_mesh_square(2.0f, 16, &square, NULL) == PELT_OK);
+    CHECK(pelt_mesh_sphere(1.0f, 32, 16, &sphere, NULL) == PELT_OK);
+    RUN(fins_widen_the_silhouette);
+    RUN(fins_fade_head_on_and_show_at_grazing_views);
+    RUN(fins_stay_on_the_fur_in_a_gale);
+    RUN(inter_fur_shadows_make_hairs_stand_out);
+    RUN(all_fins_are_one_draw_call);
+    pelt_mesh_destroy(torus);
+    pelt_mesh_destroy(square);
+    pelt_mesh_destroy(sphere);
+    pelt_headless_destroy(gl);
+    return check_summary();
+}
