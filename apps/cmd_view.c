@@ -75,8 +75,9 @@ typedef struct view_app {
     size_t pixels_size;
     float wet_share;
     double ms_smooth;
-    double *frame_ms;
+    double *frame_ms;         /* 3 x cap: the whole frame, the fur's draw, the swap */
     unsigned frame_ms_count, frame_ms_cap;
+    double draw_ms, swap_ms;  /* this frame's */
     unsigned screenshot_counter;
     char script_shots[16][VIEW_PATH_MAX]; /* this frame's screenshot events */
     struct timespec scene_mtime;
@@ -95,6 +96,7 @@ static pelt_scene build_scene(view_app *a)
     pelt_scene s = a->o.scene; /* shallow: the arrays stay a->o's */
     s.fur.layers = a->st.layers;
     snprintf(s.fur_preset, sizeof s.fur_preset, "%s", view_presets[a->st.preset]);
+    if (a->st.shadows) s.fur.look.inter_shadow = true; /* drawn or not per frame */
     if (a->mesh_file[0]) {
         s.mesh.shape = PELT_SHAPE_FILE;
         snprintf(s.mesh.file, sizeof s.mesh.file, "%s", a->mesh_file);
@@ -169,6 +171,7 @@ static void reload(view_app *a)
     view_input_init(&a->st, a->inst, &a->o.scene);
     a->st.camera = keep.camera, a->st.width = keep.width, a->st.height = keep.height;
     a->st.tool = keep.tool, a->st.radius = keep.radius, a->st.hud = keep.hud, a->st.help = keep.help;
+    a->st.lod = keep.lod;
     view_input_apply(&a->st, a->inst);
     view_message(&a->st, false, "reloaded %s", a->scene_path ? a->scene_path : "the scene");
 }
@@ -299,19 +302,20 @@ static void draw_hud(view_app *a)
     char text[2048];
     int n = snprintf(text, sizeof text,
                      "\x04pelt view\x01  %.1f fps  %.1f ms/frame\n"
-                     "triangles %zu (%zu x %u shells + skin)  layers %u\n"
+                     "triangles %zu a frame (mesh %zu: skin, %u shells%s)  layers %u\n"
                      "tool %s  radius %.3f   \x03[H] help\x01\n"
                      "wet %.1f%% of the surface\n"
-                     "wind %s %.0f  gravity %s  rain %s  curl %s",
+                     "wind %s %.0f  gravity %s  rain %s  curl %s\n"
+                     "fins %s  inter-fur shadows %s",
                      a->ms_smooth > 0.0 ? 1000.0 / a->ms_smooth : 0.0, a->ms_smooth, rs.triangles,
-                     tris, rs.shell_instances, st->layers, view_tool_name(st->tool),
+                     tris, rs.shell_instances, st->fins ? ", fins" : "", st->layers, view_tool_name(st->tool),
                      (double)st->radius, 100.0 * (double)a->wet_share,
                      st->wind_on ? "on" : "off", (double)st->wind_strength,
                      st->gravity_on ? "on" : "off", st->rain_on ? "on" : "off",
-                     view_presets[st->preset][0] ? view_presets[st->preset] : "-");
-    if (st->lod || st->fins || st->shadows)
-        n += snprintf(text + n, sizeof text - (size_t)n, "\n\x04%s%s%s: not built yet\x01",
-                      st->lod ? "LOD " : "", st->fins ? "fins " : "", st->shadows ? "shadows" : "");
+                     view_presets[st->preset][0] ? view_presets[st->preset] : "-",
+                     st->fins ? "on" : "off", st->shadows ? "on" : "off");
+    if (st->lod)
+        n += snprintf(text + n, sizeof text - (size_t)n, "\n\x04level of detail: not built yet\x01");
     float scale = st->width >= 700 ? 1.5f : 1.0f;
     if (st->message[0] && st->message_seconds > 0.0f) {
         /* Wrapped to the window: about 6 pixels a character. */
@@ -456,7 +460,7 @@ int cmd_view(int argc, char **argv)
     }
     scene_mtime(a->scene_path, &a->scene_mtime);
     a->frame_ms_cap = 1u << 16;
-    a->frame_ms = malloc(a->frame_ms_cap * sizeof *a->frame_ms);
+    a->frame_ms = malloc(3 * (size_t)a->frame_ms_cap * sizeof *a->frame_ms);
 
     const float fixed_dt = 1.0f / 30.0f;
     float t = 0.0f;
@@ -503,7 +507,14 @@ int cmd_view(int argc, char **argv)
         glClearColor(bg[0], bg[1], bg[2], bg[3]);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         pelt_view view = pelt_scene_instance_view(a->inst);
-        pelt_renderer_draw(a->renderer, &view, NULL);
+        const pelt_scene_draw *sd = &a->o.scene.draw;
+        pelt_draw_desc draw = {.no_skin = !sd->skin, .no_shells = !sd->shells,
+                               .no_fins = !a->st.fins, .fins_unfaded = sd->fins_unfaded,
+                               .no_inter_shadow = !a->st.shadows};
+        double t_draw = seconds_now();
+        pelt_renderer_draw(a->renderer, &view, &draw);
+        glFinish(); /* the draw's time apart from the swap's, for the summary */
+        a->draw_ms = (seconds_now() - t_draw) * 1000.0;
         if (a->st.hud) draw_hud(a);
         for (int i = 0; i < a->shot_count; i++)
             if (!a->shots[i].done && a->shots[i].time <= t + 5e-4f) {
@@ -520,7 +531,9 @@ int cmd_view(int argc, char **argv)
             if (write_screenshot(a, path)) view_message(&a->st, false, "screenshot %s", path);
             a->st.requests &= ~(unsigned)VIEW_REQ_SCREENSHOT;
         }
+        double t_swap = seconds_now();
         view_window_swap(a->win);
+        a->swap_ms = (seconds_now() - t_swap) * 1000.0;
 
         /* Time: the real frame time, clamped; fixed steps when scripted. */
         double now = seconds_now();
@@ -528,7 +541,12 @@ int cmd_view(int argc, char **argv)
         prev = now;
         if (frame > 0) {
             a->ms_smooth = a->ms_smooth > 0.0 ? 0.9 * a->ms_smooth + 0.1 * ms : ms;
-            if (a->frame_ms && a->frame_ms_count < a->frame_ms_cap) a->frame_ms[a->frame_ms_count++] = ms;
+            if (a->frame_ms && a->frame_ms_count < a->frame_ms_cap) {
+                unsigned i = a->frame_ms_count++, cap = a->frame_ms_cap;
+                a->frame_ms[i] = ms;
+                a->frame_ms[cap + i] = a->draw_ms;
+                a->frame_ms[2 * (size_t)cap + i] = a->swap_ms;
+            }
         }
         frame++;
         if (a->st.requests & VIEW_REQ_EXIT) break;
@@ -549,10 +567,17 @@ int cmd_view(int argc, char **argv)
         }
     }
     if (!a->o.quiet && a->frame_ms_count > 0) {
-        qsort(a->frame_ms, a->frame_ms_count, sizeof *a->frame_ms, cmp_double);
-        double median = a->frame_ms[a->frame_ms_count / 2];
-        fprintf(stderr, "pelt view: %u frames at %ux%u, median %.1f ms per frame (%.1f fps)\n",
-                frame, a->st.width, a->st.height, median, median > 0.0 ? 1000.0 / median : 0.0);
+        double med[3];
+        for (int p = 0; p < 3; p++) {
+            double *v = a->frame_ms + (size_t)p * a->frame_ms_cap;
+            qsort(v, a->frame_ms_count, sizeof *v, cmp_double);
+            med[p] = v[a->frame_ms_count / 2];
+        }
+        fprintf(stderr,
+                "pelt view: %u frames at %ux%u, median %.1f ms per frame (%.1f fps): fur drawn in "
+                "%.1f ms, swap %.1f ms\n",
+                frame, a->st.width, a->st.height, med[0], med[0] > 0.0 ? 1000.0 / med[0] : 0.0,
+                med[1], med[2]);
     }
     if (rc == 0 && a->o.mask_out) {
         pelt_fur *fur = pelt_scene_instance_fur(a->inst);

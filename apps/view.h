@@ -141,7 +141,8 @@ typedef struct view_state {
     float rain_rate;
     int preset;           /* index into view_presets */
     unsigned layers;
-    bool lod, fins, shadows; /* not built yet: the HUD says so */
+    bool fins, shadows;   /* the fin pass, Kenwright's inter-fur shadows */
+    bool lod;             /* not built yet: the HUD says so */
     bool help, hud;
     /* requests and messages */
     unsigned requests;

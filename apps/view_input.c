@@ -37,7 +37,8 @@ const char *view_help_text(void)
            "  W  wind on/off      - =  wind strength\n"
            "  G  gravity on/off   R  rain on/off   T  towel (dry all)\n"
            "  C  curl preset      Up/Down  layers x2 / /2\n"
-           "  L  level of detail  F  fins   S  inter-fur shadows\n"
+           "  F  fins on/off      S  inter-fur shadows on/off\n"
+           "  L  level of detail (not built yet)\n"
            "  Backspace  reset    P  screenshot   Ctrl+S  save the groom\n"
            "  F5  reload the scene (also when its file changes)\n"
            "  Tab  HUD on/off     H  this help    Esc  quit";
@@ -90,6 +91,8 @@ void view_input_init(view_state *st, pelt_scene_instance *inst, const pelt_scene
     for (int i = 0; view_presets[i]; i++)
         if (!strcmp(view_presets[i], scene->fur_preset)) st->preset = i;
     st->layers = scene->fur.layers ? scene->fur.layers : 16;
+    st->fins = scene->draw.fins;
+    st->shadows = scene->fur.look.inter_shadow;
     st->hud = true;
 }
 
@@ -203,10 +206,20 @@ static void key(view_state *st, pelt_scene_instance *inst, int k, int mods)
         st->requests |= VIEW_REQ_REBUILD;
         break;
     case GLFW_KEY_L: toggle_note(st, &st->lod, "level of detail"); break;
-    case GLFW_KEY_F: toggle_note(st, &st->fins, "fins"); break;
+    case GLFW_KEY_F:
+        st->fins = !st->fins;
+        view_message(st, false, "fins %s", st->fins ? "on" : "off");
+        break;
     case GLFW_KEY_S:
-        if (ctrl) st->requests |= VIEW_REQ_SAVE_GROOM;
-        else toggle_note(st, &st->shadows, "inter-fur shadows");
+        if (ctrl) {
+            st->requests |= VIEW_REQ_SAVE_GROOM;
+            break;
+        }
+        st->shadows = !st->shadows;
+        /* A fur made without them needs making again (groom kept). */
+        if (st->shadows && !pelt_fur_get_desc(pelt_scene_instance_fur(inst)).look.inter_shadow)
+            st->requests |= VIEW_REQ_REBUILD;
+        view_message(st, false, "inter-fur shadows %s", st->shadows ? "on" : "off");
         break;
     case GLFW_KEY_BACKSPACE: st->requests |= VIEW_REQ_RESET; break;
     case GLFW_KEY_P: st->requests |= VIEW_REQ_SCREENSHOT; break;
