@@ -112,6 +112,8 @@ int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_atlas(int argc, char **argv);
+int cmd_view(int argc, char **argv);       /* apps/cmd_view.c */
+bool cli_view_flag(size_t i, cli_flag_doc *out); /* render's flags and the viewer's */
 int cmd_completion(int argc, char **argv); /* apps/completion.c */
 int cmd_manpage(int argc, char **argv);    /* apps/manpage.c */
 

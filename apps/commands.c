@@ -19,6 +19,15 @@ const cli_command cli_commands[] = {
      "minimum and maximum milliseconds per frame for each part of the frame.\n"
      "Takes the flags of render.",
      cli_scene_flag, cmd_bench, "*.json", NULL, false},
+    {"view", "[SCENE.json] [flags]", "the scene in a window: orbit, comb, wet, dry, blow, live",
+     "Opens the scene of render (the same file and flags) in a window with an OpenGL\n"
+     "3.3 core context; the fur moves with the real frame time. Left drag uses the\n"
+     "tool (water, hair dryer, comb, length: keys 1-4; 0 orbits), right drag orbits,\n"
+     "middle drag pans, the wheel zooms; H shows every key. -o names the screenshots\n"
+     "of the P key, --save-groom the groom of Ctrl+S; --script replays timed input,\n"
+     "--screenshot-at saves the window, --frames ends a run. Needs a display\n"
+     "(DISPLAY; under Xvfb: xvfb-run -a pelt view ...).",
+     cli_view_flag, cmd_view, "*.json", NULL, false},
     {"info", "MESH", "load and validate a mesh, print what was found",
      "Loads a mesh (OBJ, PLY, OFF, STL, glTF/GLB...), validates it\n"
      "and prints its counts, bounds and what validation changed.",

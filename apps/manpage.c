@@ -76,6 +76,8 @@ static const char *const examples[] = {
     "pelt render \\-\\-turntable 90 \\-\\-frames 48 \\-\\-fps 24 \\-o spin_%04d.png",
     "pelt render \\-\\-wind 25,0,0 \\-\\-set fur.length=0.15 \\-o windy.gif",
     "pelt bench \\-\\-layers 16",
+    "pelt view scenes/rain.json",
+    "xvfb\\-run \\-a pelt view \\-\\-script input.txt \\-\\-screenshot\\-at 2:shot.png",
     "pelt atlas bunny.off \\-o atlas.png",
     "source <(pelt completion bash)",
 };
@@ -108,7 +110,8 @@ int cmd_manpage(int argc, char **argv)
             "semi-transparent texture layers) and makes it move: it bends under gravity,\n"
             "wind and the mesh's motion, curls, and clumps where water drops land, then\n"
             "dries and curls again. It renders headless through EGL (a GPU, or Mesa's\n"
-            "llvmpipe without one). A scene file (JSON) describes the mesh, fur, camera,\n"
+            "llvmpipe without one), or live in a window (view) to orbit, comb, wet, dry and\n"
+            "blow on. A scene file (JSON) describes the mesh, fur, camera,\n"
             "light, forces, rain and animation; flags override its keys.");
 
     fputs(".SH COMMANDS\n", f);
@@ -148,7 +151,9 @@ int cmd_manpage(int argc, char **argv)
             "OpenGL context, ffmpeg failed); 2 for a bad command line or scene file. Every\n"
             "error names the file, key or flag.");
 
-    fputs(".SH ENVIRONMENT\n.TP\n.B PATH\n", f);
+    fputs(".SH ENVIRONMENT\n.TP\n.B DISPLAY\n", f);
+    line(f, "the X display view opens its window on; without it view says so and exits 1.");
+    fputs(".TP\n.B PATH\n", f);
     line(f, "where render looks for ffmpeg.");
     fputs(".TP\n.B XDG_CACHE_HOME\n", f);
     line(f, "the atlas cache is $XDG_CACHE_HOME/pelt (default ~/.cache/pelt).");

@@ -30,6 +30,7 @@ struct pelt_scene_instance {
     pelt_view view;
     float time;
     bool armed;             /* past the settling: the rain schedule runs */
+    bool rain_override;     /* set_rain_rate: the schedule no longer applies */
     pelt_scene_instance_stats stats;
 };
 
@@ -302,7 +303,8 @@ static void step_at(pelt_scene_instance *inst, float t, float dt)
     pelt_scene_wind_at(sc, t, forces.wind);
     const pelt_scene_wetness *w = &sc->wetness;
     bool raining = t >= w->rain_start && (w->rain_stop == 0.0f || t < w->rain_stop);
-    if (inst->armed) pelt_fur_set_rain_rate(inst->fur, raining ? w->rain.rate : 0.0f);
+    if (inst->armed)
+        pelt_fur_set_rain_rate(inst->fur, raining || inst->rain_override ? w->rain.rate : 0.0f);
     pelt_fur_step(inst->fur, dt, &forces);
 }
 
@@ -500,6 +502,47 @@ bool pelt_scene_instance_brush_at_pixel(pelt_scene_instance *inst, float px, flo
                                         const pelt_brush *brush, const float drag[2])
 {
     return inst && brush && brush_at_pixel(inst, px, py, brush, drag);
+}
+
+pelt_camera pelt_scene_instance_camera(const pelt_scene_instance *inst) { return inst->camera; }
+
+void pelt_scene_instance_set_camera(pelt_scene_instance *inst, const pelt_camera *camera,
+                                    unsigned width, unsigned height)
+{
+    if (!inst || !camera) return;
+    inst->camera = *camera;
+    pelt_view v;
+    unsigned w = width ? width : inst->view.width, h = height ? height : inst->view.height;
+    pelt_camera_to_view(&inst->camera, (float)w / (float)h, &v);
+    memcpy(inst->view.view, v.view, sizeof v.view);
+    memcpy(inst->view.proj, v.proj, sizeof v.proj);
+    memcpy(inst->view.eye, v.eye, sizeof v.eye);
+    inst->view.width = w;
+    inst->view.height = h;
+}
+
+pelt_forces pelt_scene_instance_forces(const pelt_scene_instance *inst)
+{
+    pelt_forces f = inst->scene.forces;
+    pelt_scene_wind_at(&inst->scene, inst->time, f.wind);
+    return f;
+}
+
+void pelt_scene_instance_set_forces(pelt_scene_instance *inst, const pelt_forces *forces)
+{
+    if (!inst || !forces) return;
+    inst->scene.forces = *forces;
+    pelt__free(&inst->hooks.allocator, inst->scene.animation.wind_keys);
+    inst->scene.animation.wind_keys = NULL;
+    inst->scene.animation.wind_key_count = 0;
+}
+
+void pelt_scene_instance_set_rain_rate(pelt_scene_instance *inst, float rate)
+{
+    if (!inst || !(rate >= 0.0f) || !isfinite(rate)) return;
+    inst->scene.wetness.rain.rate = rate;
+    inst->rain_override = true;
+    if (inst->armed) pelt_fur_set_rain_rate(inst->fur, rate);
 }
 
 pelt_scene_instance_stats pelt_scene_instance_get_stats(const pelt_scene_instance *inst)

@@ -3,14 +3,15 @@
 #   scripts/setup.sh          build and render
 #   scripts/setup.sh --tests  also what the tests use: Debian's libcgal-demo meshes,
 #                             ffmpeg (video output), man-db (the manual page) and
-#                             dpkg-dev and file (the .deb: dpkg-deb, dpkg-shlibdeps)
+#                             dpkg-dev and file (the .deb: dpkg-deb, dpkg-shlibdeps),
+#                             xvfb and xauth (pelt view in a window, tests/cli/cli_view.sh)
 set -euo pipefail
 
 packages=(build-essential cmake pkg-config
           libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
           libglfw3-dev libassimp-dev libstb-dev libcjson-dev)
 if [ "${1:-}" = "--tests" ]; then
-  packages+=(libcgal-demo ffmpeg man-db dpkg-dev file)
+  packages+=(libcgal-demo ffmpeg man-db dpkg-dev file xvfb xauth)
 fi
 
 missing=()

@@ -374,6 +374,11 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
     const gust_frame gust = make_gust_frame(f, s->params.seed, time + 0.5f * dt);
     const bool refresh_gust = gust.enabled && (moved || !s->gust_valid || s->gust_t0 != gust.t0 ||
                                                s->gust_inv_scale != gust.inv_scale);
+    /* The local blow, when there is one. */
+    const pelt_vec3 blow = sanitize(v3_load(f->blow), PELT__ACCEL_MAX);
+    const pelt_vec3 blow_c = sanitize(v3_load(f->blow_center), 1e30f);
+    const float blow_r2 = isfinite(f->blow_radius) ? f->blow_radius * f->blow_radius : 0.0f;
+    const bool blowing = blow_r2 > 0.0f && v3_dot(blow, blow) > 0.0f;
     const float km = s->k_per_mass, cm = s->c_per_mass;
     /* v' = (v + h (a - km (p - p0))) / (1 + h cm + h^2 km): v and p at the end. */
     /* Implicit (backward) Euler for the linear spring-damper: stable for
@@ -415,7 +420,13 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
                 g0 = load_soa(s->gust0, i);
                 g1 = load_soa(s->gust1, i);
             }
-            accel[j] = sanitize(v3_add(steady, gust_combine(&gust, g0, g1)), PELT__ACCEL_MAX);
+            pelt_vec3 a = v3_add(steady, gust_combine(&gust, g0, g1));
+            if (blowing) {
+                pelt_vec3 dc = v3_sub(root[j], blow_c);
+                float q = 1.0f - v3_dot(dc, dc) / blow_r2;
+                if (q > 0.0f) a = v3_mad(a, blow, q * q);
+            }
+            accel[j] = sanitize(a, PELT__ACCEL_MAX);
             rest[j] = v3_mad(root[j], n[j], len[j]); /* p0 of Silva §3.2.1 */
             /* Relative speeds above this cross the tip's whole range in one
              * substep: clamping them loses nothing and bounds the state. */

@@ -17,6 +17,13 @@ typedef struct pelt_forces {
     float gust_strength;   /* 0..: fraction of |wind| added as seeded noise, default 0.5 */
     float gust_scale;      /* spatial size of a gust in world units, default 0.5 */
     float gust_frequency;  /* gust changes per second, default 1.5 */
+    /* A local blow (a hair dryer): `blow` (an acceleration, world units)
+       acts on the strands whose roots lie within blow_radius of
+       blow_center (world), falling off as (1 - (d / r)^2)^2. Default 0:
+       none. */
+    float blow[3];
+    float blow_center[3];
+    float blow_radius;
 } pelt_forces;
 
 pelt_forces pelt_forces_default(void);

@@ -67,6 +67,28 @@ pelt_fur *pelt_scene_instance_fur(pelt_scene_instance *inst);
  * model matrix at the current time. */
 pelt_view pelt_scene_instance_view(const pelt_scene_instance *inst);
 
+/* The orbit camera the view is made from: the scene's, framed on a mesh
+ * file. */
+pelt_camera pelt_scene_instance_camera(const pelt_scene_instance *inst);
+
+/* Moves the camera and resizes the output (a window that is orbited,
+ * zoomed, panned or resized): the view, and with it drop_at_pixel and
+ * brush_at_pixel, follow from now on. width or height 0 keeps the current
+ * size. */
+void pelt_scene_instance_set_camera(pelt_scene_instance *inst, const pelt_camera *camera,
+                                    unsigned width, unsigned height);
+
+/* The forces of the current time (the scene's, with the wind of its
+ * keyframes at that time), and forces that hold from now on, replacing
+ * forces.* and any wind keyframes of the scene (a viewer's wind and
+ * gravity switches). */
+pelt_forces pelt_scene_instance_forces(const pelt_scene_instance *inst);
+void pelt_scene_instance_set_forces(pelt_scene_instance *inst, const pelt_forces *forces);
+
+/* Rain at `rate` drops per second from now on, replacing the scene's
+ * schedule (wetness.rain_start / rain_stop); 0 stops it. */
+void pelt_scene_instance_set_rain_rate(pelt_scene_instance *inst, float rate);
+
 /* A droplet where the ray through pixel (px, py) of the view meets the
  * mesh (radius in world units). False when it misses. */
 bool pelt_scene_instance_drop_at_pixel(pelt_scene_instance *inst, float px, float py,

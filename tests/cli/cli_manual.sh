@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The manual page and the bash completion say what --help says: every flag
 # `pelt render --help` lists is in pelt(1)'s RENDER AND BENCH FLAGS, and no
-# other; the same for atlas; every command; the completion offers the same
+# other; the same for view (render's flags and its own) and atlas; every command; the completion offers the same
 # flags, the commands and the scene keys. pelt.1 in the build tree is what
 # this pelt prints. Skips (77) without man (Debian package man-db).
 #   cli_manual.sh PELT BUILD_DIR
@@ -36,6 +36,11 @@ want=$(help_flags render); got=$(section_flags "RENDER AND BENCH FLAGS")
 check man_has_every_render_flag $? "render --help: $want
 man: $got"
 [ "$(help_flags bench)" = "$want" ]; check bench_takes_the_same_flags $? "$(help_flags bench)"
+want=$(help_flags view); got=$(section_flags "VIEW FLAGS")
+[ -n "$want" ] && [ "$want" = "$got" ]; check man_has_every_view_flag $? "view --help: $want
+man: $got"
+extra=$(comm -13 <(help_flags render | tr ' ' '\n' | sort) <(help_flags view | tr ' ' '\n' | sort) | tr '\n' ' ')
+[ "$extra" = "--no-hud --screenshot-at --script " ]; check view_takes_render_flags_and_its_own $? "view's own: $extra"
 want=$(help_flags atlas); got=$(section_flags "ATLAS FLAGS")
 [ -n "$want" ] && [ "$want" = "$got" ]; check man_has_every_atlas_flag $? "atlas --help: $want
 man: $got"
@@ -55,6 +60,7 @@ complete_words() {
 check completion_commands $? "$(complete_words pelt '')"
 want="$(help_flags render)"
 [ "$(complete_words pelt render -)" = "$want" ]; check completion_render_flags $? "$(complete_words pelt render -)"
+[ "$(complete_words pelt view -)" = "$(help_flags view)" ]; check completion_view_flags $? "$(complete_words pelt view -)"
 [ "$(complete_words pelt atlas -)" = "$(help_flags atlas)" ]; check completion_atlas_flags $? "$(complete_words pelt atlas -)"
 # Scene keys for --set: the ones the scene parser takes (each must be
 # accepted as a key: a wrong value names the key, an unknown key says so).

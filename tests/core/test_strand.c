@@ -283,6 +283,44 @@ static void strand_steady_wind_moves_every_tip_downwind(void)
     pelt_mesh_destroy(m);
 }
 
+/* A local blow (the viewer's hair dryer) moves the tips whose roots are
+ * within its radius, downwind, and no other tip. */
+static void strand_local_blow_moves_only_the_tips_within_its_radius(void)
+{
+    pelt_mesh *m = torus(24, 16);
+    pelt__strands *s = m ? strands_default(m) : NULL;
+    CHECK(s != NULL);
+    if (!s) {
+        pelt_mesh_destroy(m);
+        return;
+    }
+    const float L0 = L0_TEST, radius = 0.5f;
+    pelt_forces f = no_forces();
+    pelt_vec3 blow = v3(0.0f, 0.0f, -40.0f), centre = v3(0.0f, 0.0f, 1.4f);
+    v3_store(f.blow, blow);
+    v3_store(f.blow_center, centre);
+    f.blow_radius = radius;
+    for (int i = 0; i < 60; i++) pelt__strands_step(s, 1.0f / 60.0f, &f, (float)i / 60.0f);
+    size_t inside = 0, inside_moved = 0, outside_moved = 0;
+    for (size_t i = 0; i < pelt__strands_count(s); i++) {
+        pelt_vec3 n = normal_of(m, i), root = v3_load(m->positions + 3 * i);
+        float moved = v3_len(v3_sub(offset_of(s, i), v3_scale(n, L0)));
+        float d = v3_len(v3_sub(root, centre));
+        if (d < 0.8f * radius) {
+            inside++;
+            /* blocked only where the blow runs straight along the strand */
+            if (moved > 0.05f * L0 || v3_dot(n, v3(0, 0, -1)) > 0.99f) inside_moved++;
+        } else if (d > radius && moved > 1e-6f) {
+            outside_moved++;
+        }
+    }
+    CHECK(inside > 10);
+    CHECK(inside_moved == inside);
+    CHECK(outside_moved == 0);
+    pelt__strands_destroy(s);
+    pelt_mesh_destroy(m);
+}
+
 static void strand_tips_lag_behind_translation(void)
 {
     pelt_mesh *m = square(3);
@@ -575,6 +613,7 @@ int main(void)
     RUN(strand_defaults_bend_under_gravity_and_lean_in_wind);
     RUN(strand_returns_to_rest_without_force_when_damped);
     RUN(strand_steady_wind_moves_every_tip_downwind);
+    RUN(strand_local_blow_moves_only_the_tips_within_its_radius);
     RUN(strand_tips_lag_behind_translation);
     RUN(strand_tips_lag_behind_turntable);
     RUN(strand_coincident_seam_vertices_get_identical_tips);

@@ -182,6 +182,37 @@ static void drop_at_pixel_wets_where_the_torus_is_seen(void)
     pelt_scene_free(&s);
 }
 
+/* A window orbits the camera and resizes: the view and the pixel rays
+ * follow; forces and rain can be switched from outside the scene. */
+static void camera_forces_and_rain_can_be_changed(void)
+{
+    pelt_scene s = small_scene();
+    pelt_error err = {0};
+    pelt_scene_instance *inst = make(&s, NULL, &err);
+    CHECK(inst != NULL);
+    if (!inst) return;
+    pelt_camera c = pelt_scene_instance_camera(inst);
+    CHECK(c.yaw == 30.0f && c.distance > 0.0f);
+    c.distance *= 100.0f; /* far away: the pixel that saw the ring sees sky */
+    pelt_scene_instance_set_camera(inst, &c, 128, 0);
+    pelt_view v = pelt_scene_instance_view(inst);
+    CHECK(v.width == 128 && v.height == 48);
+    CHECK(!pelt_scene_instance_drop_at_pixel(inst, 32.0f, 40.0f, 0.1f, 1.0f));
+    CHECK(pelt_scene_instance_camera(inst).distance == c.distance);
+    pelt_forces f = pelt_scene_instance_forces(inst);
+    CHECK(f.gravity[1] < 0.0f);
+    f.gravity[1] = 0.0f;
+    f.wind[0] = 5.0f;
+    pelt_scene_instance_set_forces(inst, &f);
+    f = pelt_scene_instance_forces(inst);
+    CHECK(f.gravity[1] == 0.0f && f.wind[0] == 5.0f);
+    pelt_scene_instance_set_rain_rate(inst, 400.0f);
+    pelt_scene_instance_advance(inst, 0.1f);
+    CHECK(wet_fraction(pelt_scene_instance_fur(inst)) > 0.0f);
+    pelt_scene_instance_destroy(inst);
+    pelt_scene_free(&s);
+}
+
 int main(void)
 {
     RUN(default_scene_makes_the_table1_torus);
@@ -191,5 +222,6 @@ int main(void)
     RUN(bad_image_names_key_and_file);
     RUN(hooks_see_allocations_and_warnings);
     RUN(drop_at_pixel_wets_where_the_torus_is_seen);
+    RUN(camera_forces_and_rain_can_be_changed);
     return check_summary();
 }

@@ -1,0 +1,196 @@
+/* pelt view: the GLFW window and its OpenGL 3.3 core context. Input
+ * callbacks queue view_events; the frame loop takes them in order. */
+#include "apps/view.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define QUEUE_MAX 1024
+
+struct view_window {
+    GLFWwindow *glfw;
+    view_event queue[QUEUE_MAX];
+    size_t head, count;
+};
+
+static char glfw_message[512];
+
+static void on_error(int code, const char *description)
+{
+    snprintf(glfw_message, sizeof glfw_message, "%s (GLFW error 0x%x)", description, code);
+}
+
+static void push(view_window *w, const view_event *e)
+{
+    if (w->count == QUEUE_MAX) return; /* a flood of input: drop the newest */
+    w->queue[(w->head + w->count) % QUEUE_MAX] = *e;
+    w->count++;
+}
+
+static view_window *self(GLFWwindow *g) { return glfwGetWindowUserPointer(g); }
+
+static void on_cursor(GLFWwindow *g, double x, double y)
+{
+    view_event e = {.type = VIEW_EV_MOVE, .x = (float)x, .y = (float)y};
+    push(self(g), &e);
+}
+
+static void on_button(GLFWwindow *g, int button, int action, int mods)
+{
+    int b = button == GLFW_MOUSE_BUTTON_LEFT ? 0 : button == GLFW_MOUSE_BUTTON_RIGHT ? 1
+          : button == GLFW_MOUSE_BUTTON_MIDDLE ? 2 : -1;
+    if (b < 0) return;
+    double x, y;
+    glfwGetCursorPos(g, &x, &y);
+    view_event e = {.type = VIEW_EV_BUTTON, .x = (float)x, .y = (float)y, .button = b,
+                    .mods = mods, .press = action == GLFW_PRESS};
+    push(self(g), &e);
+}
+
+static void on_scroll(GLFWwindow *g, double dx, double dy)
+{
+    (void)dx;
+    view_event e = {.type = VIEW_EV_SCROLL, .y = (float)dy};
+    push(self(g), &e);
+}
+
+static void on_key(GLFWwindow *g, int key, int scancode, int action, int mods)
+{
+    (void)scancode;
+    if (action == GLFW_REPEAT && key != GLFW_KEY_LEFT_BRACKET && key != GLFW_KEY_RIGHT_BRACKET &&
+        key != GLFW_KEY_MINUS && key != GLFW_KEY_EQUAL)
+        return;
+    view_event e = {.type = VIEW_EV_KEY, .key = key, .mods = mods, .press = action != GLFW_RELEASE};
+    push(self(g), &e);
+}
+
+static void on_drop(GLFWwindow *g, int count, const char **paths)
+{
+    for (int i = 0; i < count; i++) {
+        view_event e = {.type = VIEW_EV_DROP};
+        snprintf(e.path, sizeof e.path, "%s", paths[i]);
+        push(self(g), &e);
+    }
+}
+
+bool view_window_open(const char *title, unsigned w, unsigned h, view_window **out, char *err,
+                      size_t err_size)
+{
+    *out = NULL;
+    glfwSetErrorCallback(on_error);
+    const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
+    if ((!display || !*display) && (!wayland || !*wayland)) {
+        snprintf(err, err_size,
+                 "no display: DISPLAY is not set (run it in a desktop session, or under Xvfb: "
+                 "xvfb-run -a pelt view ...; pelt render draws without one)");
+        return false;
+    }
+    if (!glfwInit()) {
+        snprintf(err, err_size, "cannot open the display '%s': %s", display ? display : "",
+                 glfw_message[0] ? glfw_message : "glfwInit failed");
+        return false;
+    }
+    view_window *win = calloc(1, sizeof *win);
+    if (!win) {
+        glfwTerminate();
+        snprintf(err, err_size, "out of memory");
+        return false;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_DEPTH_BITS, 24);
+    glfwWindowHint(GLFW_SAMPLES, 0);
+    glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);
+    win->glfw = glfwCreateWindow((int)w, (int)h, title, NULL, NULL);
+    if (!win->glfw) {
+        snprintf(err, err_size, "cannot create a %ux%u window with an OpenGL 3.3 core context: %s",
+                 w, h, glfw_message[0] ? glfw_message : "unknown reason");
+        free(win);
+        glfwTerminate();
+        return false;
+    }
+    glfwSetWindowUserPointer(win->glfw, win);
+    glfwMakeContextCurrent(win->glfw);
+    glfwSwapInterval(0); /* llvmpipe: no vsync to wait for; keep input latency one frame */
+    glfwSetCursorPosCallback(win->glfw, on_cursor);
+    glfwSetMouseButtonCallback(win->glfw, on_button);
+    glfwSetScrollCallback(win->glfw, on_scroll);
+    glfwSetKeyCallback(win->glfw, on_key);
+    glfwSetDropCallback(win->glfw, on_drop);
+    if (epoxy_gl_version() < 33) {
+        snprintf(err, err_size, "OpenGL 3.3 core needed, got %s",
+                 (const char *)glGetString(GL_VERSION));
+        view_window_close(win);
+        return false;
+    }
+    *out = win;
+    return true;
+}
+
+void view_window_close(view_window *w)
+{
+    if (!w) return;
+    glfwDestroyWindow(w->glfw);
+    free(w);
+    /* No glfwTerminate: it unloads the GL driver (libGL, Mesa's GLX), and
+     * what the driver still holds then shows as leaks of an unknown
+     * module that no LeakSanitizer suppression can name. The window is
+     * gone; the process ends right after. */
+}
+
+void view_window_poll(view_window *w)
+{
+    (void)w;
+    glfwPollEvents();
+}
+
+bool view_window_next_event(view_window *w, view_event *out)
+{
+    if (!w->count) return false;
+    *out = w->queue[w->head];
+    w->head = (w->head + 1) % QUEUE_MAX;
+    w->count--;
+    return true;
+}
+
+bool view_window_should_close(const view_window *w) { return glfwWindowShouldClose(w->glfw); }
+
+void view_window_framebuffer_size(const view_window *w, unsigned *width, unsigned *height)
+{
+    int fw, fh;
+    glfwGetFramebufferSize(w->glfw, &fw, &fh);
+    *width = fw > 0 ? (unsigned)fw : 0;
+    *height = fh > 0 ? (unsigned)fh : 0;
+}
+
+void view_window_swap(view_window *w) { glfwSwapBuffers(w->glfw); }
+
+void view_window_set_title(view_window *w, const char *title) { glfwSetWindowTitle(w->glfw, title); }
+
+void view_window_read_rgba8(view_window *w, uint8_t *rgba, unsigned width, unsigned height)
+{
+    (void)w;
+    size_t row = (size_t)width * 4;
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+    glReadBuffer(GL_BACK);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, (GLsizei)width, (GLsizei)height, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+    glPixelStorei(GL_PACK_ALIGNMENT, 4);
+    for (size_t y = 0; y < height / 2; y++) { /* GL rows run bottom-up */
+        uint8_t *a = rgba + y * row, *b = rgba + (height - 1 - y) * row;
+        for (size_t i = 0; i < row; i++) {
+            uint8_t t = a[i];
+            a[i] = b[i];
+            b[i] = t;
+        }
+    }
+}
+
+double view_window_time(void) { return glfwGetTime(); }

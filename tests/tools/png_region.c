@@ -1,0 +1,143 @@
+/* png_region: where two pictures of the same view differ, for the viewer
+ * tests (tests/cli/cli_view.sh).
+ *
+ *   png_region A.png B.png CX CY R
+ *       Compares B with A inside the disc of radius R pixels around
+ *       (CX, CY) and outside a disc of 1.5 R. Prints one line:
+ *         inside_mean=M inside_frac=F outside_frac=G shift_x=DX shift_y=DY
+ *       M: mean absolute R/G/B difference inside (0..255); F, G: fractions
+ *       of pixels inside / outside whose largest channel difference is
+ *       above 32 (png_diff's threshold); DX, DY: the whole-pixel shift
+ *       (within +-8) that best moves A's disc onto B's (sum of absolute
+ *       differences): where the picture under the disc went.
+ *   png_region --axis A.png CX CY R
+ *       Prints axis=DEG coherence=C: the direction the streaks of the
+ *       picture run in the disc (hair seen from the side), from the
+ *       structure tensor of the luminance gradient: degrees in [0, 180),
+ *       image axes (x right, y down; 0 horizontal, 90 vertical); C in
+ *       [0, 1], 0 for no preferred direction.
+ *   png_region --red A.png X0 Y0 X1 Y1
+ *       Prints red=N: pixels in the box that are clearly red (R > 180,
+ *       G and B < 110): the HUD's error colour.
+ * Exit 0, or 2 on bad usage or an unreadable image. */
+#include <stb_image.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static unsigned char *load(const char *path, int *w, int *h)
+{
+    int n;
+    unsigned char *p = stbi_load(path, w, h, &n, 4);
+    if (!p) fprintf(stderr, "png_region: cannot read '%s': %s\n", path, stbi_failure_reason());
+    return p;
+}
+
+static int diff(const unsigned char *a, const unsigned char *b)
+{
+    int m = 0;
+    for (int c = 0; c < 3; c++) {
+        int d = abs((int)a[c] - (int)b[c]);
+        if (d > m) m = d;
+    }
+    return m;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc == 7 && !strcmp(argv[1], "--red")) {
+        int w, h;
+        unsigned char *a = load(argv[2], &w, &h);
+        if (!a) return 2;
+        int x0 = atoi(argv[3]), y0 = atoi(argv[4]), x1 = atoi(argv[5]), y1 = atoi(argv[6]);
+        long red = 0;
+        for (int y = y0 < 0 ? 0 : y0; y < y1 && y < h; y++)
+            for (int x = x0 < 0 ? 0 : x0; x < x1 && x < w; x++) {
+                const unsigned char *p = a + 4 * ((size_t)y * w + x);
+                red += p[0] > 180 && p[1] < 110 && p[2] < 110;
+            }
+        printf("red=%ld\n", red);
+        stbi_image_free(a);
+        return 0;
+    }
+    if (argc == 6 && !strcmp(argv[1], "--axis")) {
+        int w, h;
+        unsigned char *a = load(argv[2], &w, &h);
+        if (!a) return 2;
+        double cx = atof(argv[3]), cy = atof(argv[4]), r = atof(argv[5]);
+        double jxx = 0.0, jxy = 0.0, jyy = 0.0;
+#define LUM(x, y) (0.299 * a[4 * ((size_t)(y) * w + (x))] + 0.587 * a[4 * ((size_t)(y) * w + (x)) + 1] + \
+                   0.114 * a[4 * ((size_t)(y) * w + (x)) + 2])
+        for (int y = 1; y < h - 1; y++)
+            for (int x = 1; x < w - 1; x++) {
+                if ((x - cx) * (x - cx) + (y - cy) * (y - cy) > r * r) continue;
+                double gx = 0.5 * (LUM(x + 1, y) - LUM(x - 1, y));
+                double gy = 0.5 * (LUM(x, y + 1) - LUM(x, y - 1));
+                jxx += gx * gx, jxy += gx * gy, jyy += gy * gy;
+            }
+#undef LUM
+        /* The gradient's main direction, turned 90 degrees: the streaks'. */
+        double grad = 0.5 * atan2(2.0 * jxy, jxx - jyy) * 57.29577951308232;
+        double axis = fmod(grad + 90.0 + 360.0, 180.0);
+        double tr = jxx + jyy, det = sqrt((jxx - jyy) * (jxx - jyy) + 4.0 * jxy * jxy);
+        printf("axis=%.1f coherence=%.3f\n", axis, tr > 0.0 ? det / tr : 0.0);
+        stbi_image_free(a);
+        return 0;
+    }
+    if (argc != 6) {
+        fprintf(stderr, "usage: png_region A.png B.png CX CY R | png_region --red A.png X0 Y0 X1 Y1\n");
+        return 2;
+    }
+    int w, h, w2, h2;
+    unsigned char *a = load(argv[1], &w, &h), *b = load(argv[2], &w2, &h2);
+    if (!a || !b || w != w2 || h != h2) {
+        if (a && b) fprintf(stderr, "png_region: sizes differ: %dx%d and %dx%d\n", w, h, w2, h2);
+        stbi_image_free(a);
+        stbi_image_free(b);
+        return 2;
+    }
+    double cx = atof(argv[3]), cy = atof(argv[4]), r = atof(argv[5]);
+    double sum_in = 0.0;
+    long in = 0, in_off = 0, out = 0, out_off = 0;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < w; x++) {
+            double d2 = (x - cx) * (x - cx) + (y - cy) * (y - cy);
+            const unsigned char *p = a + 4 * ((size_t)y * w + x), *q = b + 4 * ((size_t)y * w + x);
+            int d = diff(p, q);
+            if (d2 <= r * r) {
+                in++;
+                in_off += d > 32;
+                for (int c = 0; c < 3; c++) sum_in += abs((int)p[c] - (int)q[c]) / 3.0;
+            } else if (d2 > 2.25 * r * r) {
+                out++;
+                out_off += d > 32;
+            }
+        }
+    /* The shift of A's disc that best matches B. */
+    int best_dx = 0, best_dy = 0;
+    double best = INFINITY;
+    for (int dy = -8; dy <= 8; dy++)
+        for (int dx = -8; dx <= 8; dx++) {
+            double sad = 0.0;
+            long n = 0;
+            for (int y = (int)(cy - r); y <= (int)(cy + r); y++)
+                for (int x = (int)(cx - r); x <= (int)(cx + r); x++) {
+                    if ((x - cx) * (x - cx) + (y - cy) * (y - cy) > r * r) continue;
+                    int sx = x - dx, sy = y - dy;
+                    if (x < 0 || y < 0 || x >= w || y >= h || sx < 0 || sy < 0 || sx >= w || sy >= h)
+                        continue;
+                    const unsigned char *p = a + 4 * ((size_t)sy * w + sx), *q = b + 4 * ((size_t)y * w + x);
+                    for (int c = 0; c < 3; c++) sad += abs((int)p[c] - (int)q[c]);
+                    n++;
+                }
+            if (n && sad / n < best) best = sad / n, best_dx = dx, best_dy = dy;
+        }
+    printf("inside_mean=%.2f inside_frac=%.4f outside_frac=%.5f shift_x=%d shift_y=%d\n",
+           in ? sum_in / in : 0.0, in ? (double)in_off / in : 0.0, out ? (double)out_off / out : 0.0,
+           best_dx, best_dy);
+    stbi_image_free(a);
+    stbi_image_free(b);
+    return 0;
+}
