@@ -202,10 +202,10 @@ void view_hud_text(view_hud *h, const char *text, float x, float y, float scale,
             if (ch == '\0') break;
             if (ch == '\n') lx = 0.0f, ly += 12.0f;
             else if (ch <= 4) color = colors[ch];
-            else run[n++] = (char)ch;
+            else run[n++] = ch < 32 || ch > 126 ? '?' : (char)ch; /* a full run, flushed */
             continue;
         }
-        run[n++] = ch < 32 || ch > 126 ? '?' : (char)ch;
+        run[n++] = ch < 32 || ch > 126 ? '?' : (char)ch; /* stb_easy_font knows 32..126 */
     }
     float pad = 4.0f;
     quad(h->verts, -pad, -pad, max_x + pad, ly + 12.0f + pad - 2.0f, panel);

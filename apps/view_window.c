@@ -1,14 +1,81 @@
 /* pelt view: the GLFW window and its OpenGL 3.3 core context. Input
- * callbacks queue view_events; the frame loop takes them in order. */
+ * callbacks queue view_events; the frame loop takes them in order.
+ *
+ * GLFW is loaded when a window is opened (dlopen of libglfw.so.3), not
+ * linked: linked, it brings libX11 and libxcb into every pelt command at
+ * start, which headless commands have no use for, and with them loaded
+ * LeakSanitizer's tracer crashed at the exit of `pelt render` on larger
+ * meshes (the docs_images test). */
 #include "apps/view.h"
 
 #include <epoxy/gl.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* Every GLFW function used here, called through a pointer of its own type. */
+#define GLFW_FUNCTIONS(X)                                                                      \
+    X(glfwSetErrorCallback) X(glfwInit) X(glfwTerminate) X(glfwWindowHint)                      \
+    X(glfwCreateWindow) X(glfwDestroyWindow) X(glfwSetWindowUserPointer)                        \
+    X(glfwGetWindowUserPointer) X(glfwMakeContextCurrent) X(glfwSwapInterval)                   \
+    X(glfwSetCursorPosCallback) X(glfwSetMouseButtonCallback) X(glfwSetScrollCallback)          \
+    X(glfwSetKeyCallback) X(glfwSetDropCallback) X(glfwGetCursorPos) X(glfwPollEvents)          \
+    X(glfwWindowShouldClose) X(glfwGetFramebufferSize) X(glfwSwapBuffers)                       \
+    X(glfwSetWindowTitle) X(glfwGetTime)
+#define DECLARE(f) static __typeof__(f) *pf_##f;
+GLFW_FUNCTIONS(DECLARE)
+#undef DECLARE
+
+/* Loads libglfw.so.3 once; false with a message in err. */
+static bool load_glfw(char *err, size_t err_size)
+{
+    static void *lib;
+    if (lib) return true;
+    void *h = dlopen("libglfw.so.3", RTLD_NOW | RTLD_LOCAL);
+    if (!h) {
+        snprintf(err, err_size, "cannot load GLFW (libglfw.so.3, Debian package libglfw3): %s",
+                 dlerror());
+        return false;
+    }
+#define LOAD(f)                                                                                \
+    *(void **)&pf_##f = dlsym(h, #f);                                                          \
+    if (!pf_##f) {                                                                             \
+        snprintf(err, err_size, "libglfw.so.3 has no %s (GLFW 3.3 or later needed)", #f);     \
+        dlclose(h);                                                                            \
+        return false;                                                                          \
+    }
+    GLFW_FUNCTIONS(LOAD)
+#undef LOAD
+    lib = h; /* never closed: the GL driver it loads stays for the process */
+    return true;
+}
+
+#define glfwSetErrorCallback pf_glfwSetErrorCallback
+#define glfwInit pf_glfwInit
+#define glfwTerminate pf_glfwTerminate
+#define glfwWindowHint pf_glfwWindowHint
+#define glfwCreateWindow pf_glfwCreateWindow
+#define glfwDestroyWindow pf_glfwDestroyWindow
+#define glfwSetWindowUserPointer pf_glfwSetWindowUserPointer
+#define glfwGetWindowUserPointer pf_glfwGetWindowUserPointer
+#define glfwMakeContextCurrent pf_glfwMakeContextCurrent
+#define glfwSwapInterval pf_glfwSwapInterval
+#define glfwSetCursorPosCallback pf_glfwSetCursorPosCallback
+#define glfwSetMouseButtonCallback pf_glfwSetMouseButtonCallback
+#define glfwSetScrollCallback pf_glfwSetScrollCallback
+#define glfwSetKeyCallback pf_glfwSetKeyCallback
+#define glfwSetDropCallback pf_glfwSetDropCallback
+#define glfwGetCursorPos pf_glfwGetCursorPos
+#define glfwPollEvents pf_glfwPollEvents
+#define glfwWindowShouldClose pf_glfwWindowShouldClose
+#define glfwGetFramebufferSize pf_glfwGetFramebufferSize
+#define glfwSwapBuffers pf_glfwSwapBuffers
+#define glfwSetWindowTitle pf_glfwSetWindowTitle
+#define glfwGetTime pf_glfwGetTime
 
 #define QUEUE_MAX 1024
 
@@ -82,7 +149,6 @@ bool view_window_open(const char *title, unsigned w, unsigned h, view_window **o
                       size_t err_size)
 {
     *out = NULL;
-    glfwSetErrorCallback(on_error);
     const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
     if ((!display || !*display) && (!wayland || !*wayland)) {
         snprintf(err, err_size,
@@ -90,6 +156,8 @@ bool view_window_open(const char *title, unsigned w, unsigned h, view_window **o
                  "xvfb-run -a pelt view ...; pelt render draws without one)");
         return false;
     }
+    if (!load_glfw(err, err_size)) return false;
+    glfwSetErrorCallback(on_error);
     if (!glfwInit()) {
         snprintf(err, err_size, "cannot open the display '%s': %s", display ? display : "",
                  glfw_message[0] ? glfw_message : "glfwInit failed");
@@ -193,4 +261,4 @@ void view_window_read_rgba8(view_window *w, uint8_t *rgba, unsigned width, unsig
     }
 }
 
-double view_window_time(void) { return glfwGetTime(); }
+double view_window_time(void) { return pf_glfwGetTime ? glfwGetTime() : 0.0; }

@@ -39,7 +39,9 @@ set(CPACK_COMPONENT_RUNTIME_DESCRIPTION
 
 set(CPACK_DEBIAN_CLI_PACKAGE_NAME pelt)
 set(CPACK_DEBIAN_CLI_PACKAGE_SECTION graphics)
-set(CPACK_DEBIAN_CLI_PACKAGE_DEPENDS "${PELT_GL_DEPENDS}")
+# pelt view dlopens libglfw.so.3 (apps/view_window.c): not seen by
+# dpkg-shlibdeps either.
+set(CPACK_DEBIAN_CLI_PACKAGE_DEPENDS "${PELT_GL_DEPENDS}, libglfw3")
 set(CPACK_DEBIAN_CLI_PACKAGE_RECOMMENDS "libegl-mesa0, libgl1-mesa-dri")
 set(CPACK_DEBIAN_CLI_PACKAGE_SUGGESTS "ffmpeg")
 set(CPACK_COMPONENT_CLI_DESCRIPTION

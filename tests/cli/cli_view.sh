@@ -99,7 +99,11 @@ check dryer_brings_back_the_dry_picture $rc "$res"
 # (v) A corrupt mesh dropped on the window: render's message in the HUD
 # (red), on stderr, and the window keeps running (a later screenshot).
 bad="$data/meshes/bad_garbage.obj"
-printf '0.1 drop %s\n0.2 screenshot %s\n0.5 screenshot %s\n0.5 exit\n' "$bad" "$d/bad.png" "$d/bad_later.png" >"$d/bad.txt"
+# A second drop: a missing file whose long UTF-8 path makes a message
+# longer than the HUD's text runs.
+e120=$(printf 'é%.0s' $(seq 120))
+printf '0.1 drop %s\n0.2 screenshot %s\n0.3 drop %s\n0.5 screenshot %s\n0.5 exit\n' "$bad" "$d/bad.png" \
+  "$d/$e120/$e120/missing.obj" "$d/bad_later.png" >"$d/bad.txt"
 err=$(view --script "$d/bad.txt" 2>&1); rc=$?
 check bad_drop_keeps_running $rc "exit $rc: $err"
 [ -f "$d/bad_later.png" ]; check bad_drop_window_still_draws $? "no screenshot after the drop"

@@ -42,6 +42,9 @@ for d in "$lib" "$cli"; do
   grep -qE "libasan|libubsan" <<<"$dep" && ok=1
   check "depends_$(dpkg-deb -f "$d" Package)" $ok "$dep"
 done
+# pelt view loads GLFW at run time (dlopen), so the command's package names it.
+dep=$(dpkg-deb -f "$cli" Depends)
+grep -q "\blibglfw3\b" <<<"$dep"; check depends_pelt_glfw_for_view $? "$dep"
 dep=$(dpkg-deb -f "$dev" Depends)
 grep -q "libpelt$major (= $version-" <<<"$dep" && grep -q "libassimp-dev" <<<"$dep" && grep -q "libepoxy-dev" <<<"$dep"
 check depends_libpelt_dev $? "$dep"
