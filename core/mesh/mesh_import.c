@@ -80,6 +80,15 @@ static long long parse_count(const char *tok)
     return v;
 }
 
+/* [+-] digits. */
+static int is_integer(const char *t)
+{
+    if (*t == '+' || *t == '-') t++;
+    if (!isdigit((unsigned char)*t)) return 0;
+    while (isdigit((unsigned char)*t)) t++;
+    return *t == '\0';
+}
+
 /* A decimal number as assimp reads one: [+-] digits [. digits] [e [+-]
  * digits], or nan / inf. strtod also takes hexadecimal ("0x.58"), which
  * assimp reads differently (and then leaked). */
@@ -103,12 +112,12 @@ static int is_decimal(const char *t)
 
 /* OFF line reader: skips blank lines and '#' comments, returns 1 with pos
  * at the start of the next content line (line number in *line). */
-static int off_next_line(text_reader *r, long long *line)
+static int next_content_line(text_reader *r, long long *line, int hash_comments)
 {
     while (r->pos < r->len) {
         size_t p = r->pos;
         while (p < r->len && r->s[p] != '\n' && isspace((unsigned char)r->s[p])) p++;
-        if (p < r->len && r->s[p] != '\n' && r->s[p] != '#') {
+        if (p < r->len && r->s[p] != '\n' && (!hash_comments || r->s[p] != '#')) {
             (*line)++;
             return 1;
         }
@@ -116,6 +125,11 @@ static int off_next_line(text_reader *r, long long *line)
         (*line)++;
     }
     return 0;
+}
+
+static int off_next_line(text_reader *r, long long *line)
+{
+    return next_content_line(r, line, 1);
 }
 
 /* OFF is checked in full: assimp clamps out-of-range face indices and reads
@@ -262,6 +276,7 @@ typedef struct ply_property {
     int count_bytes; /* 0 for a scalar, else the bytes of a list's count */
     int bytes;       /* of the scalar or of each list entry */
     int count_signed;
+    int integer;     /* the scalar or the list entries are of an integer type */
 } ply_property;
 typedef struct ply_element {
     char name[64];
@@ -342,6 +357,7 @@ static pelt_status parse_ply_header(const char *path, text_reader *r, long long 
                     return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY list property is incomplete", path);
             }
             p->bytes = ply_type_size(tok);
+            p->integer = strncmp(tok, "float", 5) && strcmp(tok, "double");
             if (p->bytes == 0)
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY property type '%s' is not a PLY type",
                                   path, tok);
@@ -439,7 +455,7 @@ static pelt_status check_ply_ascii(const char *path, text_reader *r, const ply_h
     for (int ei = 0; ei < h->element_count; ei++) {
         const ply_element *e = &h->elements[ei];
         for (long long i = 0; i < e->count; i++) {
-            if (!off_next_line(r, &line))
+            if (!next_content_line(r, &line, 0)) /* '#' starts no comment in a PLY body */
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY file ends at '%s' %lld of %lld", path,
                                   e->name, i, e->count);
             for (int pi = 0; pi < e->property_count; pi++) {
@@ -458,10 +474,12 @@ static pelt_status check_ply_ascii(const char *path, text_reader *r, const ply_h
                 }
                 for (long long k = 0; k < n; k++) {
                     if (next_token(r, tok, sizeof tok, 1)) {
-                        if (is_decimal(tok)) continue;
+                        /* assimp reads "213.8" for a uchar as 213 and ".8" as the next value */
+                        if (p->integer ? is_integer(tok) : is_decimal(tok)) continue;
                         return pelt__fail(err, PELT_ERR_FORMAT,
-                                          "%s: line %lld: PLY '%s' %lld: '%s' (property '%s') is not a number",
-                                          path, line, e->name, i, tok, p->name);
+                                          "%s: line %lld: PLY '%s' %lld: '%s' (property '%s') is not %s",
+                                          path, line, e->name, i, tok, p->name,
+                                          p->integer ? "an integer" : "a number");
                     }
                     if (!p->count_bytes)
                         return pelt__fail(err, PELT_ERR_FORMAT,
