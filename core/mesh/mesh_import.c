@@ -299,7 +299,13 @@ static pelt_status parse_ply_header(const char *path, text_reader *r, long long 
     for (;;) {
         if (!next_token(r, tok, sizeof tok, 0))
             return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header has no end_header", path);
-        if (!strcmp(tok, "end_header")) break;
+        int is_comment = !strcmp(tok, "comment") || !strcmp(tok, "obj_info");
+        if (!strcmp(tok, "end_header")) {
+            if (next_token(r, tok, sizeof tok, 1))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: '%s' after end_header", path,
+                                  line_at(r, r->pos), tok);
+            break;
+        }
         if (!strcmp(tok, "format")) {
             if (h->format >= 0)
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: a second PLY format line", path,
@@ -311,6 +317,8 @@ static pelt_status parse_ply_header(const char *path, text_reader *r, long long 
                                                                : -1;
             if (h->format < 0)
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY format '%s' is not a PLY format", path, tok);
+            if (!next_token(r, tok, sizeof tok, 1) || strcmp(tok, "1.0"))
+                return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY format version is not 1.0", path);
         } else if (!strcmp(tok, "element")) {
             if (h->element_count == PLY_MAX_ELEMENTS)
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY header has more than %d elements", path,
@@ -364,6 +372,10 @@ static pelt_status parse_ply_header(const char *path, text_reader *r, long long 
             if (!next_token(r, p->name, sizeof p->name, 1))
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: PLY property has no name", path);
         }
+        /* Nothing more on a line than its keyword needs (assimp reads more). */
+        if (!is_comment && next_token(r, tok, sizeof tok, 1))
+            return pelt__fail(err, PELT_ERR_FORMAT, "%s: line %lld: PLY header line has '%s' too many",
+                              path, line_at(r, r->pos), tok);
         skip_line(r);
     }
     skip_line(r);
