@@ -54,4 +54,11 @@ pelt_mesh *pelt__mesh_alloc(size_t vertex_count, size_t triangle_count);
  * positions, uvs and indices are set. */
 void pelt__mesh_finish(pelt_mesh *mesh, bool compute_normals);
 
+/* mesh_check.c: pelt's checks of a mesh file before assimp reads it. buf
+ * holds the first len bytes of the `size` bytes named `name` (all of them
+ * when pelt__mesh_check_reads_whole says so for the first bytes). */
+pelt_status pelt__mesh_check(const char *name, const char *buf, size_t len, long long size,
+                             pelt_error *err);
+bool pelt__mesh_check_reads_whole(const char *name, const char *head, size_t len);
+
 #endif
