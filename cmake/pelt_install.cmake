@@ -15,15 +15,7 @@ if(NOT PELT_H_VERSION MATCHES "\"${PROJECT_VERSION}\"")
 endif()
 
 # libpelt.a: every component in one static library, for pelt::pelt_static.
-add_library(pelt_static STATIC)
-foreach(c ${PELT_COMPONENTS})
-  target_sources(pelt_static PRIVATE $<TARGET_OBJECTS:${c}_objects>)
-endforeach()
-target_link_libraries(pelt_static PRIVATE PkgConfig::EPOXY PkgConfig::EGL PkgConfig::ASSIMP
-  PkgConfig::CJSON PkgConfig::STB m)
-target_include_directories(pelt_static PUBLIC
-  $<BUILD_INTERFACE:${CMAKE_SOURCE_DIR}/include>
-  $<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>)
+pelt_bundle(pelt_static STATIC)
 set_target_properties(pelt_static PROPERTIES OUTPUT_NAME pelt)
 set_target_properties(pelt_shared PROPERTIES EXPORT_NAME pelt)
 
