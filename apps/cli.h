@@ -65,6 +65,8 @@ typedef struct cli_options {
     bool bench_clumps;     /* bench --clumps */
     bool bench_droplets;   /* bench --droplets */
     bool bench_brush;      /* bench --brush */
+    bool bench_floor;      /* bench --floor */
+    bool bench_dolly;      /* bench --dolly */
     bool quiet;
 } cli_options;
 

@@ -198,30 +198,83 @@ static double timed_draw(cli_session *s, const pelt_draw_desc *dd)
 /* Variants of the same frame drawn alternately, so the machine's noise hits
  * them alike: with and without fins (their share of the frame), and with
  * and without the inter-fur shadows when the fur has them on. */
-static int bench_variants(cli_session *s, unsigned frames)
+static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
 {
-    enum { VARIANTS = 3 };
+    enum { VARIANTS = 4 };
+    int variants = with_floor ? 4 : 3;
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
-    pelt_draw_desc full = s->draw, no_fins = full, no_shadow = full;
+    pelt_draw_desc full = s->draw, no_fins = full, no_shadow = full, floor = full;
+    /* Without fins the back-facing shells would come back; keep them
+     * culled so the difference is the fins alone. */
     no_fins.no_fins = true;
+    no_fins.cull_shells = 1;
     no_shadow.no_inter_shadow = true;
-    const pelt_draw_desc *v[VARIANTS] = {&full, &no_fins, &no_shadow};
+    /* The floor: the skin and the same shells with a one-fetch shader. */
+    floor.no_fins = true;
+    floor.cull_shells = 1;
+    floor.floor_shader = true;
+    const pelt_draw_desc *v[VARIANTS] = {&full, &no_fins, &no_shadow, &floor};
     for (unsigned i = 0; i < frames; i++)
-        for (int k = 0; k < VARIANTS; k++) t[(size_t)k * frames + i] = timed_draw(s, v[k]);
+        for (int k = 0; k < variants; k++) t[(size_t)k * frames + i] = timed_draw(s, v[k]);
     stats st[VARIANTS];
-    for (int k = 0; k < VARIANTS; k++) st[k] = summarize(t + (size_t)k * frames, frames);
+    for (int k = 0; k < variants; k++) st[k] = summarize(t + (size_t)k * frames, frames);
     printf("draw variants, alternated (median of %u each):\n", frames);
     print_stats("as drawn", st[0]);
     print_stats("no fins", st[1]);
     print_stats("no inter-sh.", st[2]);
+    if (with_floor) print_stats("floor", st[3]);
     if (!full.no_fins)
         printf("  fins: %.1f%% of the frame's draw\n", 100.0 * (1.0 - st[1].median / st[0].median));
+    if (with_floor)
+        printf("  the frame takes %.2fx the floor (skin + the same shells with a one-fetch shader)\n",
+               st[0].median / st[3].median);
     bool shadows = pelt_fur_get_desc(pelt_scene_instance_fur(s->instance)).look.inter_shadow;
     if (shadows)
         printf("  inter-fur shadows: the draw takes %.3fx as long with them\n", st[0].median / st[2].median);
     free(t);
     return 0;
+}
+
+/* The camera backs away along its view direction to `factor` times its
+ * distance from the mesh's centre: each distance timed (alternated over
+ * the distances, so noise hits them alike) with the levels of detail the
+ * renderer chose there. */
+static void bench_dolly(cli_session *s, unsigned frames)
+{
+    enum { STEPS = 7 };
+    static const float factors[STEPS] = {1.0f, 1.5f, 2.0f, 3.0f, 4.0f, 8.0f, 16.0f};
+    double *t = calloc((size_t)frames * STEPS, sizeof *t);
+    if (!t) return;
+    pelt_view base = pelt_scene_instance_view(s->instance);
+    /* Distance to the mesh's origin along the view axis (view space -z). */
+    float depth = -(base.view[2] * base.model[12] + base.view[6] * base.model[13] +
+                    base.view[10] * base.model[14] + base.view[14]);
+    pelt_render_stats rs[STEPS];
+    for (unsigned i = 0; i < frames; i++)
+        for (int k = 0; k < STEPS; k++) {
+            pelt_view v = base;
+            float back = depth * (factors[k] - 1.0f);
+            v.view[14] -= back;
+            for (int c = 0; c < 3; c++) v.eye[c] -= back * -base.view[2 + 4 * c];
+            pelt_headless_bind(s->gl);
+            glClearColor(s->background[0], s->background[1], s->background[2], s->background[3]);
+            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            double t0 = now_ms();
+            pelt_renderer_draw(s->renderer, &v, &s->draw);
+            glFinish();
+            t[(size_t)k * frames + i] = now_ms() - t0;
+            rs[k] = pelt_renderer_get_stats(s->renderer);
+        }
+    printf("dolly out (draw, median of %u each, alternated):\n", frames);
+    for (int k = 0; k < STEPS; k++) {
+        stats st = summarize(t + (size_t)k * frames, frames);
+        printf("  %5.1fx distance  median %9.3f ms  min %9.3f  max %9.3f   mesh level %u (%zu triangles), "
+               "%u shells (level %u, blend %.2f)\n",
+               (double)factors[k], st.median, st.min, st.max, rs[k].mesh_level, rs[k].mesh_triangles,
+               rs[k].shell_instances, rs[k].shell_level, (double)rs[k].shell_blend);
+    }
+    free(t);
 }
 
 int cmd_bench(int argc, char **argv)
@@ -266,7 +319,12 @@ int cmd_bench(int argc, char **argv)
     pelt_render_stats rs = pelt_renderer_get_stats(s.renderer);
     printf("shell draw calls per frame: %u (%u layers), %zu triangles submitted\n",
            rs.shell_draw_calls, rs.shell_instances, rs.triangles);
-    if (bench_variants(&s, frames)) rc = 1;
+    printf("level of detail: mesh level %u (%zu of %zu triangles), shell level %u (blend %.2f), "
+           "back faces %s\n",
+           rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.shell_level, (double)rs.shell_blend,
+           rs.culled ? "culled" : "drawn");
+    if (bench_variants(&s, frames, o.bench_floor)) rc = 1;
+    if (rc == 0 && o.bench_dolly) bench_dolly(&s, frames);
     if (o.bench_clumps) {
         add_third_of_clumps(fur);
         measure(&s, sc, o.warmup, frames, t, wet);

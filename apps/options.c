@@ -33,6 +33,8 @@ typedef enum flag_kind {
     FLAG_CLUMPS,
     FLAG_DROPLETS,
     FLAG_BRUSH,
+    FLAG_FLOOR,
+    FLAG_DOLLY,
     FLAG_QUIET
 } flag_kind;
 
@@ -103,6 +105,10 @@ static const flag flags[] = {
      "bench: time 10,000 droplets into a 2048^2 mask against one whole-mask upload"},
     {"--brush", NULL, NULL, FLAG_BRUSH, NULL,
      "bench: time 200 comb strokes (radius 2% and 5% of the mesh diagonal) and their uploads"},
+    {"--floor", NULL, NULL, FLAG_FLOOR, NULL,
+     "bench: also time the frame with a one-fetch shell shader, alternated (the floor)"},
+    {"--dolly", NULL, NULL, FLAG_DOLLY, NULL,
+     "bench: time the frame as the camera backs away to 16x its distance (level of detail)"},
     {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
 };
 
@@ -254,6 +260,12 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
         return true;
     case FLAG_BRUSH:
         o->bench_brush = true;
+        return true;
+    case FLAG_FLOOR:
+        o->bench_floor = true;
+        return true;
+    case FLAG_DOLLY:
+        o->bench_dolly = true;
         return true;
     case FLAG_DROPLETS:
         o->bench_droplets = true;

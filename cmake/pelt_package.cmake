@@ -53,7 +53,7 @@ set(CPACK_COMPONENT_CLI_DESCRIPTION
 set(CPACK_DEBIAN_DEV_PACKAGE_NAME libpelt-dev)
 set(CPACK_DEBIAN_DEV_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
-  "libepoxy-dev, libegl-dev, libassimp-dev, libcjson-dev, libstb-dev")
+  "libepoxy-dev, libegl-dev, libassimp-dev, libcjson-dev, libstb-dev, libmeshoptimizer-dev")
 set(CPACK_COMPONENT_DEV_DEPENDS runtime)
 set(CPACK_COMPONENT_DEV_DESCRIPTION
   "real-time dynamic shell fur over triangle meshes (development files)\n"

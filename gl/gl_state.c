@@ -35,6 +35,8 @@ void pelt__gl_state_reset(void)
     glBlendFunc(GL_ONE, GL_ZERO);
     glBlendEquation(GL_FUNC_ADD);
     glDisable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
     pelt__gl_unpack_defaults();
 }
 

@@ -8,6 +8,7 @@
 #include "pelt/render.h"
 
 #include "core/base/hooks.h"
+#include "core/fur/lod.h"
 
 #include "gl/shaders/bindings.glsl"
 
@@ -51,9 +52,12 @@ typedef struct pelt__gpu_mesh {
     GLuint table_vertices, table_tips, table_groom;
     float *tip_staging;   /* 4 floats per vertex */
     pelt_allocator alloc;
-    GLuint ebo;
+    GLuint ebo;           /* the mesh's triangles, then each level of detail's */
     size_t vertex_count;
     size_t triangle_count;
+    size_t level_offset[PELT__LOD_MAX_LEVELS];    /* bytes into ebo */
+    size_t level_triangles[PELT__LOD_MAX_LEVELS];
+    unsigned level_count;
     unsigned tips_version;
 } pelt__gpu_mesh;
 

@@ -22,8 +22,16 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
     const uint8_t *volume = pelt__fur_gpu_volume(fur, &size, &slices);
     glGenTextures(1, &g->volume);
     bind(PELT_UNIT_FUR, GL_TEXTURE_2D_ARRAY, g->volume);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)size, (GLsizei)size, (GLsizei)slices, 0,
-                 GL_RGBA, GL_UNSIGNED_BYTE, volume);
+    /* The shell levels of detail (Lengyel §2.4) follow the volume's slices. */
+    unsigned lod_slices;
+    const uint8_t *lod = pelt__fur_gpu_volume_lod(fur, &lod_slices);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)size, (GLsizei)size, (GLsizei)(slices + lod_slices),
+                 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, (GLsizei)size, (GLsizei)size, (GLsizei)slices, GL_RGBA,
+                    GL_UNSIGNED_BYTE, volume);
+    if (lod_slices)
+        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)slices, (GLsizei)size, (GLsizei)size,
+                        (GLsizei)lod_slices, GL_RGBA, GL_UNSIGNED_BYTE, lod);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);

@@ -178,10 +178,24 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
     size_t all[2];
     pelt__fur_gpu_take_groom_dirty(fur, all); /* all of it went up just now */
 
+    /* One index buffer: the mesh's own triangles (the skin, and the shells
+     * with level of detail off), then each level of detail's (lod.h). */
+    const pelt__lod_chain *lod = pelt__fur_gpu_lod(fur);
+    size_t total = m.triangle_count;
+    for (unsigned k = 0; k < lod->count; k++) total += lod->levels[k].triangle_count;
     glGenBuffers(1, &g->ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(m.triangle_count * 3 * sizeof(uint32_t)),
-                 m.indices, GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(total * 3 * sizeof(uint32_t)), NULL, GL_STATIC_DRAW);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, (GLsizeiptr)(m.triangle_count * 3 * sizeof(uint32_t)), m.indices);
+    size_t at = m.triangle_count * 3 * sizeof(uint32_t);
+    g->level_count = lod->count;
+    for (unsigned k = 0; k < lod->count; k++) {
+        size_t bytes = lod->levels[k].triangle_count * 3 * sizeof(uint32_t);
+        glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)at, (GLsizeiptr)bytes, lod->levels[k].indices);
+        g->level_offset[k] = at;
+        g->level_triangles[k] = lod->levels[k].triangle_count;
+        at += bytes;
+    }
     glBindVertexArray(0);
     return PELT_OK;
 }

@@ -16,13 +16,43 @@
 
 #include "gl/gpu.h"
 
+/* The levels of detail of one frame (core/fur/lod.h), chosen by the
+ * renderer from the view. */
+typedef struct pelt__frame_lod {
+    bool full_mesh;       /* level of detail off: the mesh's own triangles */
+    unsigned mesh_level;  /* else this geometric level's triangles and fins */
+    unsigned shell_level; /* Lengyel §2.4: ceil(N / 2^level) shells ... */
+    float shell_blend;    /* ... blending this far towards the next level */
+    bool cull;            /* back-facing shells culled (closed meshes) */
+    bool front_cw;        /* the mesh winds its outside faces clockwise */
+} pelt__frame_lod;
+
 /* What a pass draws with in one frame; the shared objects are bound. */
 typedef struct pelt__pass_frame {
     const pelt__gpu_mesh *mesh;
     unsigned layers;          /* N, the fur's shell count */
     const pelt_draw_desc *draw;
     pelt_render_stats *stats; /* the pass adds its draw calls and triangles */
+    pelt__frame_lod lod;
+    const pelt_view *view;
+    unsigned shell_features;  /* PELT__SHELL_* the shells need this frame */
 } pelt__pass_frame;
+
+/* What the shell fragment shader compiles in (shaders/shell_fs.glsl): a
+ * frame uses the variant with only the features it needs. */
+enum {
+    PELT__SHELL_WET = 1 << 0,           /* clumps and wet darkening */
+    PELT__SHELL_INTER_SHADOW = 1 << 1,  /* Kenwright's inter-fur shadows */
+    PELT__SHELL_LOD_BLEND = 1 << 2,     /* a second fetch: the next shell level */
+    PELT__SHELL_COLOR_TEXTURE = 1 << 3, /* the fur has a colour texture */
+    PELT__SHELL_KAJIYA_KAY = 1 << 4,    /* the hair lighting models */
+    PELT__SHELL_LIGHT_TABLE = 1 << 5,
+    PELT__SHELL_VARIANTS = 1 << 6,
+    PELT__SHELL_GENERIC = PELT__SHELL_VARIANTS - 1 /* everything, chosen per fragment */
+};
+
+/* The fins use the features that concern them. */
+#define PELT__FIN_FEATURES (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE)
 
 /* Opaque skin with depth write: the mesh with the innermost fur slice. */
 typedef struct pelt__skin_pass {
@@ -38,28 +68,47 @@ void pelt__skin_pass_destroy(pelt__skin_pass *p);
  * fade collapses fins away from the silhouette in the vertex stage. Owns
  * the fin texture and the per-fin instance buffer. */
 typedef struct pelt__fin_pass {
-    GLuint program;
+    GLuint variants[PELT__SHELL_VARIANTS]; /* by the PELT__FIN_FEATURES bits */
+    bool failed[PELT__SHELL_VARIANTS];
+    pelt_hooks hooks;
     GLuint vao, vbo;    /* per instance: edge (2 uints), start (1 float) */
     GLuint texture;     /* the fin texture, PELT_UNIT_FIN */
-    GLint unfaded;      /* uniform location: 1 draws every fin at full opacity */
-    size_t count;
+    GLint unfaded[PELT__SHELL_VARIANTS]; /* u_unfaded: 1 draws every fin at full opacity */
+    size_t count;       /* all levels' fins */
+    size_t level_first[PELT__LOD_MAX_LEVELS], level_count[PELT__LOD_MAX_LEVELS];
+    /* The fins a view may show (Lengyel: "we collect the fins with nonzero
+     * alpha"), gathered each frame into staging (allocated once) and sent
+     * to vbo_facing; the fade itself stays exact in the vertex stage. */
+    const pelt__lod_chain *lod;
+    pelt__fin_edge *staging;
+    GLuint vbo_facing;
+    pelt_allocator alloc;
 } pelt__fin_pass;
 
 pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_hooks *hooks,
                                   pelt_error *err);
-void pelt__fin_pass_draw(const pelt__fin_pass *p, const pelt__pass_frame *f);
+void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f);
 void pelt__fin_pass_destroy(pelt__fin_pass *p);
 
-/* All shells in one instanced draw, blended inner to outer, depth tested
- * without depth write. */
-typedef struct pelt__shell_pass {
+typedef struct pelt__shell_program {
     GLuint program;
-    GLint first_layer; /* uniform location */
-    GLint no_inter_shadow; /* uniform location */
+    GLint shells, shells_next; /* uniform locations (shell_vs.glsl) */
+    GLint no_inter_shadow;
+    bool failed;               /* did not build: the generic one stands in */
+} pelt__shell_program;
+
+/* All shells in one instanced draw, blended inner to outer, depth tested
+ * without depth write. Variants build the first time a frame needs them
+ * (tens of milliseconds on llvmpipe, once); the generic one and the floor
+ * (pelt_draw_desc.floor_shader) at creation. */
+typedef struct pelt__shell_pass {
+    pelt__shell_program variants[PELT__SHELL_VARIANTS];
+    pelt__shell_program floor;
+    pelt_hooks hooks;
 } pelt__shell_pass;
 
 pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks, pelt_error *err);
-void pelt__shell_pass_draw(const pelt__shell_pass *p, const pelt__pass_frame *f);
+void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f);
 void pelt__shell_pass_destroy(pelt__shell_pass *p);
 
 #endif

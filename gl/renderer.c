@@ -8,6 +8,7 @@
 #include "core/fur/fur_gpu.h"
 #include "gl/passes.h"
 
+#include <math.h>
 #include <string.h>
 
 struct pelt_renderer {
@@ -93,6 +94,67 @@ void pelt_renderer_upload(pelt_renderer *r)
     pelt__gl_state_reset();
 }
 
+/* The levels of detail for this view (core/fur/lod.h): the geometric level
+ * by the error it makes on screen, the shell level by the fur's length on
+ * screen, both measured at the bounding sphere's point nearest the eye. */
+static pelt__frame_lod choose_lod(const pelt_renderer *r, const pelt_view *v, const pelt_draw_desc *draw)
+{
+    pelt__frame_lod l;
+    memset(&l, 0, sizeof l);
+    const pelt_fur_lod fl = pelt_fur_get_desc(r->fur).lod;
+    const pelt__lod_chain *c = pelt__fur_gpu_lod(r->fur);
+    if (fl.mode == PELT_LOD_OFF || c->count == 0) {
+        l.full_mesh = true;
+        return l;
+    }
+    bool closed = c->closed && c->winding != 0;
+    l.cull = closed && (draw->cull_shells > 0 || (draw->cull_shells == 0 && !draw->no_fins));
+    l.front_cw = c->winding < 0;
+    bool one_height = draw->first_layer || draw->layer_count; /* inspecting layers: level 0 */
+    unsigned shell_levels = pelt__lod_shell_levels(r->layers);
+    if (fl.mode == PELT_LOD_FIXED) {
+        l.mesh_level = fl.mesh_level < c->count ? fl.mesh_level : c->count - 1;
+        l.shell_level = one_height ? 0 : fl.shell_level < shell_levels ? fl.shell_level : shell_levels - 1;
+        return l;
+    }
+    const float *m = v->model;
+    float scale = 0.0f;
+    for (int col = 0; col < 3; col++)
+        scale = fmaxf(scale, sqrtf(m[4 * col] * m[4 * col] + m[4 * col + 1] * m[4 * col + 1] +
+                                   m[4 * col + 2] * m[4 * col + 2]));
+    float center[3];
+    for (int k = 0; k < 3; k++)
+        center[k] = m[k] * c->center[0] + m[4 + k] * c->center[1] + m[8 + k] * c->center[2] + m[12 + k];
+    float ppu;
+    if (v->proj[11] == 0.0f) { /* orthographic: the same size at any distance */
+        ppu = v->proj[5] * 0.5f * (float)v->height * scale;
+    } else {
+        float dx = center[0] - v->eye[0], dy = center[1] - v->eye[1], dz = center[2] - v->eye[2];
+        ppu = pelt__lod_pixels_per_unit(v->proj[5], (float)v->height, scale, sqrtf(dx * dx + dy * dy + dz * dz),
+                                        c->radius);
+    }
+    if (v->height == 0) ppu = INFINITY;
+    l.mesh_level = pelt__lod_pick(c, ppu, fl.mesh_error_pixels);
+    if (!one_height)
+        pelt__lod_shell_choice(r->layers, pelt_fur_get_desc(r->fur).length * ppu, fl.shell_pixels, &l.shell_level,
+                               &l.shell_blend);
+    return l;
+}
+
+/* The shell shader's features this frame needs (PELT__SHELL_*). */
+static unsigned shell_features(const pelt_renderer *r, const pelt__frame_lod *lod, const pelt_draw_desc *draw)
+{
+    const pelt_fur_look look = pelt_fur_get_desc(r->fur).look;
+    unsigned w, h, version;
+    unsigned f = 0;
+    if (pelt__fur_gpu_any_wet(r->fur)) f |= PELT__SHELL_WET;
+    if (look.inter_shadow && !draw->no_inter_shadow) f |= PELT__SHELL_INTER_SHADOW;
+    if (lod->shell_blend > 0.0f) f |= PELT__SHELL_LOD_BLEND;
+    if (pelt__fur_gpu_color(r->fur, &w, &h, &version)) f |= PELT__SHELL_COLOR_TEXTURE;
+    f |= look.shading == PELT_SHADING_LENGYEL_TABLE ? PELT__SHELL_LIGHT_TABLE : PELT__SHELL_KAJIYA_KAY;
+    return f;
+}
+
 void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw_desc *draw)
 {
     static const pelt_draw_desc everything = {0};
@@ -106,7 +168,13 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     pelt__gpu_fur_bind(&r->textures);
     pelt__gpu_mesh_bind_tables(&r->mesh);
     pelt__gpu_blocks_bind(&r->blocks);
-    const pelt__pass_frame frame = {&r->mesh, r->layers, draw, &stats};
+    const pelt__frame_lod lod = choose_lod(r, view, draw);
+    const pelt__pass_frame frame = {&r->mesh, r->layers, draw, &stats, lod, view, shell_features(r, &lod, draw)};
+    stats.mesh_level = frame.lod.mesh_level;
+    stats.mesh_triangles = frame.lod.full_mesh ? r->mesh.triangle_count : r->mesh.level_triangles[frame.lod.mesh_level];
+    stats.shell_level = frame.lod.shell_level;
+    stats.shell_blend = frame.lod.shell_blend;
+    stats.culled = frame.lod.cull && !draw->no_shells;
     /* Frame order (DESIGN.md): skin, fins, shells. */
     if (!draw->no_skin) pelt__skin_pass_draw(&r->skin, &frame);
     if (!draw->no_fins) pelt__fin_pass_draw(&r->fins, &frame);

@@ -6,39 +6,98 @@
 
 #include "gl/programs.h"
 
+#include <stdio.h>
+#include <string.h>
+
+static const char *const feature_defines[] = {"PELT_WET", "PELT_INTER_SHADOW", "PELT_LOD_BLEND",
+                                              "PELT_COLOR_TEXTURE", "PELT_SHADING_KK", "PELT_SHADING_TABLE"};
+
+static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor, const pelt_hooks *hooks,
+                         pelt_error *err)
+{
+    char defines[256] = "";
+    size_t at = 0;
+    for (unsigned k = 0; k < sizeof feature_defines / sizeof feature_defines[0]; k++)
+        if (features & (1u << k))
+            at += (size_t)snprintf(defines + at, sizeof defines - at, "#define %s 1\n", feature_defines[k]);
+    const char *vs[] = {pelt__shader_fur_shape, pelt__shader_shell_vs, NULL};
+    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_fur_light, pelt__shader_clump,
+                        pelt__shader_shell_fs, NULL};
+    const char *floor_fs[] = {pelt__shader_shell_floor_fs, NULL};
+    pelt_status st = pelt__gl_program_create(floor ? "shell floor" : "shell", vs, floor ? floor_fs : fs, hooks,
+                                             &sp->program, err);
+    if (st != PELT_OK) {
+        sp->failed = true;
+        return st;
+    }
+    sp->shells = glGetUniformLocation(sp->program, "u_shells");
+    sp->shells_next = glGetUniformLocation(sp->program, "u_shells_next");
+    sp->no_inter_shadow = glGetUniformLocation(sp->program, "u_no_inter_shadow");
+    return PELT_OK;
+}
+
 pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks, pelt_error *err)
 {
-    const char *vs[] = {pelt__shader_fur_shape, pelt__shader_shell_vs, NULL};
-    const char *fs[] = {pelt__shader_shading, pelt__shader_fur_light, pelt__shader_clump,
-                        pelt__shader_shell_fs, NULL};
-    pelt_status st = pelt__gl_program_create("shell", vs, fs, hooks, &p->program, err);
-    if (st == PELT_OK) {
-        p->first_layer = glGetUniformLocation(p->program, "u_first_layer");
-        p->no_inter_shadow = glGetUniformLocation(p->program, "u_no_inter_shadow");
-    }
+    memset(p, 0, sizeof *p);
+    p->hooks = *hooks;
+    pelt_status st = build(&p->variants[PELT__SHELL_GENERIC], PELT__SHELL_GENERIC, false, hooks, err);
+    if (st == PELT_OK) st = build(&p->floor, 0, true, hooks, err);
     return st;
 }
 
-void pelt__shell_pass_draw(const pelt__shell_pass *p, const pelt__pass_frame *f)
+/* The program for this frame's features, built on first use; the generic
+ * program when a variant does not build (logged through the hooks). */
+static const pelt__shell_program *program_for(pelt__shell_pass *p, unsigned features)
 {
-    /* Layers first .. first + count - 1 of N (count 0: to the outermost). */
-    unsigned first = f->draw->first_layer;
-    unsigned count = first >= f->layers ? 0 : f->layers - first;
-    if (f->draw->layer_count && f->draw->layer_count < count) count = f->draw->layer_count;
+    pelt__shell_program *sp = &p->variants[features & PELT__SHELL_GENERIC];
+    if (!sp->program && !sp->failed) build(sp, features & PELT__SHELL_GENERIC, false, &p->hooks, NULL);
+    return sp->program ? sp : &p->variants[PELT__SHELL_GENERIC];
+}
+
+void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
+{
+    const pelt__frame_lod *lod = &f->lod;
+    unsigned n = f->layers, level = lod->shell_level;
+    float shells[4], next[2];
+    unsigned count;
+    if (level == 0 && lod->shell_blend == 0.0f) {
+        /* Layers first .. first + count - 1 of N (count 0: to the outermost). */
+        unsigned first = f->draw->first_layer;
+        unsigned to_top = first >= n ? 0 : n - first;
+        count = to_top;
+        if (f->draw->layer_count && f->draw->layer_count < count) count = f->draw->layer_count;
+        shells[0] = (float)to_top, shells[1] = 1.0f, shells[2] = (float)(1 + first), shells[3] = 0.0f;
+    } else {
+        count = pelt__lod_shell_count(n, level);
+        shells[0] = (float)count, shells[1] = (float)(1u << level);
+        shells[2] = (float)pelt__lod_shell_base(n, level), shells[3] = lod->shell_blend;
+    }
+    next[0] = (float)pelt__lod_shell_base(n, level + 1), next[1] = (float)pelt__lod_shell_count(n, level + 1);
     if (count == 0) return;
     pelt__gl_blended_hair_state();
-    glUseProgram(p->program);
-    glUniform1f(p->first_layer, (float)first);
-    glUniform1i(p->no_inter_shadow, f->draw->no_inter_shadow ? 1 : 0);
-    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(f->mesh->triangle_count * 3), GL_UNSIGNED_INT,
-                            NULL, (GLsizei)count);
+    if (lod->cull) {
+        /* The skin hides what faces away; the fins carry the silhouette. */
+        glEnable(GL_CULL_FACE);
+        glFrontFace(lod->front_cw ? GL_CW : GL_CCW);
+    }
+    const pelt__shell_program *sp = f->draw->floor_shader ? &p->floor : program_for(p, f->shell_features);
+    glUseProgram(sp->program);
+    glUniform4fv(sp->shells, 1, shells);
+    glUniform2fv(sp->shells_next, 1, next);
+    glUniform1i(sp->no_inter_shadow, f->draw->no_inter_shadow ? 1 : 0);
+    size_t triangles = lod->full_mesh ? f->mesh->triangle_count : f->mesh->level_triangles[lod->mesh_level];
+    const void *offset = (const void *)(lod->full_mesh ? 0 : f->mesh->level_offset[lod->mesh_level]);
+    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(triangles * 3), GL_UNSIGNED_INT, offset, (GLsizei)count);
+    glFrontFace(GL_CCW);
     f->stats->shell_draw_calls++;
     f->stats->shell_instances += count;
-    f->stats->triangles += f->mesh->triangle_count * count;
+    f->stats->triangles += triangles * count;
 }
 
 void pelt__shell_pass_destroy(pelt__shell_pass *p)
 {
-    if (p->program) glDeleteProgram(p->program);
-    p->program = 0;
+    for (int k = 0; k < PELT__SHELL_VARIANTS; k++)
+        if (p->variants[k].program) glDeleteProgram(p->variants[k].program);
+    if (p->floor.program) glDeleteProgram(p->floor.program);
+    memset(p, 0, sizeof *p);
 }

@@ -22,6 +22,7 @@ _Static_assert(sizeof(pelt_atlas_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_vertex_colors_use) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_brush_tool) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_shading_model) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_lod_mode) == sizeof(int), "enum size");
 
 #define PI_F 3.14159265358979f
 
@@ -156,6 +157,7 @@ static const char *const direction_names[] = {"global", "vertex-colors", NULL};
 static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
 static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
+static const char *const lod_names[] = {"auto", "off", "fixed", NULL};
 /* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
  * The scene format names them as the issue does; the preset table spells two
  * of them differently, so both spellings are accepted (same index). */
@@ -213,6 +215,11 @@ static const key_def scene_keys[] = {
     ENUM("shading.model", fur.look.shading, shading_names),
     FLT("shading.diffuse_power", fur.look.diffuse_power, 0, 256, F_LO_OPEN | F_ZERO_OK),
     PATH("fur.groom", groom.file),
+    ENUM("fur.lod", fur.lod.mode, lod_names),
+    UINT_("fur.lod_shell_level", fur.lod.shell_level, 0, 8, 0),
+    UINT_("fur.lod_mesh_level", fur.lod.mesh_level, 0, 8, 0),
+    FLT("fur.lod_shell_pixels", fur.lod.shell_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    FLT("fur.lod_mesh_error", fur.lod.mesh_error_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
     FLT("fins.length", fur.fins.length, 0, 8, F_LO_OPEN | F_ZERO_OK),
     FLT("fins.density", fur.fins.density, 0, 4096, F_LO_OPEN | F_ZERO_OK),
     FLT("fins.curl", fur.fins.curl, 0, 64, 0),

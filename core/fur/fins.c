@@ -14,18 +14,18 @@ static int cmp_u64(const void *x, const void *y)
     return (a > b) - (a < b);
 }
 
-pelt_status pelt__fin_edges_build(const pelt_mesh *mesh, uint32_t seed, const pelt_allocator *alloc,
-                                  pelt__fin_edge **out, size_t *count, pelt_error *err)
+pelt_status pelt__fin_edges_build(const uint32_t *indices, size_t triangle_count, uint32_t seed,
+                                  const pelt_allocator *alloc, pelt__fin_edge **out, size_t *count,
+                                  pelt_error *err)
 {
     *out = NULL;
     *count = 0;
-    const pelt_mesh_data m = pelt_mesh_get_data(mesh);
-    size_t n = 3 * m.triangle_count;
+    size_t n = 3 * triangle_count;
     uint64_t *keys = pelt__alloc(alloc, (n ? n : 1) * sizeof *keys);
     if (!keys) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fin edges", n);
-    for (size_t t = 0; t < m.triangle_count; t++)
+    for (size_t t = 0; t < triangle_count; t++)
         for (int k = 0; k < 3; k++) {
-            uint64_t a = m.indices[3 * t + (size_t)k], b = m.indices[3 * t + (size_t)(k + 1) % 3];
+            uint64_t a = indices[3 * t + (size_t)k], b = indices[3 * t + (size_t)(k + 1) % 3];
             keys[3 * t + (size_t)k] = a < b ? a << 32 | b : b << 32 | a;
         }
     qsort(keys, n, sizeof *keys, cmp_u64);
@@ -58,4 +58,28 @@ pelt_vec3 pelt__fin_normal(pelt_vec3 pa, pelt_vec3 pb, pelt_vec3 na, pelt_vec3 n
 float pelt__fin_fade(pelt_vec3 fin_normal, pelt_vec3 view_dir)
 {
     return fmaxf(0.0f, 2.0f * fabsf(v3_dot(fin_normal, view_dir)) - 1.0f);
+}
+
+void pelt__fin_normals(const pelt__fin_edge *edges, size_t count, const float *positions, const float *normals,
+                       float *out)
+{
+    for (size_t i = 0; i < count; i++) {
+        size_t a = edges[i].a, b = edges[i].b;
+        pelt_vec3 n = pelt__fin_normal(v3_load(positions + 3 * a), v3_load(positions + 3 * b),
+                                       v3_load(normals + 3 * a), v3_load(normals + 3 * b));
+        v3_store(out + 3 * i, n);
+    }
+}
+
+size_t pelt__fins_facing(const pelt__fin_edge *edges, const float *fin_normals, size_t count, pelt_vec3 view_dir,
+                         float margin, pelt__fin_edge *out)
+{
+    float limit = 0.5f - margin;
+    size_t kept = 0;
+    for (size_t i = 0; i < count; i++) {
+        const float *n = fin_normals + 3 * i;
+        float p = n[0] * view_dir.x + n[1] * view_dir.y + n[2] * view_dir.z;
+        if (fabsf(p) > limit) out[kept++] = edges[i];
+    }
+    return kept;
 }

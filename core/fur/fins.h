@@ -15,10 +15,12 @@ typedef struct pelt__fin_edge {
     float start;
 } pelt__fin_edge;
 
-/* Every edge of the mesh once: an edge two triangles share gets one fin, a
- * border edge one too. *out comes from `alloc`; free it with it. */
-pelt_status pelt__fin_edges_build(const pelt_mesh *mesh, uint32_t seed, const pelt_allocator *alloc,
-                                  pelt__fin_edge **out, size_t *count, pelt_error *err);
+/* Every edge of a triangle list once (the mesh's, or a level of detail's):
+ * an edge two triangles share gets one fin, a border edge one too. *out
+ * comes from `alloc`; free it with it. */
+pelt_status pelt__fin_edges_build(const uint32_t *indices, size_t triangle_count, uint32_t seed,
+                                  const pelt_allocator *alloc, pelt__fin_edge **out, size_t *count,
+                                  pelt_error *err);
 
 /* The fin's plane holds the edge and the mean of its end normals; its
  * normal is their cross product, unit (n of the first vertex when the
@@ -29,5 +31,18 @@ pelt_vec3 pelt__fin_normal(pelt_vec3 pa, pelt_vec3 pb, pelt_vec3 na, pelt_vec3 n
  * direction for the infinite viewer: 1 for a fin seen face on (its edge on
  * the silhouette), 0 once the fin turns 60 degrees away from that. */
 float pelt__fin_fade(pelt_vec3 fin_normal, pelt_vec3 view_dir);
+
+/* The fin normal of every edge (pelt__fin_normal of its end points and
+ * vertex normals), 3 floats per fin into `out`. */
+void pelt__fin_normals(const pelt__fin_edge *edges, size_t count, const float *positions, const float *normals,
+                       float *out);
+
+/* Lengyel et al. §2.3, "we collect the fins with nonzero alpha": copies to
+ * `out` the fins whose fade may be above zero seen along `view_dir` (unit,
+ * in the normals' space): |n . view_dir| > 1/2 - margin. The margin
+ * covers what the GPU's exact fade (fins.glsl, in world space) may differ
+ * by. Returns how many were kept; keeps their order. */
+size_t pelt__fins_facing(const pelt__fin_edge *edges, const float *fin_normals, size_t count, pelt_vec3 view_dir,
+                         float margin, pelt__fin_edge *out);
 
 #endif

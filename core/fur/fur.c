@@ -55,6 +55,8 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->fins.length == 0.0f) d->fins.length = 1.0f;
     if (d->fins.density == 0.0f) d->fins.density = (float)d->look.texture_size / 16.0f;
     if (d->fins.curl_turns == 0.0f) d->fins.curl_turns = 2.0f;
+    if (d->lod.shell_pixels == 0.0f) d->lod.shell_pixels = 1.0f;
+    if (d->lod.mesh_error_pixels == 0.0f) d->lod.mesh_error_pixels = 0.5f;
 }
 
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
@@ -110,6 +112,12 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "fin length must be in (0, 8], density in (0, texture size], curl in [0, 64] "
                           "texels, curl turns in (0, 64]");
+    if ((unsigned)d->lod.mode > PELT_LOD_FIXED || d->lod.shell_level > 8 || d->lod.mesh_level > 8 ||
+        !(d->lod.shell_pixels > 0.0f && d->lod.shell_pixels <= 64.0f) ||
+        !(d->lod.mesh_error_pixels > 0.0f && d->lod.mesh_error_pixels <= 64.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "level of detail: mode auto, off or fixed, levels 0..8, shell pixels and "
+                          "mesh error pixels in (0, 64]");
     return PELT_OK;
 }
 
@@ -196,8 +204,11 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
     if (st == PELT_OK) st = pelt__rain_create(mesh, &f->desc.hooks.allocator, &f->rain, err);
     if (st == PELT_OK) st = pelt__groom_init(&f->groom, mesh->vertex_count, &f->desc.hooks.allocator, err);
+    /* Level 0 holds the fins of the full mesh; with level of detail off
+     * there is nothing coarser to build. */
     if (st == PELT_OK)
-        st = pelt__fin_edges_build(mesh, d.seed, &f->desc.hooks.allocator, &f->fin_edges, &f->fin_count, err);
+        st = pelt__lod_chain_build(mesh, d.seed, d.lod.mode == PELT_LOD_OFF ? 1 : 0, &f->desc.hooks.allocator,
+                                   &f->lod, err);
     if (st != PELT_OK) {
         pelt_fur_destroy(f);
         return st;
@@ -212,6 +223,16 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
     }
     pelt__furtex_generate(&td, f->texture);
+    /* Lengyel §2.4: the coarser shell levels, composited from the volume. */
+    if (d.lod.mode != PELT_LOD_OFF && pelt__lod_shell_extra_slices(d.layers) > 0) {
+        f->lod_slice_count = (unsigned)pelt__lod_shell_extra_slices(d.layers);
+        f->lod_slices = pelt__alloc(a, (size_t)f->lod_slice_count * d.look.texture_size * d.look.texture_size * 4);
+        if (!f->lod_slices) {
+            pelt_fur_destroy(f);
+            return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the shell levels of detail");
+        }
+        pelt__lod_shell_composite(f->texture, d.look.texture_size, d.layers, f->lod_slices);
+    }
     pelt__fintex_generate(&fd, f->fin_texture);
     f->fin_width = d.look.texture_size;
     f->fin_height = fd.height;
@@ -249,7 +270,8 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__bvh_destroy(f->bvh);
     pelt__rain_destroy(f->rain);
     pelt__groom_free(&f->groom);
-    pelt__free(&a, f->fin_edges);
+    pelt__lod_chain_free(&f->lod, &a);
+    pelt__free(&a, f->lod_slices);
     pelt__free(&a, f->fin_texture);
     pelt__free(&a, f);
 }

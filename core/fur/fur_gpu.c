@@ -13,6 +13,12 @@ const uint8_t *pelt__fur_gpu_volume(const pelt_fur *f, unsigned *size, unsigned 
     return f->texture;
 }
 
+const uint8_t *pelt__fur_gpu_volume_lod(const pelt_fur *f, unsigned *slices)
+{
+    *slices = f->lod_slice_count;
+    return f->lod_slices;
+}
+
 const float *pelt__fur_gpu_uvs(const pelt_fur *f) { return f->fur_uvs; }
 
 void pelt__fur_gpu_per_uv(const pelt_fur *f, float out[2])
@@ -61,9 +67,11 @@ bool pelt__fur_gpu_take_groom_dirty(pelt_fur *f, size_t range[2])
 
 const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *f, size_t *count)
 {
-    *count = f->fin_count;
-    return f->fin_edges;
+    *count = f->lod.levels[0].fin_count;
+    return f->lod.levels[0].fins;
 }
+
+const pelt__lod_chain *pelt__fur_gpu_lod(const pelt_fur *f) { return &f->lod; }
 
 const uint8_t *pelt__fur_gpu_fin_texture(const pelt_fur *f, unsigned *width, unsigned *height)
 {
@@ -78,3 +86,5 @@ void pelt__fur_gpu_light_table(const pelt_fur *f, float *out)
 {
     pelt__lengyel_table(f->desc.look.diffuse_power, f->desc.look.shininess, out);
 }
+
+bool pelt__fur_gpu_any_wet(const pelt_fur *f) { return !pelt__rect_empty(f->wetness->wet); }

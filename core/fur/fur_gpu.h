@@ -9,6 +9,7 @@
 #include "pelt/fur.h"
 
 #include "core/fur/fins.h"
+#include "core/fur/lod.h"
 
 /* The mesh the fur was made for. */
 const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *fur);
@@ -17,6 +18,11 @@ const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *fur);
  * RGBA8, premultiplied, size x size texels by slices (layers + 1, slice 0
  * the opaque skin), slice after slice. */
 const uint8_t *pelt__fur_gpu_volume(const pelt_fur *fur, unsigned *size, unsigned *slices);
+
+/* The coarser shell levels' slices (core/fur/lod.h), which follow the
+ * volume's in the GPU array; *slices is 0 (and NULL returned) with level
+ * of detail off. */
+const uint8_t *pelt__fur_gpu_volume_lod(const pelt_fur *fur, unsigned *slices);
 
 /* Fur-texture coordinates in tiles, 2 floats per mesh vertex; and the fur
  * tiles per uv unit along u and v (scales a uv-space clump displacement
@@ -39,6 +45,9 @@ bool pelt__fur_gpu_take_groom_dirty(pelt_fur *fur, size_t range[2]);
 /* Fins (core/fur/fins.h): one per mesh edge, and their texture (RGBA8,
  * premultiplied, width along the fin, row 0 at the root). */
 const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *fur, size_t *count);
+/* The shell geometry levels (core/fur/lod.h), level 0 the full mesh in
+ * vertex-cache order, each level with its fins. */
+const pelt__lod_chain *pelt__fur_gpu_lod(const pelt_fur *fur);
 const uint8_t *pelt__fur_gpu_fin_texture(const pelt_fur *fur, unsigned *width, unsigned *height);
 
 /* Lengyel et al.'s §2.4 hair lighting table for the fur's material
@@ -55,6 +64,10 @@ const uint8_t *pelt__fur_gpu_color(const pelt_fur *fur, unsigned *width, unsigne
 /* The wetness mask (Silva et al. §3.1, core/wet/mask.h): width x height
  * texels of 4 floats (clump centre, radius, wetness), row 0 at v = 0. */
 const float *pelt__fur_gpu_mask(const pelt_fur *fur, unsigned *width, unsigned *height);
+
+/* False when every texel of the mask is dry: the shells then need no
+ * clump lookups (the shell pass's dry variant). */
+bool pelt__fur_gpu_any_wet(const pelt_fur *fur);
 
 /* Takes the rectangle of mask texels changed since the last take,
  * rect = {x0, y0, x1, y1} (x1, y1 exclusive); false when nothing changed. */

@@ -7,6 +7,7 @@
 #include "core/mesh/raycast.h"
 #include "core/fur/fins.h"
 #include "core/fur/groom.h"
+#include "core/fur/lod.h"
 #include "core/fur/strand.h"
 #include "core/wet/mask.h"
 #include "core/wet/rain.h"
@@ -33,8 +34,11 @@ struct pelt_fur {
     pelt__rain *rain;        /* rain and random drops (core/wet/rain.h) */
     float dry_rate;
     pelt__groom groom;       /* per-vertex colour, length, density, lean */
-    pelt__fin_edge *fin_edges; /* one fin per mesh edge (Lengyel §2.3) */
-    size_t fin_count;
+    pelt__lod_chain lod;     /* shell geometry levels, each with its fins
+                                (Lengyel §2.3); level 0 is the full mesh */
+    uint8_t *lod_slices;     /* the coarser shell levels' slices (Lengyel
+                                §2.4, core/fur/lod.h), NULL with lod off */
+    unsigned lod_slice_count;
     uint8_t *fin_texture;    /* RGBA8 fin texture, see pelt__fintex_generate */
     unsigned fin_width, fin_height;
 };

@@ -24,10 +24,15 @@ void main()
     if (!groom_keeps(hair.b, v_density)) discard;
     float a = hair.a * v_fade;
     if (a < 0.05) discard;
-    float rho = textureLod(u_mask, v_uv, 0.0).a;
     vec3 root = groom_root_color(u_color, v_hair_color);
     vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
-    vec3 base = mix(root, tip, hair.g) * texture(u_color_tex, v_uv * u_color_scale).rgb * hair.r;
-    base *= 1.0 - u_wet_darken * rho;
+    vec3 base = mix(root, tip, hair.g) * hair.r;
+    // Variants as the shells' (gl/fin_pass.c): only what the frame needs.
+#ifdef PELT_COLOR_TEXTURE
+    base *= texture(u_color_tex, v_uv * u_color_scale).rgb;
+#endif
+#ifdef PELT_WET
+    base *= 1.0 - u_wet_darken * textureLod(u_mask, v_uv, 0.0).a;
+#endif
     o_color = vec4(fur_light(base, v_tangent, v_normal, v_world, v_h), a);
 }

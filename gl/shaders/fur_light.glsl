@@ -10,8 +10,16 @@ vec3 fur_light(vec3 base, vec3 tangent, vec3 normal, vec3 world, float h)
     vec3 T = normalize(tangent);
     vec3 L = normalize(u_light_dir);
     vec3 E = normalize(world - u_eye);
+    // A program may be built for one model (the shell pass's variants,
+    // gl/shell_pass.c); else the fur's model is chosen per fragment.
+#if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
+    vec2 kk = lengyel_lookup(u_light_table, T, L, normalize(L - E));
+#elif defined(PELT_SHADING_KK) && !defined(PELT_SHADING_TABLE)
+    vec2 kk = kajiya_kay(T, L, E, u_shininess);
+#else
     vec2 kk = u_shading_model > 0.5 ? lengyel_lookup(u_light_table, T, L, normalize(L - E))
                                     : kajiya_kay(T, L, E, u_shininess);
+#endif
     // Hair on the side of the body facing away from the light is in the
     // body's shadow: Kajiya-Kay alone would light it as brightly.
     float facing = clamp(dot(normalize(normal), L) * 0.8 + 0.35, 0.0, 1.0);

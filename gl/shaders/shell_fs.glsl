@@ -10,7 +10,8 @@ in vec3 v_frame_u;
 in vec3 v_frame_v;
 in float v_density;
 in vec4 v_hair_color;
-flat in float v_layer;
+flat in vec3 v_slices;
+flat in float v_alpha;
 
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
@@ -19,18 +20,32 @@ uniform int u_no_inter_shadow;     // the shell pass's own: 1 skips inter-fur sh
 
 out vec4 o_color;
 
+// The shell pass builds this shader in variants (gl/shell_pass.c): each
+// PELT_* feature below is compiled in only when the frame needs it, so the
+// dry, unshadowed common case pays for none of it. The generic program
+// defines them all.
 void main()
 {
+    vec2 d = vec2(0.0);
+    float rho = 0.0;
+#ifdef PELT_WET
     // Clumps (Silva Eq. 5, Alg. 2 as DESIGN.md reads them): sample the hair
     // rooted at q; colour and fur coordinates move together.
     vec2 q;
     int clump = clump_lookup(u_mask, v_uv, v_h, u_clump_blend, u_layers, u_clump_tightness, q);
     if (clump == CLUMP_DISCARD) discard;
-    vec2 d = clump == CLUMP_DISPLACED ? q - v_uv : vec2(0.0);
-    float rho = clump_texel(u_mask, v_uv).a;
-    vec4 hair = texture(u_fur, vec3(v_fur_uv + d * u_fur_per_uv, v_layer + 1.0));
+    if (clump == CLUMP_DISPLACED) d = q - v_uv;
+    rho = clump_texel(u_mask, v_uv).a;
+#endif
+    vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
+    vec4 hair = texture(u_fur, vec3(fur_uv, v_slices.x));
+#ifdef PELT_LOD_BLEND
+    hair = mix(hair, texture(u_fur, vec3(fur_uv, v_slices.y)), v_slices.z);
+#endif
+    hair *= v_alpha;
     hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
     if (!groom_keeps(hair.b, v_density)) discard;
+#ifdef PELT_WET
     if (clump == CLUMP_DISPLACED) {
         // The clump squeezes its strands towards the centre by k: the
         // bundle is 1/k times as dense (see docs/wetness.md).
@@ -38,20 +53,28 @@ void main()
                             CLUMP_MAX_PULL);
         hair.a = clump_coverage(hair.a, k);
     }
+#endif
     if (hair.a < 0.05) {
+#ifdef PELT_INTER_SHADOW
         // Kenwright: no hair here, but the hair a step towards the light
         // casts its shadow on what lies below, with that hair's coverage.
         if (u_inter_shadow <= 0.0 || u_no_inter_shadow != 0) discard;
         vec2 step = inter_shadow_offset(normalize(u_light_dir), normalize(v_frame_u),
                                         normalize(v_frame_v), u_inter_shadow_step);
-        float caster = texture(u_fur, vec3(v_fur_uv + d * u_fur_per_uv + step, v_layer + 1.0)).a;
+        float caster = texture(u_fur, vec3(fur_uv + step, v_slices.x)).a * v_alpha;
         if (caster < 0.05) discard;
         o_color = vec4(0.0, 0.0, 0.0, caster * u_inter_shadow);
         return;
+#else
+        discard;
+#endif
     }
     vec3 root = groom_root_color(u_color, v_hair_color);
     vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
-    vec3 base = mix(root, tip, hair.g) * texture(u_color_tex, (v_uv + d) * u_color_scale).rgb * hair.r;
+    vec3 base = mix(root, tip, hair.g) * hair.r;
+#ifdef PELT_COLOR_TEXTURE
+    base *= texture(u_color_tex, (v_uv + d) * u_color_scale).rgb;
+#endif
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
     o_color = vec4(fur_light(base, v_tangent, v_normal, v_world, v_h), hair.a);
 }

@@ -13,7 +13,12 @@ layout(location = PELT_ATTR_COMB) in vec3 a_comb;    // comb direction x weight 
 layout(location = PELT_ATTR_GROOM) in vec4 a_groom;  // lean u, lean v, length scale, density
 layout(location = PELT_ATTR_HAIR_COLOR) in vec4 a_hair_color; // rgb, weight over u_color
 
-uniform float u_first_layer;            // the shell pass's own: the range may start above 0
+// The shell pass's own: which shells this draw covers (Lengyel §2.4 level
+// of detail, gl/shell_pass.c). Instance i, inner first, is the shell
+// j = x - 1 - i from the outside, at layer N - 1 - j * step.
+uniform vec4 u_shells;     // x: shells from the first to the outermost, y: step 2^k,
+                           // z: slice of instance 0, w: blend towards the next level
+uniform vec2 u_shells_next; // the next level: x: its first slice, y: its shell count
 uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
 
 out vec2 v_uv;
@@ -26,12 +31,21 @@ out vec3 v_frame_u;  // the surface's tangent frame in the world (inter-fur shad
 out vec3 v_frame_v;
 out float v_density;
 out vec4 v_hair_color;
-flat out float v_layer;
+flat out vec3 v_slices; // slice, next level's slice, the blend towards it
+flat out float v_alpha;  // the shell's opacity: fades as its level leaves
 
 void main()
 {
-    float layer = u_first_layer + float(gl_InstanceID);
+    float i = float(gl_InstanceID);
+    float j = u_shells.x - 1.0 - i;
+    float layer = u_layers - 1.0 - j * u_shells.y;
     float h = (1.0 + layer) / u_layers;
+    // Lengyel §2.4: the even shells (from the outside) blend into the next
+    // level's composite, the odd ones fade out.
+    bool kept = mod(j, 2.0) < 0.5;
+    float next = u_shells_next.x + u_shells_next.y - 1.0 - floor(j * 0.5);
+    v_slices = vec3(u_shells.z + i, kept ? next : u_shells.z + i, kept ? u_shells.w : 0.0);
+    v_alpha = kept ? 1.0 : 1.0 - u_shells.w;
     vec3 n = normalize(a_normal);
     vec3 u = normalize(a_tangent.xyz);
     vec3 v = cross(n, u) * a_tangent.w;
@@ -56,6 +70,5 @@ void main()
     v_h = h;
     v_density = a_groom.w;
     v_hair_color = a_hair_color;
-    v_layer = layer;
     gl_Position = u_view_proj * world;
 }

@@ -95,6 +95,27 @@ typedef struct pelt_fur_fins {
     float curl_turns;        /* turns of that sine over the height, default 2 */
 } pelt_fur_fins;
 
+/* Level of detail (Lengyel et al. §2.4 and beyond it, docs/lod.md): fewer
+ * shells as the fur shrinks on screen, blended so nothing pops; simplified
+ * shell geometry as triangles shrink; back-facing shells culled on closed
+ * meshes, where the fins carry the silhouette. */
+typedef enum pelt_lod_mode {
+    PELT_LOD_AUTO = 0, /* the levels follow the view (default) */
+    PELT_LOD_OFF,      /* every shell over the full mesh, nothing culled */
+    PELT_LOD_FIXED     /* shell_level and mesh_level below, whatever the view */
+} pelt_lod_mode;
+
+typedef struct pelt_fur_lod {
+    pelt_lod_mode mode;
+    unsigned shell_level;    /* FIXED: ceil(layers / 2^shell_level) shells */
+    unsigned mesh_level;     /* FIXED: simplified mesh level, 0 = full (clamped
+                                to the levels the mesh has) */
+    float shell_pixels;      /* AUTO: the finest shell level whose spacing on
+                                screen is at least this many pixels, default 1 */
+    float mesh_error_pixels; /* AUTO: the coarsest mesh level whose error on
+                                screen stays within this, default 0.5 */
+} pelt_fur_lod;
+
 /* Fur parameters, one home each. A zero field means its documented
  * default; the defaults are the paper's Table 1 set-up (16 layers, 256x256
  * fur texture and wetness mask). These are the only defaults: the strands
@@ -110,6 +131,7 @@ typedef struct pelt_fur_desc {
     pelt_fur_wet wet;
     pelt_fur_comb comb;
     pelt_fur_fins fins;
+    pelt_fur_lod lod;
     pelt_hooks hooks;        /* allocator and logger, kept by the fur: every
                                 block it owns (texture, strands, mask, BVH,
                                 surface index, rain, colour) and its scratch

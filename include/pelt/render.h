@@ -35,6 +35,15 @@ typedef struct pelt_draw_desc {
      * (layer_count 0 = through the outermost): for inspecting one height
      * of the fur, and for level of detail. Still one instanced draw. */
     unsigned first_layer, layer_count;
+    /* Back-facing shells of a closed mesh (level of detail, docs/lod.md):
+     * 0 = culled when the fins are drawn to carry the silhouette (default),
+     * 1 = culled even without fins (for measuring the fins alone),
+     * -1 = never culled. */
+    int cull_shells;
+    /* For measuring (pelt bench --floor): the shells with a one-fetch
+     * shader, the fur's coverage against a 0.05 threshold in a constant
+     * colour, over the same geometry and levels of detail. */
+    bool floor_shader;
 } pelt_draw_desc;
 
 /* What the last pelt_renderer_draw did. */
@@ -47,6 +56,12 @@ typedef struct pelt_render_stats {
                                   faded-out ones collapse in the vertex stage */
     size_t triangles;          /* triangles submitted by all passes, every shell
                                   layer counted */
+    unsigned mesh_level;       /* the shells' and fins' geometric level of detail
+                                  (0: the full mesh) */
+    size_t mesh_triangles;     /* triangles of that level */
+    unsigned shell_level;      /* Lengyel §2.4: ceil(layers / 2^shell_level) shells */
+    float shell_blend;         /* how far towards the next shell level (0..1) */
+    bool culled;               /* back-facing shells were culled */
     size_t upload_bytes;       /* bytes sent to GL for this frame: pelt_renderer_upload
                                   calls since the previous draw and the draw's own
                                   (strand tips, colour texture, changed mask

@@ -1,0 +1,282 @@
+/* Geometric level of detail for the shells: meshoptimizer's simplifier over
+ * the mesh's own vertices (see lod.h). */
+#include "core/fur/lod.h"
+
+#include "core/base/error.h"
+#include "core/base/hooks.h"
+#include "core/base/weld.h"
+
+#include <math.h>
+#include <meshoptimizer.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A level stops the chain when it keeps more than this share of the
+ * previous level's triangles: the simplifier has run into locked borders. */
+#define LOD_MIN_SHRINK 0.7
+/* Nothing coarser than this many triangles is worth a level. */
+#define LOD_MIN_TRIANGLES 64
+
+static void bounding_sphere(const pelt_mesh_data *m, float center[3], float *radius)
+{
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 0; i < m->vertex_count; i++)
+        for (int k = 0; k < 3; k++) {
+            float p = m->positions[3 * i + (size_t)k];
+            lo[k] = fminf(lo[k], p);
+            hi[k] = fmaxf(hi[k], p);
+        }
+    float r2 = 0.0f;
+    for (int k = 0; k < 3; k++) center[k] = m->vertex_count ? 0.5f * (lo[k] + hi[k]) : 0.0f;
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        float d2 = 0.0f;
+        for (int k = 0; k < 3; k++) {
+            float d = m->positions[3 * i + (size_t)k] - center[k];
+            d2 += d * d;
+        }
+        r2 = fmaxf(r2, d2);
+    }
+    *radius = sqrtf(r2);
+}
+
+static int cmp_u64(const void *x, const void *y)
+{
+    uint64_t a = *(const uint64_t *)x, b = *(const uint64_t *)y;
+    return (a > b) - (a < b);
+}
+
+/* Closed: every edge, its end points welded by position (uv seams and patch
+ * borders split vertices), is shared by exactly two triangles. Only then
+ * are the shells' back faces hidden behind the skin. False when out of
+ * memory (the safe answer: nothing gets culled). */
+static bool is_closed(const pelt_mesh_data *m, const pelt_allocator *alloc)
+{
+    size_t n = 3 * m->triangle_count;
+    if (n == 0) return false;
+    uint32_t *canon = pelt__alloc(alloc, m->vertex_count * sizeof *canon);
+    uint64_t *keys = pelt__alloc(alloc, n * sizeof *keys);
+    bool closed = canon && keys && pelt__weld(m->positions, NULL, m->vertex_count, canon);
+    if (closed) {
+        for (size_t i = 0; i < n; i++) {
+            uint64_t a = canon[m->indices[i]], b = canon[m->indices[i - i % 3 + (i + 1) % 3]];
+            keys[i] = a < b ? a << 32 | b : b << 32 | a;
+        }
+        qsort(keys, n, sizeof *keys, cmp_u64);
+        for (size_t i = 0; i < n && closed;) {
+            size_t j = i;
+            while (j < n && keys[j] == keys[i]) j++;
+            closed = j - i == 2;
+            i = j;
+        }
+    }
+    pelt__free(alloc, canon);
+    pelt__free(alloc, keys);
+    return closed;
+}
+
+/* +1 when the triangles wind counter-clockwise about the vertex normals
+ * (seen from outside), -1 clockwise, 0 when they disagree too often to
+ * cull by winding. */
+static int winding(const pelt_mesh_data *m)
+{
+    if (!m->normals || m->triangle_count == 0) return 0;
+    size_t ccw = 0;
+    for (size_t t = 0; t < m->triangle_count; t++) {
+        const float *p[3], *n[3];
+        for (int k = 0; k < 3; k++) {
+            p[k] = m->positions + 3 * (size_t)m->indices[3 * t + (size_t)k];
+            n[k] = m->normals + 3 * (size_t)m->indices[3 * t + (size_t)k];
+        }
+        float e1[3], e2[3];
+        for (int k = 0; k < 3; k++) e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
+        float c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        float d = 0.0f;
+        for (int k = 0; k < 3; k++) d += c[k] * (n[0][k] + n[1][k] + n[2][k]);
+        ccw += d > 0.0f;
+    }
+    double share = (double)ccw / (double)m->triangle_count;
+    return share > 0.98 ? 1 : share < 0.02 ? -1 : 0;
+}
+
+static pelt_status add_level(pelt__lod_chain *c, uint32_t *indices, size_t triangles, float error,
+                             const pelt_mesh_data *m, uint32_t seed, const pelt_allocator *alloc,
+                             pelt_error *err)
+{
+    size_t vertex_count = m->vertex_count;
+    pelt__lod_level *l = &c->levels[c->count++];
+    l->indices = indices;
+    l->triangle_count = triangles;
+    l->error = error;
+    /* Vertex-cache order: each vertex shaded once for as many of its
+     * triangles as the post-transform cache holds. In place is allowed. */
+    meshopt_optimizeVertexCache(indices, indices, 3 * triangles, vertex_count);
+    pelt_status st = pelt__fin_edges_build(indices, triangles, seed, alloc, &l->fins, &l->fin_count, err);
+    if (st != PELT_OK) return st;
+    l->fin_normals = pelt__alloc(alloc, (l->fin_count ? l->fin_count : 1) * 3 * sizeof(float));
+    if (!l->fin_normals) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fin normals", l->fin_count);
+    if (m->normals) pelt__fin_normals(l->fins, l->fin_count, m->positions, m->normals, l->fin_normals);
+    else memset(l->fin_normals, 0, l->fin_count * 3 * sizeof(float));
+    return PELT_OK;
+}
+
+pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned max_levels,
+                                  const pelt_allocator *alloc, pelt__lod_chain *out, pelt_error *err)
+{
+    memset(out, 0, sizeof *out);
+    const pelt_mesh_data m = pelt_mesh_get_data(mesh);
+    bounding_sphere(&m, out->center, &out->radius);
+    out->closed = is_closed(&m, alloc);
+    out->winding = winding(&m);
+    if (max_levels == 0 || max_levels > PELT__LOD_MAX_LEVELS) max_levels = PELT__LOD_MAX_LEVELS;
+    size_t n = 3 * m.triangle_count;
+    uint32_t *full = pelt__alloc(alloc, (n ? n : 3) * sizeof *full);
+    if (!full) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the level-of-detail indices");
+    memcpy(full, m.indices, n * sizeof *full);
+    pelt_status st = add_level(out, full, m.triangle_count, 0.0f, &m, seed, alloc, err);
+    /* Simplify the full mesh each time, not the previous level, so each
+     * level's error is measured against the surface the skin draws. */
+    float scale = m.vertex_count ? meshopt_simplifyScale(m.positions, m.vertex_count, 3 * sizeof(float)) : 0.0f;
+    size_t previous = m.triangle_count;
+    while (st == PELT_OK && out->count < max_levels && previous / 4 >= LOD_MIN_TRIANGLES) {
+        uint32_t *dst = pelt__alloc(alloc, n * sizeof *dst);
+        if (!dst) {
+            st = pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the level-of-detail indices");
+            break;
+        }
+        float relative = 0.0f;
+        size_t got = meshopt_simplify(dst, m.indices, n, m.positions, m.vertex_count, 3 * sizeof(float),
+                                      3 * (previous / 4), 1.0f, meshopt_SimplifyLockBorder, &relative);
+        size_t triangles = got / 3;
+        if (triangles == 0 || (double)triangles > LOD_MIN_SHRINK * (double)previous) {
+            pelt__free(alloc, dst);
+            break;
+        }
+        st = add_level(out, dst, triangles, relative * scale, &m, seed, alloc, err);
+        previous = triangles;
+    }
+    if (st != PELT_OK) pelt__lod_chain_free(out, alloc);
+    return st;
+}
+
+void pelt__lod_chain_free(pelt__lod_chain *c, const pelt_allocator *alloc)
+{
+    for (unsigned i = 0; i < c->count; i++) {
+        pelt__free(alloc, c->levels[i].indices);
+        pelt__free(alloc, c->levels[i].fins);
+        pelt__free(alloc, c->levels[i].fin_normals);
+    }
+    memset(c, 0, sizeof *c);
+}
+
+unsigned pelt__lod_pick(const pelt__lod_chain *c, float pixels_per_unit, float max_error_px)
+{
+    if (!(pixels_per_unit > 0.0f) || !isfinite(pixels_per_unit)) return 0;
+    unsigned pick = 0;
+    for (unsigned i = 1; i < c->count; i++)
+        if (c->levels[i].error * pixels_per_unit <= max_error_px) pick = i;
+    return pick;
+}
+
+float pelt__lod_pixels_per_unit(float proj_y, float height, float scale, float distance, float radius)
+{
+    float nearest = distance - radius * scale;
+    if (!(nearest > 0.0f)) return INFINITY;
+    return proj_y * 0.5f * height * scale / nearest;
+}
+
+/* ---- shell levels ---- */
+
+unsigned pelt__lod_shell_count(unsigned layers, unsigned level)
+{
+    if (level >= 32) return 1;
+    unsigned step = 1u << level;
+    return (layers + step - 1) / step;
+}
+
+unsigned pelt__lod_shell_levels(unsigned layers)
+{
+    unsigned k = 0;
+    while (pelt__lod_shell_count(layers, k) > 1) k++;
+    return k + 1;
+}
+
+unsigned pelt__lod_shell_base(unsigned layers, unsigned level)
+{
+    unsigned base = 1;
+    for (unsigned k = 0; k < level; k++) base += pelt__lod_shell_count(layers, k);
+    return base;
+}
+
+size_t pelt__lod_shell_extra_slices(unsigned layers)
+{
+    unsigned levels = pelt__lod_shell_levels(layers);
+    return pelt__lod_shell_base(layers, levels) - (layers + 1);
+}
+
+unsigned pelt__lod_shell_layer(unsigned layers, unsigned level, unsigned i)
+{
+    unsigned count = pelt__lod_shell_count(layers, level);
+    return layers - 1 - (count - 1 - i) * (1u << level);
+}
+
+/* Premultiplied "over": the outer slice in front of the inner one. */
+static void over(const uint8_t *outer, const uint8_t *inner, size_t texels, uint8_t *out)
+{
+    for (size_t i = 0; i < texels; i++) {
+        unsigned keep = 255u - outer[4 * i + 3];
+        for (int c = 0; c < 4; c++) {
+            unsigned v = outer[4 * i + c] + (inner[4 * i + c] * keep + 127u) / 255u;
+            out[4 * i + c] = (uint8_t)(v > 255u ? 255u : v);
+        }
+    }
+}
+
+/* Slice s of the whole array: the volume's N + 1, then the extra ones. */
+static const uint8_t *slice_at(const uint8_t *volume, const uint8_t *extra, unsigned layers, unsigned s,
+                               size_t slice)
+{
+    if (s <= layers) return volume + (size_t)s * slice;
+    return extra + (size_t)(s - layers - 1) * slice;
+}
+
+void pelt__lod_shell_composite(const uint8_t *volume, unsigned size, unsigned layers, uint8_t *extra)
+{
+    size_t texels = (size_t)size * size, slice = texels * 4;
+    unsigned levels = pelt__lod_shell_levels(layers);
+    for (unsigned k = 1; k < levels; k++) {
+        unsigned fine = k - 1, count = pelt__lod_shell_count(layers, k);
+        unsigned fine_count = pelt__lod_shell_count(layers, fine);
+        for (unsigned i = 0; i < count; i++) {
+            /* Shell j of level k (j from the outside) is shell 2j of the
+             * finer level over its shell 2j + 1, when there is one. */
+            unsigned j = count - 1 - i;
+            unsigned outer_i = fine_count - 1 - 2 * j;
+            unsigned s = pelt__lod_shell_base(layers, fine) + outer_i;
+            const uint8_t *outer = slice_at(volume, extra, layers, s, slice);
+            uint8_t *dst = extra + (size_t)(pelt__lod_shell_base(layers, k) + i - layers - 1) * slice;
+            if (2 * j + 1 < fine_count)
+                over(outer, slice_at(volume, extra, layers, s - 1, slice), texels, dst);
+            else
+                memcpy(dst, outer, slice);
+        }
+    }
+}
+
+void pelt__lod_shell_choice(unsigned layers, float fur_pixels, float shell_pixels, unsigned *level,
+                            float *blend)
+{
+    *level = 0;
+    *blend = 0.0f;
+    if (!(fur_pixels > 0.0f) || !isfinite(fur_pixels) || layers < 2) return;
+    /* lambda: the level whose spacing is exactly shell_pixels. */
+    float lambda = log2f((float)layers * shell_pixels / fur_pixels);
+    if (!(lambda > 0.0f)) return;
+    float top = (float)(pelt__lod_shell_levels(layers) - 1);
+    if (lambda >= top) {
+        *level = (unsigned)top;
+        return;
+    }
+    *level = (unsigned)lambda;
+    float f = lambda - (float)*level;
+    *blend = f <= 0.5f ? 0.0f : (f - 0.5f) * 2.0f;
+}

@@ -1,0 +1,85 @@
+/* Geometric level of detail for the shells (beyond Lengyel et al. 2001
+ * §2.4, see DESIGN.md): simplified triangle lists of the mesh made with
+ * meshoptimizer over the SAME vertices, so strands, uvs, the atlas and the
+ * wetness mask are shared by every level. Each level has its own fins (its
+ * edges). The skin keeps the full mesh. No GL here. */
+#ifndef PELT_CORE_FUR_LOD_H
+#define PELT_CORE_FUR_LOD_H
+
+#include "core/fur/fins.h"
+#include "pelt/mesh.h"
+
+#include <stdbool.h>
+
+#define PELT__LOD_MAX_LEVELS 8
+
+typedef struct pelt__lod_level {
+    uint32_t *indices;      /* 3 per triangle, in vertex-cache order */
+    size_t triangle_count;
+    pelt__fin_edge *fins;   /* the level's edges (core/fur/fins.h) */
+    float *fin_normals;     /* 3 per fin: pelt__fin_normal, for the fins a
+                               view can show (pelt__fins_facing) */
+    size_t fin_count;
+    float error;            /* mesh units: how far the level's surface strays
+                               from the full mesh (meshoptimizer's measure) */
+} pelt__lod_level;
+
+typedef struct pelt__lod_chain {
+    pelt__lod_level levels[PELT__LOD_MAX_LEVELS]; /* 0: the full mesh */
+    unsigned count;
+    float center[3], radius; /* the mesh's bounding sphere, mesh units */
+    bool closed;             /* every edge shared by two triangles (positions
+                                welded): back-facing shells may be culled */
+    int winding;             /* +1: triangles wind counter-clockwise about
+                                the vertex normals, -1 clockwise, 0 mixed */
+} pelt__lod_chain;
+
+/* Builds level 0 (the mesh's triangles in vertex-cache order) and coarser
+ * levels of about a quarter of the triangles each, borders and uv seams
+ * kept, until a level stops shrinking, up to PELT__LOD_MAX_LEVELS or
+ * `max_levels` (1: level 0 only). Every block comes from `alloc`. */
+pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned max_levels,
+                                  const pelt_allocator *alloc, pelt__lod_chain *out, pelt_error *err);
+void pelt__lod_chain_free(pelt__lod_chain *c, const pelt_allocator *alloc);
+
+/* The coarsest level whose error, seen from where it is largest on screen,
+ * stays within `max_error_px` pixels. `pixels_per_unit` is the projected
+ * size of one mesh unit at the mesh's nearest point (0 or less, or not
+ * finite: level 0). */
+unsigned pelt__lod_pick(const pelt__lod_chain *c, float pixels_per_unit, float max_error_px);
+
+/* Pixels per mesh unit at the bounding sphere's nearest point to the eye:
+ * `proj_y` is the projection's [1][1] (cot of half the vertical field of
+ * view), `height` the viewport's, `scale` the model matrix's largest
+ * scale and `distance` from the eye to the sphere's centre, all in world
+ * units. Infinity when the eye is inside the sphere. Mirrors nothing in
+ * GLSL: the renderer picks levels on the CPU. */
+float pelt__lod_pixels_per_unit(float proj_y, float height, float scale, float distance, float radius);
+
+/* ---- shell levels (Lengyel et al. 2001 §2.4) ----
+ * Level k has ceil(N / 2^k) shells, anchored at the outermost: its shells
+ * sit at layers n = N - 1 - 2^k j, j = 0, 1, ...; the shell at n of level
+ * k + 1 is level k's shell at n composited over level k's at n - 2^k (the
+ * pairs become the coarser level's "even" shells, the others are left
+ * out). Levels run until one shell remains. In the volume, level 0 is
+ * slices 1..N (slice 0 the skin) and each coarser level follows, inner
+ * shell first. */
+unsigned pelt__lod_shell_levels(unsigned layers);            /* levels, level 0 included */
+unsigned pelt__lod_shell_count(unsigned layers, unsigned level);
+unsigned pelt__lod_shell_base(unsigned layers, unsigned level); /* its first slice */
+size_t pelt__lod_shell_extra_slices(unsigned layers);       /* slices beyond N + 1 */
+/* Layer n of the i-th shell of a level, inner first. */
+unsigned pelt__lod_shell_layer(unsigned layers, unsigned level, unsigned i);
+
+/* Writes the coarser levels' slices (pelt__lod_shell_extra_slices of
+ * size x size RGBA8, premultiplied) from the volume's N + 1 slices. */
+void pelt__lod_shell_composite(const uint8_t *volume, unsigned size, unsigned layers, uint8_t *extra);
+
+/* The shell level for fur `fur_pixels` long on screen: the finest whose
+ * spacing (fur_pixels 2^k / N) is at least `shell_pixels`. Its upper half
+ * octave blends towards the next level (*blend from 0 to 1), so the count
+ * of shells never jumps. Not finite or non-positive fur_pixels: level 0. */
+void pelt__lod_shell_choice(unsigned layers, float fur_pixels, float shell_pixels, unsigned *level,
+                            float *blend);
+
+#endif

@@ -1,0 +1,192 @@
+/* Level of detail (core/fur/lod.h): the simplified shell geometry, the
+ * shell levels of Lengyel et al. 2001 §2.4 and their composites, and the
+ * fins a view can show. */
+#include "support/check.h"
+
+#include "core/base/vec.h"
+#include "core/fur/fins.h"
+#include "core/fur/lod.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const pelt_allocator heap = {0};
+
+static void lod_levels_shrink_and_their_error_grows(void)
+{
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_torus(1.0f, 0.35f, 96, 48, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt__lod_chain c;
+    CHECK(pelt__lod_chain_build(m, 1, 0, &heap, &c, NULL) == PELT_OK);
+    CHECK(c.count >= 3);
+    CHECK(c.levels[0].triangle_count == pelt_mesh_get_data(m).triangle_count);
+    CHECK(c.levels[0].error == 0.0f);
+    /* The torus is closed once its seam is welded, and wound CCW. */
+    CHECK(c.closed);
+    CHECK(c.winding == 1);
+    CHECK_NEAR(c.radius, 1.35, 0.01);
+    for (unsigned k = 1; k < c.count; k++) {
+        CHECK(c.levels[k].triangle_count * 2 < c.levels[k - 1].triangle_count);
+        CHECK(c.levels[k].error >= c.levels[k - 1].error);
+        CHECK(c.levels[k].fin_count < c.levels[k - 1].fin_count);
+        /* Same vertices: every index is one of the mesh's. */
+        size_t bad = 0;
+        for (size_t i = 0; i < 3 * c.levels[k].triangle_count; i++)
+            bad += c.levels[k].indices[i] >= pelt_mesh_get_data(m).vertex_count;
+        CHECK(bad == 0);
+    }
+    /* The error grows slower than the triangles shrink at first: level 1
+     * strays less than a hundredth of the radius. */
+    CHECK(c.levels[1].error < 0.01f * c.radius);
+    /* Picking: no pixels per unit, or a huge zoom, is level 0; far away
+     * the coarsest level; the bound holds for the level picked. */
+    CHECK(pelt__lod_pick(&c, 0.0f, 0.5f) == 0);
+    CHECK(pelt__lod_pick(&c, INFINITY, 0.5f) == 0);
+    CHECK(pelt__lod_pick(&c, 1e-6f, 0.5f) == c.count - 1);
+    unsigned k = pelt__lod_pick(&c, 300.0f, 0.5f);
+    CHECK(c.levels[k].error * 300.0f <= 0.5f);
+    if (k + 1 < c.count) CHECK(c.levels[k + 1].error * 300.0f > 0.5f);
+    pelt__lod_chain_free(&c, &heap);
+
+    /* Level of detail off: level 0 only. */
+    CHECK(pelt__lod_chain_build(m, 1, 1, &heap, &c, NULL) == PELT_OK);
+    CHECK(c.count == 1);
+    pelt__lod_chain_free(&c, &heap);
+    pelt_mesh_destroy(m);
+}
+
+static void lod_an_open_square_is_not_closed(void)
+{
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_square(2.0f, 16, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt__lod_chain c;
+    CHECK(pelt__lod_chain_build(m, 1, 0, &heap, &c, NULL) == PELT_OK);
+    CHECK(!c.closed);
+    pelt__lod_chain_free(&c, &heap);
+    pelt_mesh_destroy(m);
+}
+
+static void lod_pixels_per_unit_follow_the_distance(void)
+{
+    float near_ppu = pelt__lod_pixels_per_unit(2.0f, 600.0f, 1.0f, 5.0f, 1.0f);
+    CHECK_NEAR(near_ppu, 2.0 * 300.0 / 4.0, 1e-3);
+    CHECK_NEAR(pelt__lod_pixels_per_unit(2.0f, 600.0f, 1.0f, 9.0f, 1.0f), near_ppu / 2.0, 1e-3);
+    CHECK(isinf(pelt__lod_pixels_per_unit(2.0f, 600.0f, 1.0f, 0.5f, 1.0f))); /* inside */
+}
+
+static void lod_shell_levels_halve_to_one_shell(void)
+{
+    CHECK(pelt__lod_shell_levels(16) == 5); /* 16 8 4 2 1 */
+    CHECK(pelt__lod_shell_count(16, 2) == 4);
+    CHECK(pelt__lod_shell_levels(1) == 1);
+    CHECK(pelt__lod_shell_levels(10) == 5); /* 10 5 3 2 1 */
+    CHECK(pelt__lod_shell_count(10, 2) == 3);
+    /* Anchored at the outermost shell: every level reaches h = 1. */
+    for (unsigned n = 1; n <= 20; n++)
+        for (unsigned k = 0; k < pelt__lod_shell_levels(n); k++) {
+            unsigned c = pelt__lod_shell_count(n, k);
+            CHECK(pelt__lod_shell_layer(n, k, c - 1) == n - 1);
+            CHECK(pelt__lod_shell_layer(n, k, 0) < (1u << k));
+        }
+    CHECK(pelt__lod_shell_base(16, 0) == 1);
+    CHECK(pelt__lod_shell_base(16, 1) == 17);
+    CHECK(pelt__lod_shell_base(16, 2) == 25);
+    CHECK(pelt__lod_shell_extra_slices(16) == 8 + 4 + 2 + 1);
+}
+
+/* The choice: spacing at least shell_pixels; the upper half octave blends
+ * towards the next level; the blend is continuous across the boundary. */
+static void lod_shell_choice_blends_without_a_jump(void)
+{
+    unsigned level;
+    float blend;
+    pelt__lod_shell_choice(16, 64.0f, 1.0f, &level, &blend);
+    CHECK(level == 0 && blend == 0.0f);
+    pelt__lod_shell_choice(16, 16.0f, 1.0f, &level, &blend);
+    CHECK(level == 0 && blend == 0.0f);
+    pelt__lod_shell_choice(16, 8.0f, 1.0f, &level, &blend); /* spacing 0.5 px: 8 shells */
+    CHECK(level == 1 && blend == 0.0f);
+    pelt__lod_shell_choice(16, 0.01f, 1.0f, &level, &blend);
+    CHECK(level == 4 && blend == 0.0f);
+    pelt__lod_shell_choice(16, NAN, 1.0f, &level, &blend);
+    CHECK(level == 0 && blend == 0.0f);
+    /* Shells drawn, counting a blending-out shell by its opacity, fall
+     * smoothly as the fur shrinks. */
+    double previous = 16.0;
+    for (float px = 16.0f; px > 0.5f; px *= 0.98f) {
+        pelt__lod_shell_choice(16, px, 1.0f, &level, &blend);
+        double shells = pelt__lod_shell_count(16, level) -
+                        blend * (pelt__lod_shell_count(16, level) - pelt__lod_shell_count(16, level + 1));
+        CHECK(shells <= previous + 1e-6);
+        CHECK(previous - shells < 0.5);
+        previous = shells;
+    }
+}
+
+/* The coarser shell is the pair composited with "over", premultiplied. */
+static void lod_shell_composite_is_over(void)
+{
+    enum { SIZE = 2, N = 4 };
+    uint8_t volume[(N + 1) * SIZE * SIZE * 4];
+    for (size_t i = 0; i < sizeof volume; i++) volume[i] = (uint8_t)((i * 37u) % 200u);
+    for (size_t s = 0; s <= N; s++) /* premultiplied: colour <= alpha */
+        for (size_t t = 0; t < SIZE * SIZE; t++) {
+            uint8_t *p = volume + (s * SIZE * SIZE + t) * 4;
+            p[3] = (uint8_t)(100 + 30 * s);
+            for (int c = 0; c < 3; c++) p[c] = (uint8_t)(p[c] % (p[3] + 1));
+        }
+    uint8_t extra[(2 + 1) * SIZE * SIZE * 4];
+    CHECK(pelt__lod_shell_extra_slices(N) == 3);
+    pelt__lod_shell_composite(volume, SIZE, N, extra);
+    /* Level 1, inner shell (layer 1): slice 2 over slice 1. */
+    for (int c = 0; c < 4; c++) {
+        double outer = volume[(2 * SIZE * SIZE) * 4 + c], inner = volume[(1 * SIZE * SIZE) * 4 + c];
+        double a = volume[(2 * SIZE * SIZE) * 4 + 3] / 255.0;
+        CHECK_NEAR(extra[c], outer + (1.0 - a) * inner, 1.0);
+    }
+    /* Level 2's one shell covers at least what any of its shells covers. */
+    uint8_t top = extra[(2 * SIZE * SIZE) * 4 + 3];
+    for (unsigned s = 1; s <= N; s++) CHECK(top >= volume[(s * SIZE * SIZE) * 4 + 3]);
+}
+
+/* Lengyel: "we collect the fins with nonzero alpha". No fin the fade can
+ * show is left out, and fins turned away are. */
+static void lod_fins_facing_keep_every_visible_fin(void)
+{
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_sphere(1.0f, 32, 16, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt__lod_chain c;
+    CHECK(pelt__lod_chain_build(m, 1, 1, &heap, &c, NULL) == PELT_OK);
+    const pelt__lod_level *l = &c.levels[0];
+    pelt__fin_edge *out = malloc(l->fin_count * sizeof *out);
+    const pelt_mesh_data d = pelt_mesh_get_data(m);
+    pelt_vec3 view = v3_norm_or(v3(0.3f, -0.4f, -1.0f), v3(0, 0, -1));
+    size_t kept = out ? pelt__fins_facing(l->fins, l->fin_normals, l->fin_count, view, 0.0f, out) : 0;
+    size_t visible = 0;
+    for (size_t i = 0; i < l->fin_count; i++) {
+        pelt_vec3 n = pelt__fin_normal(v3_load(d.positions + 3 * l->fins[i].a), v3_load(d.positions + 3 * l->fins[i].b),
+                                       v3_load(d.normals + 3 * l->fins[i].a), v3_load(d.normals + 3 * l->fins[i].b));
+        visible += pelt__fin_fade(n, view) > 0.0f;
+    }
+    CHECK(kept == visible);
+    CHECK(kept > 0 && kept < l->fin_count);
+    free(out);
+    pelt__lod_chain_free(&c, &heap);
+    pelt_mesh_destroy(m);
+}
+
+int main(void)
+{
+    RUN(lod_levels_shrink_and_their_error_grows);
+    RUN(lod_an_open_square_is_not_closed);
+    RUN(lod_pixels_per_unit_follow_the_distance);
+    RUN(lod_shell_levels_halve_to_one_shell);
+    RUN(lod_shell_choice_blends_without_a_jump);
+    RUN(lod_shell_composite_is_over);
+    RUN(lod_fins_facing_keep_every_visible_fin);
+    return check_summary();
+}
