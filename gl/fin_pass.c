@@ -1,9 +1,11 @@
 /* Fins (Lengyel et al. 2001 §2.3 pass 2): after the skin, before the
  * shells, every fin in ONE instanced draw, blended, depth tested without
- * depth write. An instance is a mesh edge; its strip rises along the
+ * depth write. Each frame the fins the view may show are gathered on the
+ * CPU ("we collect the fins with nonzero alpha") into a table texture; an
+ * instance draws PELT_FIN_CHUNK of them, each a strip rising along the
  * displaced strands of the edge's two vertices, read from the vertex
- * tables (gl/gpu_mesh.c). The fade (shaders/fins.glsl) collapses fins away
- * from the silhouette in the vertex stage, so they cost no fragments. */
+ * tables (gl/gpu_mesh.c). The exact fade (shaders/fins.glsl) still
+ * collapses the faded ones in the vertex stage. */
 #include "gl/passes.h"
 
 #include "core/base/error.h"
@@ -13,11 +15,6 @@
 #include "gl/programs.h"
 
 #include <string.h>
-
-typedef struct fin_instance {
-    uint32_t a, b;
-    float start;
-} fin_instance;
 
 /* A fin program with `features` (PELT__FIN_FEATURES bits) compiled in, as
  * the shells' variants (gl/shell_pass.c); PELT__FIN_FEATURES is generic. */
@@ -29,21 +26,28 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
         {PELT__SHELL_KAJIYA_KAY, "#define PELT_SHADING_KK 1\n"},
         {PELT__SHELL_LIGHT_TABLE, "#define PELT_SHADING_TABLE 1\n"},
     };
-    const char *fs[8];
+    const char *fs[8], *vs[10];
     int n = 0;
     for (size_t k = 0; k < sizeof defines / sizeof defines[0]; k++)
         if (features & defines[k].bit) fs[n++] = defines[k].define;
+    memcpy(vs, fs, (size_t)n * sizeof *fs);
+    int m = n;
     fs[n++] = pelt__shader_shading;
-    fs[n++] = pelt__shader_fur_light;
     fs[n++] = pelt__shader_fin_fs;
     fs[n] = NULL;
-    const char *vs[] = {pelt__shader_fur_shape, pelt__shader_fins, pelt__shader_fin_vs, NULL};
+    vs[m++] = pelt__shader_shading;
+    vs[m++] = pelt__shader_fur_light;
+    vs[m++] = pelt__shader_fur_shape;
+    vs[m++] = pelt__shader_fins;
+    vs[m++] = pelt__shader_fin_vs;
+    vs[m] = NULL;
     pelt_status st = pelt__gl_program_create("fin", vs, fs, &p->hooks, &p->variants[features], err);
     if (st != PELT_OK) {
         p->failed[features] = true;
         return st;
     }
     p->unfaded[features] = glGetUniformLocation(p->variants[features], "u_unfaded");
+    p->fin_count[features] = glGetUniformLocation(p->variants[features], "u_fin_count");
     return PELT_OK;
 }
 
@@ -69,24 +73,8 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glGenerateMipmap(GL_TEXTURE_2D);
 
-    /* One instance per edge, every level of detail's fins one after the
-     * other (core/fur/lod.h). The edge records are already laid out as the
-     * attributes want them (two uints, a float). */
-    _Static_assert(sizeof(pelt__fin_edge) == sizeof(fin_instance), "fin edge layout");
+    /* The fins of every level (core/fur/lod.h); a frame's go to the table. */
     const pelt__lod_chain *lod = pelt__fur_gpu_lod(fur);
-    for (unsigned k = 0; k < lod->count; k++) {
-        p->level_first[k] = p->count;
-        p->level_count[k] = lod->levels[k].fin_count;
-        p->count += lod->levels[k].fin_count;
-    }
-    glGenVertexArrays(1, &p->vao);
-    glBindVertexArray(p->vao);
-    glGenBuffers(1, &p->vbo);
-    glBindBuffer(GL_ARRAY_BUFFER, p->vbo);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(p->count * sizeof(fin_instance)), NULL, GL_STATIC_DRAW);
-    for (unsigned k = 0; k < lod->count; k++)
-        glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(p->level_first[k] * sizeof(fin_instance)),
-                        (GLsizeiptr)(p->level_count[k] * sizeof(fin_instance)), lod->levels[k].fins);
     size_t most = 0;
     for (unsigned k = 0; k < lod->count; k++)
         if (lod->levels[k].fin_count > most) most = lod->levels[k].fin_count;
@@ -94,36 +82,55 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     p->alloc = hooks->allocator;
     p->staging = pelt__alloc(&p->alloc, (most ? most : 1) * sizeof *p->staging);
     if (!p->staging) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fins", most);
-    glGenBuffers(1, &p->vbo_facing);
-    glBindBuffer(GL_ARRAY_BUFFER, p->vbo_facing);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((most ? most : 1) * sizeof(fin_instance)), NULL, GL_STREAM_DRAW);
-    glEnableVertexAttribArray(PELT_ATTR_FIN_EDGE);
-    glVertexAttribDivisor(PELT_ATTR_FIN_EDGE, 1);
-    glEnableVertexAttribArray(PELT_ATTR_FIN_START);
-    glVertexAttribDivisor(PELT_ATTR_FIN_START, 1);
+    _Static_assert(sizeof(pelt__fin_edge) == 3 * sizeof(uint32_t), "a fin is one RGB32UI texel");
+    size_t rows = (most + PELT_TABLE_WIDTH - 1) / PELT_TABLE_WIDTH;
+    glGenTextures(1, &p->edges);
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN_EDGES);
+    glBindTexture(GL_TEXTURE_2D, p->edges);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32UI, PELT_TABLE_WIDTH, (GLsizei)(rows ? rows : 1), 0, GL_RGB_INTEGER,
+                 GL_UNSIGNED_INT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+
+    /* One chunk of PELT_FIN_CHUNK strips as triangles: fin c's corner k is
+     * vertex c * corners + k, so the vertex cache shades each corner once. */
+    enum { CORNERS = 2 * (PELT_FIN_ROWS + 1), INDICES = 6 * PELT_FIN_ROWS };
+    uint32_t indices[PELT_FIN_CHUNK * INDICES];
+    for (uint32_t c = 0; c < PELT_FIN_CHUNK; c++)
+        for (uint32_t q = 0; q < PELT_FIN_ROWS; q++) {
+            uint32_t *t = indices + c * INDICES + q * 6, v = c * CORNERS + 2 * q;
+            t[0] = v, t[1] = v + 1, t[2] = v + 2, t[3] = v + 1, t[4] = v + 3, t[5] = v + 2;
+        }
+    glGenVertexArrays(1, &p->vao);
+    glBindVertexArray(p->vao);
+    glGenBuffers(1, &p->ebo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, p->ebo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof indices, indices, GL_STATIC_DRAW);
     glBindVertexArray(0);
     return PELT_OK;
 }
 
-/* Points the instance attributes at one level's fins: GL 3.3 has no base
- * instance, so the level's offset goes into the pointers. */
-static void point_at(GLuint vbo, size_t first)
+/* Writes fins [0, count) into the table, whole rows then the last one. */
+static void write_table(GLuint t, const pelt__fin_edge *fins, size_t count)
 {
-    size_t at = first * sizeof(fin_instance);
-    glBindBuffer(GL_ARRAY_BUFFER, vbo);
-    glVertexAttribIPointer(PELT_ATTR_FIN_EDGE, 2, GL_UNSIGNED_INT, sizeof(fin_instance),
-                           (const void *)(at + offsetof(fin_instance, a)));
-    glVertexAttribPointer(PELT_ATTR_FIN_START, 1, GL_FLOAT, GL_FALSE, sizeof(fin_instance),
-                          (const void *)(at + offsetof(fin_instance, start)));
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN_EDGES);
+    glBindTexture(GL_TEXTURE_2D, t);
+    size_t rows = count / PELT_TABLE_WIDTH, rest = count % PELT_TABLE_WIDTH;
+    if (rows)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, PELT_TABLE_WIDTH, (GLsizei)rows, GL_RGB_INTEGER, GL_UNSIGNED_INT, fins);
+    if (rest)
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)rows, (GLsizei)rest, 1, GL_RGB_INTEGER, GL_UNSIGNED_INT,
+                        fins + rows * PELT_TABLE_WIDTH);
 }
 
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
 {
-    unsigned level = f->lod.full_mesh ? 0 : f->lod.mesh_level;
-    size_t count = p->level_count[level];
+    unsigned level = f->lod.full_mesh ? 0 : f->lod.fin_level;
+    const pelt__lod_level *l = &p->lod->levels[level];
+    size_t count = l->fin_count;
+    const pelt__fin_edge *fins = l->fins;
     if (count == 0) return;
-    GLuint source = p->vbo;
-    size_t first = p->level_first[level];
     if (!f->draw->fins_unfaded) {
         /* The view direction in mesh space: the transpose of the model's
          * rotation (exact for rotations and uniform scale; the margin
@@ -133,14 +140,11 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
         pelt_vec3 local = v3(m[0] * fwd.x + m[1] * fwd.y + m[2] * fwd.z, m[4] * fwd.x + m[5] * fwd.y + m[6] * fwd.z,
                              m[8] * fwd.x + m[9] * fwd.y + m[10] * fwd.z);
         local = v3_norm_or(local, v3(0.0f, 0.0f, -1.0f));
-        const pelt__lod_level *l = &p->lod->levels[level];
         count = pelt__fins_facing(l->fins, l->fin_normals, l->fin_count, local, 0.05f, p->staging);
         if (count == 0) return;
-        glBindBuffer(GL_ARRAY_BUFFER, p->vbo_facing);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)(count * sizeof(fin_instance)), p->staging);
-        source = p->vbo_facing;
-        first = 0;
+        fins = p->staging;
     }
+    write_table(p->edges, fins, count);
     pelt__gl_blended_hair_state();
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
     glBindTexture(GL_TEXTURE_2D, p->texture);
@@ -149,9 +153,10 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     if (!p->variants[features]) features = PELT__FIN_FEATURES;
     glUseProgram(p->variants[features]);
     glUniform1i(p->unfaded[features], f->draw->fins_unfaded ? 1 : 0);
+    glUniform1i(p->fin_count[features], (GLint)count);
     glBindVertexArray(p->vao);
-    point_at(source, first);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 2 * (PELT_FIN_ROWS + 1), (GLsizei)count);
+    glDrawElementsInstanced(GL_TRIANGLES, 6 * PELT_FIN_ROWS * PELT_FIN_CHUNK, GL_UNSIGNED_INT, NULL,
+                            (GLsizei)((count + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
     glBindVertexArray(f->mesh->vao);
     f->stats->fin_draw_calls++;
     f->stats->fins += count;
@@ -162,8 +167,8 @@ void pelt__fin_pass_destroy(pelt__fin_pass *p)
 {
     for (int k = 0; k < PELT__SHELL_VARIANTS; k++)
         if (p->variants[k]) glDeleteProgram(p->variants[k]);
-    if (p->vbo) glDeleteBuffers(1, &p->vbo);
-    if (p->vbo_facing) glDeleteBuffers(1, &p->vbo_facing);
+    if (p->ebo) glDeleteBuffers(1, &p->ebo);
+    if (p->edges) glDeleteTextures(1, &p->edges);
     pelt__free(&p->alloc, p->staging);
     if (p->vao) glDeleteVertexArrays(1, &p->vao);
     if (p->texture) glDeleteTextures(1, &p->texture);

@@ -8,7 +8,7 @@
 #include "pelt/render.h"
 
 #include "core/base/hooks.h"
-#include "core/fur/lod.h"
+#include "core/fur/fur_gpu.h" /* core/fur/lod.h: the levels of detail */
 
 #include "gl/shaders/bindings.glsl"
 

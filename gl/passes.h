@@ -20,7 +20,8 @@
  * renderer from the view. */
 typedef struct pelt__frame_lod {
     bool full_mesh;       /* level of detail off: the mesh's own triangles */
-    unsigned mesh_level;  /* else this geometric level's triangles and fins */
+    unsigned mesh_level;  /* else this geometric level's triangles ... */
+    unsigned fin_level;   /* ... and this one's fins (as coarse or coarser) */
     unsigned shell_level; /* Lengyel §2.4: ceil(N / 2^level) shells ... */
     float shell_blend;    /* ... blending this far towards the next level */
     bool cull;            /* back-facing shells culled (closed meshes) */
@@ -63,25 +64,22 @@ pelt_status pelt__skin_pass_create(pelt__skin_pass *p, const pelt_hooks *hooks, 
 void pelt__skin_pass_draw(const pelt__skin_pass *p, const pelt__pass_frame *f);
 void pelt__skin_pass_destroy(pelt__skin_pass *p);
 
-/* All fins in one instanced draw (Lengyel et al. §2.3): one instance per
- * mesh edge, a strip of PELT_FIN_ROWS quads up the displaced strands; the
- * fade collapses fins away from the silhouette in the vertex stage. Owns
- * the fin texture and the per-fin instance buffer. */
+/* All fins in one instanced draw (Lengyel et al. §2.3): the fins the view
+ * may show, gathered each frame into a table texture (staging allocated
+ * once), PELT_FIN_CHUNK strips of PELT_FIN_ROWS quads per instance up the
+ * displaced strands; the exact fade collapses the rest in the vertex
+ * stage. Owns the fin texture, the table and the chunk's index buffer. */
 typedef struct pelt__fin_pass {
     GLuint variants[PELT__SHELL_VARIANTS]; /* by the PELT__FIN_FEATURES bits */
     bool failed[PELT__SHELL_VARIANTS];
+    GLint unfaded[PELT__SHELL_VARIANTS];   /* u_unfaded: 1 draws every fin at full opacity */
+    GLint fin_count[PELT__SHELL_VARIANTS]; /* u_fin_count */
     pelt_hooks hooks;
-    GLuint vao, vbo;    /* per instance: edge (2 uints), start (1 float) */
+    GLuint vao, ebo;    /* the chunk's triangles */
     GLuint texture;     /* the fin texture, PELT_UNIT_FIN */
-    GLint unfaded[PELT__SHELL_VARIANTS]; /* u_unfaded: 1 draws every fin at full opacity */
-    size_t count;       /* all levels' fins */
-    size_t level_first[PELT__LOD_MAX_LEVELS], level_count[PELT__LOD_MAX_LEVELS];
-    /* The fins a view may show (Lengyel: "we collect the fins with nonzero
-     * alpha"), gathered each frame into staging (allocated once) and sent
-     * to vbo_facing; the fade itself stays exact in the vertex stage. */
+    GLuint edges;       /* this frame's fins, PELT_UNIT_FIN_EDGES */
     const pelt__lod_chain *lod;
     pelt__fin_edge *staging;
-    GLuint vbo_facing;
     pelt_allocator alloc;
 } pelt__fin_pass;
 

@@ -220,6 +220,7 @@ static const key_def scene_keys[] = {
     UINT_("fur.lod_mesh_level", fur.lod.mesh_level, 0, 8, 0),
     FLT("fur.lod_shell_pixels", fur.lod.shell_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
     FLT("fur.lod_mesh_error", fur.lod.mesh_error_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    FLT("fur.lod_mesh_edge", fur.lod.mesh_edge_pixels, 0, 1024, F_LO_OPEN | F_ZERO_OK),
     FLT("fins.length", fur.fins.length, 0, 8, F_LO_OPEN | F_ZERO_OK),
     FLT("fins.density", fur.fins.density, 0, 4096, F_LO_OPEN | F_ZERO_OK),
     FLT("fins.curl", fur.fins.curl, 0, 64, 0),

@@ -57,6 +57,7 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->fins.curl_turns == 0.0f) d->fins.curl_turns = 2.0f;
     if (d->lod.shell_pixels == 0.0f) d->lod.shell_pixels = 1.0f;
     if (d->lod.mesh_error_pixels == 0.0f) d->lod.mesh_error_pixels = 0.5f;
+    if (d->lod.mesh_edge_pixels == 0.0f) d->lod.mesh_edge_pixels = 8.0f;
 }
 
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
@@ -114,10 +115,11 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
                           "texels, curl turns in (0, 64]");
     if ((unsigned)d->lod.mode > PELT_LOD_FIXED || d->lod.shell_level > 8 || d->lod.mesh_level > 8 ||
         !(d->lod.shell_pixels > 0.0f && d->lod.shell_pixels <= 64.0f) ||
-        !(d->lod.mesh_error_pixels > 0.0f && d->lod.mesh_error_pixels <= 64.0f))
+        !(d->lod.mesh_error_pixels > 0.0f && d->lod.mesh_error_pixels <= 64.0f) ||
+        !(d->lod.mesh_edge_pixels > 0.0f && d->lod.mesh_edge_pixels <= 1024.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "level of detail: mode auto, off or fixed, levels 0..8, shell pixels and "
-                          "mesh error pixels in (0, 64]");
+                          "mesh error pixels in (0, 64], mesh edge pixels in (0, 1024]");
     return PELT_OK;
 }
 

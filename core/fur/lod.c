@@ -107,6 +107,13 @@ static pelt_status add_level(pelt__lod_chain *c, uint32_t *indices, size_t trian
     l->indices = indices;
     l->triangle_count = triangles;
     l->error = error;
+    double sum = 0.0;
+    for (size_t i = 0; i < 3 * triangles; i++) {
+        const float *a = m->positions + 3 * (size_t)indices[i];
+        const float *b = m->positions + 3 * (size_t)indices[i - i % 3 + (i + 1) % 3];
+        sum += sqrt((double)((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+    }
+    l->edge = triangles ? (float)(sum / (double)(3 * triangles)) : 0.0f;
     /* Vertex-cache order: each vertex shaded once for as many of its
      * triangles as the post-transform cache holds. In place is allowed. */
     meshopt_optimizeVertexCache(indices, indices, 3 * triangles, vertex_count);
@@ -168,12 +175,13 @@ void pelt__lod_chain_free(pelt__lod_chain *c, const pelt_allocator *alloc)
     memset(c, 0, sizeof *c);
 }
 
-unsigned pelt__lod_pick(const pelt__lod_chain *c, float pixels_per_unit, float max_error_px)
+unsigned pelt__lod_pick(const pelt__lod_chain *c, float pixels_per_unit, float max_error_px, float max_edge_px)
 {
     if (!(pixels_per_unit > 0.0f) || !isfinite(pixels_per_unit)) return 0;
     unsigned pick = 0;
     for (unsigned i = 1; i < c->count; i++)
-        if (c->levels[i].error * pixels_per_unit <= max_error_px) pick = i;
+        if (c->levels[i].error * pixels_per_unit <= max_error_px && c->levels[i].edge * pixels_per_unit <= max_edge_px)
+            pick = i;
     return pick;
 }
 

@@ -22,6 +22,8 @@ typedef struct pelt__lod_level {
     size_t fin_count;
     float error;            /* mesh units: how far the level's surface strays
                                from the full mesh (meshoptimizer's measure) */
+    float edge;             /* mesh units: the mean edge length, how far apart
+                               the level samples strands, groom and light */
 } pelt__lod_level;
 
 typedef struct pelt__lod_chain {
@@ -43,10 +45,11 @@ pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned
 void pelt__lod_chain_free(pelt__lod_chain *c, const pelt_allocator *alloc);
 
 /* The coarsest level whose error, seen from where it is largest on screen,
- * stays within `max_error_px` pixels. `pixels_per_unit` is the projected
- * size of one mesh unit at the mesh's nearest point (0 or less, or not
- * finite: level 0). */
-unsigned pelt__lod_pick(const pelt__lod_chain *c, float pixels_per_unit, float max_error_px);
+ * stays within `max_error_px` pixels and whose mean edge within
+ * `max_edge_px` (strands, groom and light are sampled per vertex: coarser
+ * would blur them). `pixels_per_unit` is the projected size of one mesh
+ * unit at the mesh's nearest point (0 or less, or not finite: level 0). */
+unsigned pelt__lod_pick(const pelt__lod_chain *c, float pixels_per_unit, float max_error_px, float max_edge_px);
 
 /* Pixels per mesh unit at the bounding sphere's nearest point to the eye:
  * `proj_y` is the projection's [1][1] (cot of half the vertical field of

@@ -16,8 +16,6 @@
 #define PELT_ATTR_COMB 6     // vec3, comb direction times its weight
 #define PELT_ATTR_GROOM 7    // vec4, groomed lean (u, v), length scale, density
 #define PELT_ATTR_HAIR_COLOR 8 // vec4 from 4 normalised bytes: hair colour, its weight
-#define PELT_ATTR_FIN_EDGE 9   // uvec2, per fin: the edge's end vertices (the fin VAO)
-#define PELT_ATTR_FIN_START 10 // float, per fin: where its fin-texture interval starts
 
 // Texture units (gl/gpu_fur.c owns the textures).
 #define PELT_UNIT_FUR 0   // sampler2DArray: the fur volume, one slice a layer
@@ -28,7 +26,8 @@
 #define PELT_UNIT_TIPS 5  // sampler2D RGBA32F: strand tips, one texel per vertex
 #define PELT_UNIT_GROOM 6 // usampler2D R32UI: the groom, PELT_GROOM_WORDS per vertex
 #define PELT_UNIT_LIGHT_TABLE 7 // sampler2D RG32F: Lengyel's hair lighting table
-#define PELT_UNIT_COUNT 8 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
+#define PELT_UNIT_FIN_EDGES 8 // usampler2D RGB32UI: this frame's fins (a, b, start bits), a table
+#define PELT_UNIT_COUNT 9 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
 
 // Vertex tables: per-vertex data a pass fetches by vertex index (the fins
 // read both ends of an edge), row after row PELT_TABLE_WIDTH texels wide.
@@ -36,8 +35,10 @@
 #define PELT_TABLE_TEXELS 5 // position + tangent w, normal, tangent, uv + fur uv, comb
 #define PELT_GROOM_WORDS 5  // core/fur/groom.h: lean u, lean v, length, density, colour bytes
 
-// A fin is a strip of PELT_FIN_ROWS quads up the strand (gl/fin_pass.c).
+// A fin is a strip of PELT_FIN_ROWS quads up the strand, 2 (PELT_FIN_ROWS + 1)
+// vertices; an instance draws PELT_FIN_CHUNK fins (gl/fin_pass.c).
 #define PELT_FIN_ROWS 4
+#define PELT_FIN_CHUNK 64
 
 // Uniform block binding points (gl/uniform_blocks.c, gl/shaders/blocks.glsl).
 #define PELT_BLOCK_FRAME 0 // pelt_frame_block: matrices, eye, light

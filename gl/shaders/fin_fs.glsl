@@ -3,13 +3,12 @@
 // darken like the shells (their curl is already lost in the vertex stage).
 in vec2 v_uv;
 in vec2 v_fin_uv;
-in vec3 v_world;
-in vec3 v_tangent;
-in vec3 v_normal;
-in float v_h;
 in float v_density;
 in float v_fade;
-in vec4 v_hair_color;
+in vec3 v_root;
+in vec3 v_tip;
+in vec3 v_light_mul;
+in vec3 v_light_add;
 
 uniform sampler2D u_fin_tex;   // PELT_UNIT_FIN
 uniform sampler2D u_color_tex; // PELT_UNIT_COLOR
@@ -24,9 +23,7 @@ void main()
     if (!groom_keeps(hair.b, v_density)) discard;
     float a = hair.a * v_fade;
     if (a < 0.05) discard;
-    vec3 root = groom_root_color(u_color, v_hair_color);
-    vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
-    vec3 base = mix(root, tip, hair.g) * hair.r;
+    vec3 base = mix(v_root, v_tip, hair.g) * hair.r;
     // Variants as the shells' (gl/fin_pass.c): only what the frame needs.
 #ifdef PELT_COLOR_TEXTURE
     base *= texture(u_color_tex, v_uv * u_color_scale).rgb;
@@ -34,5 +31,5 @@ void main()
 #ifdef PELT_WET
     base *= 1.0 - u_wet_darken * textureLod(u_mask, v_uv, 0.0).a;
 #endif
-    o_color = vec4(fur_light(base, v_tangent, v_normal, v_world, v_h), a);
+    o_color = vec4(base * v_light_mul + v_light_add, a);
 }

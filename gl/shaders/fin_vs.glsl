@@ -1,11 +1,13 @@
-// All fins in one instanced draw: the instance is the edge, the vertex a
-// point of a strip up the fin (row = gl_VertexID / 2 of PELT_FIN_ROWS + 1,
-// side = gl_VertexID % 2: vertex a or b). Each side rises along its
+// All fins in one instanced draw: an instance is PELT_FIN_CHUNK fins (one
+// instance per fin costs llvmpipe more than the fin itself), fin
+// gl_InstanceID * PELT_FIN_CHUNK + gl_VertexID / (2 (PELT_FIN_ROWS + 1)) of
+// this frame's fin table; the vertex is a point of a strip up the fin (row
+// = corner / 2 of PELT_FIN_ROWS + 1, side = corner % 2: vertex a or b). Each side rises along its
 // vertex's displaced strand, the same beta + phi + shear as the shells
 // (shell_vs.glsl), so fins bend, curl and comb with them. A fin the fade
 // makes invisible collapses to one point outside the view: no fragments.
-layout(location = PELT_ATTR_FIN_EDGE) in uvec2 a_edge;
-layout(location = PELT_ATTR_FIN_START) in float a_start;
+uniform highp usampler2D u_fin_edges; // PELT_UNIT_FIN_EDGES: a, b, start bits
+uniform int u_fin_count;              // fins in the table this frame
 
 uniform highp sampler2D u_vertices; // PELT_UNIT_VERTICES
 uniform highp sampler2D u_tips;     // PELT_UNIT_TIPS
@@ -15,13 +17,12 @@ uniform int u_unfaded;              // 1: no fade (Lengyel Fig. 4e, for comparis
 
 out vec2 v_uv;
 out vec2 v_fin_uv;
-out vec3 v_world;
-out vec3 v_tangent;
-out vec3 v_normal;
-out float v_h;
 out float v_density;
 out float v_fade;
-out vec4 v_hair_color;
+out vec3 v_root;      // groomed root and tip colours
+out vec3 v_tip;
+out vec3 v_light_mul; // fur_light_terms, per vertex as on the shells
+out vec3 v_light_add;
 
 ivec2 table_at(int i)
 {
@@ -40,6 +41,16 @@ uint groom_word(uint v, int k)
 
 void main()
 {
+    const int corners = 2 * (PELT_FIN_ROWS + 1);
+    int fin = gl_InstanceID * PELT_FIN_CHUNK + gl_VertexID / corners;
+    int corner = gl_VertexID % corners;
+    if (fin >= u_fin_count) { // the last chunk's spare fins
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        return;
+    }
+    uvec3 e = texelFetch(u_fin_edges, table_at(fin), 0).xyz;
+    uvec2 a_edge = e.xy;
+    float a_start = uintBitsToFloat(e.z);
     vec3 pa = vertex_texel(a_edge.x, 0).xyz, pb = vertex_texel(a_edge.y, 0).xyz;
     vec3 na = vertex_texel(a_edge.x, 1).xyz, nb = vertex_texel(a_edge.y, 1).xyz;
     vec3 fin_n = normalize(mat3(u_model) * fin_normal(pa, pb, na, nb));
@@ -50,8 +61,8 @@ void main()
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
         return;
     }
-    int side = gl_VertexID % 2;
-    float h = float(gl_VertexID / 2) / float(PELT_FIN_ROWS);
+    int side = corner % 2;
+    float h = float(corner / 2) / float(PELT_FIN_ROWS);
     uint vi = side == 0 ? a_edge.x : a_edge.y;
     vec4 t0 = vertex_texel(vi, 0);
     vec3 n = normalize(vertex_texel(vi, 1).xyz);
@@ -63,8 +74,10 @@ void main()
     vec2 lean = vec2(uintBitsToFloat(groom_word(vi, 0)), uintBitsToFloat(groom_word(vi, 1)));
     float s = uintBitsToFloat(groom_word(vi, 2)) * u_fin_length;
     uint c = groom_word(vi, 4);
-    v_hair_color = vec4(float(c & 255u), float((c >> 8) & 255u), float((c >> 16) & 255u),
-                        float(c >> 24)) / 255.0;
+    vec4 hair_color = vec4(float(c & 255u), float((c >> 8) & 255u), float((c >> 16) & 255u),
+                           float(c >> 24)) / 255.0;
+    v_root = groom_root_color(u_color, hair_color);
+    v_tip = groom_tip_color(u_color, u_tip_color, hair_color);
     v_density = uintBitsToFloat(groom_word(vi, 3));
     float rho = textureLod(u_mask, uvs.xy, 0.0).a;
     float L = u_length * s;
@@ -78,9 +91,6 @@ void main()
     float edge = length(mat3(u_model) * (pb - pa)) * u_tiling;
     v_fin_uv = vec2(a_start + float(side) * edge, h);
     v_uv = uvs.xy;
-    v_world = world.xyz;
-    v_tangent = mat3(u_model) * t;
-    v_normal = mat3(u_model) * n;
-    v_h = h;
+    fur_light_terms(mat3(u_model) * t, mat3(u_model) * n, world.xyz, h, v_light_mul, v_light_add);
     gl_Position = u_view_proj * world;
 }

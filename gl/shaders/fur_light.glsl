@@ -1,17 +1,20 @@
-// The light on a hair fragment, shared by the shells and the fins: the
+// The light on a hair, shared by the shells and the fins: the
 // hair model (Kajiya-Kay, Silva Eq. 6, or Lengyel's §2.4 table; both in
 // shading.glsl) with the displaced strand's tangent T, the body's own
 // shadow on hair facing away from the light, and gamma(h). Reads the
 // uniform blocks, so it comes after blocks.glsl.
 uniform sampler2D u_light_table; // PELT_UNIT_LIGHT_TABLE
 
-vec3 fur_light(vec3 base, vec3 tangent, vec3 normal, vec3 world, float h)
+// As a factor and a term, colour = base * mul + add, so the shells and the
+// fins evaluate it per vertex (their lean fragment stage only fetches the
+// hair and multiplies; docs/lod.md says what that costs in the picture).
+void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mul, out vec3 add)
 {
     vec3 T = normalize(tangent);
     vec3 L = normalize(u_light_dir);
     vec3 E = normalize(world - u_eye);
-    // A program may be built for one model (the shell pass's variants,
-    // gl/shell_pass.c); else the fur's model is chosen per fragment.
+    // A program may be built for one model (the passes' variants,
+    // gl/shell_pass.c); else the fur's model is chosen at run time.
 #if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
     vec2 kk = lengyel_lookup(u_light_table, T, L, normalize(L - E));
 #elif defined(PELT_SHADING_KK) && !defined(PELT_SHADING_TABLE)
@@ -24,7 +27,6 @@ vec3 fur_light(vec3 base, vec3 tangent, vec3 normal, vec3 world, float h)
     // body's shadow: Kajiya-Kay alone would light it as brightly.
     float facing = clamp(dot(normalize(normal), L) * 0.8 + 0.35, 0.0, 1.0);
     float gamma = shadow_factor(u_shadow, h);
-    vec3 lit = base * (u_ambient + kk.x * facing * u_light_color)
-             + u_specular * kk.y * facing * u_light_color;
-    return gamma * lit;
+    mul = gamma * (u_ambient + kk.x * facing * u_light_color);
+    add = gamma * u_specular * kk.y * facing * u_light_color;
 }

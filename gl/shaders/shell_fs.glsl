@@ -1,15 +1,14 @@
-// Shell fragments: fur texture slice of this layer, Kajiya-Kay shading
-// (Silva et al. Eq. 6) with the displaced strand tangent, alpha discard.
+// Shell fragments: fur texture slice of this layer, lit by the terms the
+// vertex stage worked out (Kajiya-Kay, Silva et al. Eq. 6), alpha discard.
 in vec2 v_uv;
 in vec2 v_fur_uv;
-in vec3 v_world;
-in vec3 v_tangent;
-in vec3 v_normal;
 in float v_h;
-in vec3 v_frame_u;
-in vec3 v_frame_v;
 in float v_density;
-in vec4 v_hair_color;
+in vec3 v_root;
+in vec3 v_tip;
+in vec3 v_light_mul;
+in vec3 v_light_add;
+in vec2 v_shadow_step;
 flat in vec3 v_slices;
 flat in float v_alpha;
 
@@ -59,9 +58,7 @@ void main()
         // Kenwright: no hair here, but the hair a step towards the light
         // casts its shadow on what lies below, with that hair's coverage.
         if (u_inter_shadow <= 0.0 || u_no_inter_shadow != 0) discard;
-        vec2 step = inter_shadow_offset(normalize(u_light_dir), normalize(v_frame_u),
-                                        normalize(v_frame_v), u_inter_shadow_step);
-        float caster = texture(u_fur, vec3(fur_uv + step, v_slices.x)).a * v_alpha;
+        float caster = texture(u_fur, vec3(fur_uv + v_shadow_step, v_slices.x)).a * v_alpha;
         if (caster < 0.05) discard;
         o_color = vec4(0.0, 0.0, 0.0, caster * u_inter_shadow);
         return;
@@ -69,12 +66,10 @@ void main()
         discard;
 #endif
     }
-    vec3 root = groom_root_color(u_color, v_hair_color);
-    vec3 tip = groom_tip_color(u_color, u_tip_color, v_hair_color);
-    vec3 base = mix(root, tip, hair.g) * hair.r;
+    vec3 base = mix(v_root, v_tip, hair.g) * hair.r;
 #ifdef PELT_COLOR_TEXTURE
     base *= texture(u_color_tex, (v_uv + d) * u_color_scale).rgb;
 #endif
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
-    o_color = vec4(fur_light(base, v_tangent, v_normal, v_world, v_h), hair.a);
+    o_color = vec4(base * v_light_mul + v_light_add, hair.a);
 }

@@ -21,16 +21,17 @@ uniform vec4 u_shells;     // x: shells from the first to the outermost, y: step
 uniform vec2 u_shells_next; // the next level: x: its first slice, y: its shell count
 uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
 
+// The lean shader (docs/lod.md): what varies slowly over a triangle is
+// worked out here, per vertex, so the fragment stage fetches and blends.
 out vec2 v_uv;
 out vec2 v_fur_uv;
-out vec3 v_world;
-out vec3 v_tangent;
-out vec3 v_normal;
 out float v_h;
-out vec3 v_frame_u;  // the surface's tangent frame in the world (inter-fur shadows)
-out vec3 v_frame_v;
 out float v_density;
-out vec4 v_hair_color;
+out vec3 v_root;        // the groomed root and tip colours
+out vec3 v_tip;
+out vec3 v_light_mul;   // fur_light_terms: colour = base * mul + add
+out vec3 v_light_add;
+out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
 flat out float v_alpha;  // the shell's opacity: fades as its level leaves
 
@@ -60,15 +61,14 @@ void main()
                 + fur_comb(shear, L, 1.0, h);
     vec3 t = fur_tangent_combed(n, L, tip, u, v, shear, u_curl_frequency, K, rho, 1.0, h);
     vec4 world = u_model * vec4(a_position + offset, 1.0);
-    v_world = world.xyz;
-    v_tangent = mat3(u_model) * t;
-    v_normal = mat3(u_model) * n;
-    v_frame_u = mat3(u_model) * u;
-    v_frame_v = mat3(u_model) * v;
+    fur_light_terms(mat3(u_model) * t, mat3(u_model) * n, world.xyz, h, v_light_mul, v_light_add);
+    v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),
+                                        normalize(mat3(u_model) * v), u_inter_shadow_step);
+    v_root = groom_root_color(u_color, a_hair_color);
+    v_tip = groom_tip_color(u_color, u_tip_color, a_hair_color);
     v_uv = a_uv;
     v_fur_uv = a_fur_uv;
     v_h = h;
     v_density = a_groom.w;
-    v_hair_color = a_hair_color;
     gl_Position = u_view_proj * world;
 }

@@ -113,7 +113,10 @@ typedef struct pelt_fur_lod {
     float shell_pixels;      /* AUTO: the finest shell level whose spacing on
                                 screen is at least this many pixels, default 1 */
     float mesh_error_pixels; /* AUTO: the coarsest mesh level whose error on
-                                screen stays within this, default 0.5 */
+                                screen stays within this, default 0.5 ... */
+    float mesh_edge_pixels;  /* ... and whose mean edge on screen within this
+                                (strands, groom and light are per vertex),
+                                default 8 */
 } pelt_fur_lod;
 
 /* Fur parameters, one home each. A zero field means its documented

@@ -42,12 +42,16 @@ static void lod_levels_shrink_and_their_error_grows(void)
     CHECK(c.levels[1].error < 0.01f * c.radius);
     /* Picking: no pixels per unit, or a huge zoom, is level 0; far away
      * the coarsest level; the bound holds for the level picked. */
-    CHECK(pelt__lod_pick(&c, 0.0f, 0.5f) == 0);
-    CHECK(pelt__lod_pick(&c, INFINITY, 0.5f) == 0);
-    CHECK(pelt__lod_pick(&c, 1e-6f, 0.5f) == c.count - 1);
-    unsigned k = pelt__lod_pick(&c, 300.0f, 0.5f);
+    CHECK(pelt__lod_pick(&c, 0.0f, 0.5f, INFINITY) == 0);
+    CHECK(pelt__lod_pick(&c, INFINITY, 0.5f, INFINITY) == 0);
+    CHECK(pelt__lod_pick(&c, 1e-6f, 0.5f, INFINITY) == c.count - 1);
+    unsigned k = pelt__lod_pick(&c, 300.0f, 0.5f, INFINITY);
     CHECK(c.levels[k].error * 300.0f <= 0.5f);
     if (k + 1 < c.count) CHECK(c.levels[k + 1].error * 300.0f > 0.5f);
+    /* The mean edge bounds the level too; edges grow level by level. */
+    CHECK(c.levels[1].edge > 1.5f * c.levels[0].edge);
+    unsigned e = pelt__lod_pick(&c, 1e-6f, 0.5f, 1.2f * c.levels[1].edge * 1e-6f);
+    CHECK(e == 1);
     pelt__lod_chain_free(&c, &heap);
 
     /* Level of detail off: level 0 only. */
