@@ -81,13 +81,14 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     p->lod = lod;
     p->alloc = hooks->allocator;
     p->staging = pelt__alloc(&p->alloc, (most ? most : 1) * sizeof *p->staging);
-    if (!p->staging) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fins", most);
-    _Static_assert(sizeof(pelt__fin_edge) == 3 * sizeof(uint32_t), "a fin is one RGB32UI texel");
+    p->texels = pelt__alloc(&p->alloc, (most ? most : 1) * 4 * sizeof *p->texels);
+    if (!p->staging || !p->texels) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fins", most);
     size_t rows = (most + PELT_TABLE_WIDTH - 1) / PELT_TABLE_WIDTH;
     glGenTextures(1, &p->edges);
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN_EDGES);
     glBindTexture(GL_TEXTURE_2D, p->edges);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB32UI, PELT_TABLE_WIDTH, (GLsizei)(rows ? rows : 1), 0, GL_RGB_INTEGER,
+    /* RGBA, not RGB: an RGB upload makes Mesa convert (and allocate) each time. */
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, PELT_TABLE_WIDTH, (GLsizei)(rows ? rows : 1), 0, GL_RGBA_INTEGER,
                  GL_UNSIGNED_INT, NULL);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
@@ -111,17 +112,25 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     return PELT_OK;
 }
 
-/* Writes fins [0, count) into the table, whole rows then the last one. */
-static void write_table(GLuint t, const pelt__fin_edge *fins, size_t count)
+/* Writes fins [0, count) into the table (a, b, start bits, 0 per texel),
+ * whole rows then the last one. */
+static void write_table(const pelt__fin_pass *p, const pelt__fin_edge *fins, size_t count)
 {
+    uint32_t *t = p->texels;
+    for (size_t i = 0; i < count; i++) {
+        t[4 * i] = fins[i].a;
+        t[4 * i + 1] = fins[i].b;
+        memcpy(&t[4 * i + 2], &fins[i].start, sizeof(uint32_t));
+        t[4 * i + 3] = 0;
+    }
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN_EDGES);
-    glBindTexture(GL_TEXTURE_2D, t);
+    glBindTexture(GL_TEXTURE_2D, p->edges);
     size_t rows = count / PELT_TABLE_WIDTH, rest = count % PELT_TABLE_WIDTH;
     if (rows)
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, PELT_TABLE_WIDTH, (GLsizei)rows, GL_RGB_INTEGER, GL_UNSIGNED_INT, fins);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, PELT_TABLE_WIDTH, (GLsizei)rows, GL_RGBA_INTEGER, GL_UNSIGNED_INT, t);
     if (rest)
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)rows, (GLsizei)rest, 1, GL_RGB_INTEGER, GL_UNSIGNED_INT,
-                        fins + rows * PELT_TABLE_WIDTH);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)rows, (GLsizei)rest, 1, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
+                        t + 4 * rows * PELT_TABLE_WIDTH);
 }
 
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
@@ -144,7 +153,7 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
         if (count == 0) return;
         fins = p->staging;
     }
-    write_table(p->edges, fins, count);
+    write_table(p, fins, count);
     pelt__gl_blended_hair_state();
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
     glBindTexture(GL_TEXTURE_2D, p->texture);
@@ -170,6 +179,7 @@ void pelt__fin_pass_destroy(pelt__fin_pass *p)
     if (p->ebo) glDeleteBuffers(1, &p->ebo);
     if (p->edges) glDeleteTextures(1, &p->edges);
     pelt__free(&p->alloc, p->staging);
+    pelt__free(&p->alloc, p->texels);
     if (p->vao) glDeleteVertexArrays(1, &p->vao);
     if (p->texture) glDeleteTextures(1, &p->texture);
     memset(p, 0, sizeof *p);

@@ -32,7 +32,7 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
     if (lod_slices)
         glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)slices, (GLsizei)size, (GLsizei)size,
                         (GLsizei)lod_slices, GL_RGBA, GL_UNSIGNED_BYTE, lod);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);

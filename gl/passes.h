@@ -77,9 +77,10 @@ typedef struct pelt__fin_pass {
     pelt_hooks hooks;
     GLuint vao, ebo;    /* the chunk's triangles */
     GLuint texture;     /* the fin texture, PELT_UNIT_FIN */
-    GLuint edges;       /* this frame's fins, PELT_UNIT_FIN_EDGES */
+    GLuint edges;       /* this frame's fins, PELT_UNIT_FIN_EDGES (RGBA32UI) */
     const pelt__lod_chain *lod;
     pelt__fin_edge *staging;
+    uint32_t *texels;   /* the table's texels, 4 per fin */
     pelt_allocator alloc;
 } pelt__fin_pass;
 

@@ -185,6 +185,7 @@ static const key_def scene_keys[] = {
     UINT_("mesh.minor_segments", mesh.minor_segments, 3, 16384, 0),
     FLT("mesh.radius", mesh.radius, 0, BIG, F_LO_OPEN),
     UINT_("mesh.slices", mesh.slices, 3, 16384, 0),
+    UINT_("mesh.simplify", mesh.simplify, 0, 0x7fffffff, 0),
     UINT_("mesh.stacks", mesh.stacks, 2, 16384, 0),
     FLT("mesh.size", mesh.size, 0, BIG, F_LO_OPEN),
     UINT_("mesh.subdivisions", mesh.subdivisions, 1, 16384, 0),

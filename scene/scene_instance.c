@@ -392,6 +392,12 @@ static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
 {
     pelt_status st = copy_scene(inst, sc, err);
     if (st == PELT_OK) st = load_mesh(&sc->mesh, &inst->mesh, err);
+    if (st == PELT_OK && sc->mesh.simplify > 0 && sc->mesh.simplify < pelt_mesh_get_stats(inst->mesh).triangle_count) {
+        pelt_mesh *coarse = NULL;
+        st = pelt_mesh_simplify(inst->mesh, sc->mesh.simplify, &coarse, err);
+        pelt_mesh_destroy(inst->mesh);
+        inst->mesh = coarse;
+    }
     /* What validation dropped is the loaded mesh's to tell: an atlas made
      * from it replaces it with a mesh that dropped nothing. */
     size_t dropped = st == PELT_OK ? pelt_mesh_get_stats(inst->mesh).dropped_degenerate : 0;

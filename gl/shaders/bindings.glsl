@@ -26,7 +26,7 @@
 #define PELT_UNIT_TIPS 5  // sampler2D RGBA32F: strand tips, one texel per vertex
 #define PELT_UNIT_GROOM 6 // usampler2D R32UI: the groom, PELT_GROOM_WORDS per vertex
 #define PELT_UNIT_LIGHT_TABLE 7 // sampler2D RG32F: Lengyel's hair lighting table
-#define PELT_UNIT_FIN_EDGES 8 // usampler2D RGB32UI: this frame's fins (a, b, start bits), a table
+#define PELT_UNIT_FIN_EDGES 8 // usampler2D RGBA32UI: this frame's fins (a, b, start bits, 0), a table
 #define PELT_UNIT_COUNT 9 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
 
 // Vertex tables: per-vertex data a pass fetches by vertex index (the fins

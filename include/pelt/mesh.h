@@ -76,6 +76,14 @@ pelt_status pelt_mesh_sphere(float radius, unsigned slices, unsigned stacks,
 pelt_status pelt_mesh_square(float size, unsigned subdivisions,
                              pelt_mesh **out, pelt_error *err);
 
+/* A coarser copy of `mesh` with about `target_triangles` triangles, made
+ * with meshoptimizer's simplifier (borders and uv seams kept, so it may
+ * stop above the target), validated as pelt_mesh_create does: the new mesh
+ * keeps the vertices its triangles use, with their attributes. Free with
+ * pelt_mesh_destroy. */
+pelt_status pelt_mesh_simplify(const pelt_mesh *mesh, size_t target_triangles, pelt_mesh **out,
+                               pelt_error *err);
+
 void pelt_mesh_destroy(pelt_mesh *mesh);
 
 pelt_mesh_stats pelt_mesh_get_stats(const pelt_mesh *mesh);

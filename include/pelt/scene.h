@@ -50,6 +50,9 @@ typedef struct pelt_scene_mesh {
        16 subdivisions per side */
     float size;
     unsigned subdivisions;
+    /* simplify: when above 0 and below the mesh's triangle count, the mesh
+       is first simplified to about this many triangles (pelt_mesh_simplify) */
+    unsigned simplify;
     /* placement: rotation in degrees about X, then Y, then Z; uniform scale
        (default 1). Applied before the animation (pelt_scene_model_at). */
     float rotation[3];
