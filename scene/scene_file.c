@@ -218,7 +218,7 @@ static const key_def scene_keys[] = {
     PATH("fur.groom", groom.file),
     ENUM("fur.lod", fur.lod.mode, lod_names),
     UINT_("fur.lod_shell_level", fur.lod.shell_level, 0, 8, 0),
-    UINT_("fur.lod_mesh_level", fur.lod.mesh_level, 0, 8, 0),
+    UINT_("fur.lod_mesh_level", fur.lod.mesh_level, 0, 11, 0),
     FLT("fur.lod_shell_pixels", fur.lod.shell_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
     FLT("fur.lod_mesh_error", fur.lod.mesh_error_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
     FLT("fur.lod_mesh_edge", fur.lod.mesh_edge_pixels, 0, 1024, F_LO_OPEN | F_ZERO_OK),

@@ -113,12 +113,12 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "fin length must be in (0, 8], density in (0, texture size], curl in [0, 64] "
                           "texels, curl turns in (0, 64]");
-    if ((unsigned)d->lod.mode > PELT_LOD_FIXED || d->lod.shell_level > 8 || d->lod.mesh_level > 8 ||
+    if ((unsigned)d->lod.mode > PELT_LOD_FIXED || d->lod.shell_level > 8 || d->lod.mesh_level > 11 ||
         !(d->lod.shell_pixels > 0.0f && d->lod.shell_pixels <= 64.0f) ||
         !(d->lod.mesh_error_pixels > 0.0f && d->lod.mesh_error_pixels <= 64.0f) ||
         !(d->lod.mesh_edge_pixels > 0.0f && d->lod.mesh_edge_pixels <= 1024.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "level of detail: mode auto, off or fixed, levels 0..8, shell pixels and "
+                          "level of detail: mode auto, off or fixed, shell level 0..8, mesh level 0..11, shell pixels and "
                           "mesh error pixels in (0, 64], mesh edge pixels in (0, 1024]");
     return PELT_OK;
 }

@@ -13,7 +13,7 @@
 
 /* A level stops the chain when it keeps more than this share of the
  * previous level's triangles: the simplifier has run into locked borders. */
-#define LOD_MIN_SHRINK 0.7
+#define LOD_MIN_SHRINK 0.8
 /* Nothing coarser than this many triangles is worth a level. */
 #define LOD_MIN_TRIANGLES 64
 
@@ -144,7 +144,7 @@ pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned
      * level's error is measured against the surface the skin draws. */
     float scale = m.vertex_count ? meshopt_simplifyScale(m.positions, m.vertex_count, 3 * sizeof(float)) : 0.0f;
     size_t previous = m.triangle_count;
-    while (st == PELT_OK && out->count < max_levels && previous / 4 >= LOD_MIN_TRIANGLES) {
+    while (st == PELT_OK && out->count < max_levels && previous / 2 >= LOD_MIN_TRIANGLES) {
         uint32_t *dst = pelt__alloc(alloc, n * sizeof *dst);
         if (!dst) {
             st = pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the level-of-detail indices");
@@ -152,7 +152,7 @@ pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned
         }
         float relative = 0.0f;
         size_t got = meshopt_simplify(dst, m.indices, n, m.positions, m.vertex_count, 3 * sizeof(float),
-                                      3 * (previous / 4), 1.0f, meshopt_SimplifyLockBorder, &relative);
+                                      3 * (previous / 2), 1.0f, meshopt_SimplifyLockBorder, &relative);
         size_t triangles = got / 3;
         if (triangles == 0 || (double)triangles > LOD_MIN_SHRINK * (double)previous) {
             pelt__free(alloc, dst);

@@ -11,7 +11,7 @@
 
 #include <stdbool.h>
 
-#define PELT__LOD_MAX_LEVELS 8
+#define PELT__LOD_MAX_LEVELS 12
 
 typedef struct pelt__lod_level {
     uint32_t *indices;      /* 3 per triangle, in vertex-cache order */
@@ -37,7 +37,7 @@ typedef struct pelt__lod_chain {
 } pelt__lod_chain;
 
 /* Builds level 0 (the mesh's triangles in vertex-cache order) and coarser
- * levels of about a quarter of the triangles each, borders and uv seams
+ * levels of about half the triangles each, borders and uv seams
  * kept, until a level stops shrinking, up to PELT__LOD_MAX_LEVELS or
  * `max_levels` (1: level 0 only). Every block comes from `alloc`. */
 pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned max_levels,
