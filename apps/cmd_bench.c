@@ -332,6 +332,10 @@ int cmd_bench(int argc, char **argv)
         printf("clumps cost %+.1f%% per frame (draw %+.1f%%)\n",
                100.0 * (wet[PART_FRAME].median / plain[PART_FRAME].median - 1.0),
                100.0 * (wet[PART_DRAW].median / plain[PART_DRAW].median - 1.0));
+        if (o.bench_floor) {
+            printf("with the clumps, ");
+            if (bench_variants(&s, frames, true)) rc = 1;
+        }
     }
     if (o.bench_droplets) rc = bench_droplets(mesh);
     if (rc == 0 && o.bench_brush) rc = bench_brush(&s);

@@ -21,7 +21,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
         if (features & (1u << k))
             at += (size_t)snprintf(defines + at, sizeof defines - at, "#define %s 1\n", feature_defines[k]);
     const char *vs[] = {defines, pelt__shader_shading, pelt__shader_fur_light, pelt__shader_fur_shape,
-                        pelt__shader_shell_vs, NULL};
+                        pelt__shader_clump, pelt__shader_shell_vs, NULL};
     const char *fs[] = {defines, pelt__shader_shading, pelt__shader_clump, pelt__shader_shell_fs, NULL};
     const char *floor_fs[] = {pelt__shader_shell_floor_fs, NULL};
     pelt_status st = pelt__gl_program_create(floor ? "shell floor" : "shell", vs, floor ? floor_fs : fs, hooks,

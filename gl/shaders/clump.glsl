@@ -29,21 +29,27 @@ vec4 clump_texel(sampler2D mask, vec2 uv)
     return texelFetch(mask, ivec2(i), 0);
 }
 
-// Alg. 2 with the inverse mapping q = c + (p - c) / (1 - min(s rho f(h), 0.95)).
-int clump_lookup(sampler2D mask, vec2 p, float h, float w, float N, float s, out vec2 q)
+// Alg. 2 with the inverse mapping q = c + (p - c) / (1 - min(s rho f(h), 0.95)),
+// from p's mask texel t and the profile f = clump_profile(h, w, N), which
+// the shells work out once per layer in the vertex stage.
+int clump_lookup_texel(sampler2D mask, vec4 t, vec2 p, float f, float s, out vec2 q)
 {
     q = p;
-    vec4 t = clump_texel(mask, p);
     if (!(t.a > 0.0)) return CLUMP_KEEP;
     vec2 o = p - t.xy;
     if (length(o) > t.z) return CLUMP_DISCARD;
-    float pull = clamp(s * t.a * clump_profile(h, w, N), 0.0, CLUMP_MAX_PULL);
+    float pull = clamp(s * t.a * f, 0.0, CLUMP_MAX_PULL);
     q = t.xy + o * (1.0 / (1.0 - pull));
     // The root must lie in this clump: strands from beyond its radius
     // belong to a neighbour, so the clump narrows towards its tip.
     if (length(q - t.xy) > t.z) return CLUMP_DISCARD;
     if (!(clump_texel(mask, q).a > 0.0)) return CLUMP_DISCARD;
     return CLUMP_DISPLACED;
+}
+
+int clump_lookup(sampler2D mask, vec2 p, float h, float w, float N, float s, out vec2 q)
+{
+    return clump_lookup_texel(mask, clump_texel(mask, p), p, clump_profile(h, w, N), s, q);
 }
 
 // Coverage of strands squeezed by a factor k (0 < k <= 1) towards the clump

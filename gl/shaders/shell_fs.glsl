@@ -2,13 +2,13 @@
 // vertex stage worked out (Kajiya-Kay, Silva et al. Eq. 6), alpha discard.
 in vec2 v_uv;
 in vec2 v_fur_uv;
-in float v_h;
 in float v_density;
 in vec3 v_root;
 in vec3 v_tip;
 in vec3 v_light_mul;
 in vec3 v_light_add;
 in vec2 v_shadow_step;
+flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
 flat in float v_alpha;
 
@@ -31,10 +31,11 @@ void main()
     // Clumps (Silva Eq. 5, Alg. 2 as DESIGN.md reads them): sample the hair
     // rooted at q; colour and fur coordinates move together.
     vec2 q;
-    int clump = clump_lookup(u_mask, v_uv, v_h, u_clump_blend, u_layers, u_clump_tightness, q);
+    vec4 t = clump_texel(u_mask, v_uv);
+    rho = t.a;
+    int clump = clump_lookup_texel(u_mask, t, v_uv, v_clump_profile, u_clump_tightness, q);
     if (clump == CLUMP_DISCARD) discard;
     if (clump == CLUMP_DISPLACED) d = q - v_uv;
-    rho = clump_texel(u_mask, v_uv).a;
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
     vec4 hair = texture(u_fur, vec3(fur_uv, v_slices.x));
@@ -48,8 +49,7 @@ void main()
     if (clump == CLUMP_DISPLACED) {
         // The clump squeezes its strands towards the centre by k: the
         // bundle is 1/k times as dense (see docs/wetness.md).
-        float k = 1.0 - min(u_clump_tightness * rho * clump_profile(v_h, u_clump_blend, u_layers),
-                            CLUMP_MAX_PULL);
+        float k = 1.0 - min(u_clump_tightness * rho * v_clump_profile, CLUMP_MAX_PULL);
         hair.a = clump_coverage(hair.a, k);
     }
 #endif

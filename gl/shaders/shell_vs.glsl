@@ -32,6 +32,7 @@ out vec3 v_tip;
 out vec3 v_light_mul;   // fur_light_terms: colour = base * mul + add
 out vec3 v_light_add;
 out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
+flat out float v_clump_profile; // Silva Eq. 5's f(h), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
 flat out float v_alpha;  // the shell's opacity: fades as its level leaves
 
@@ -70,5 +71,6 @@ void main()
     v_fur_uv = a_fur_uv;
     v_h = h;
     v_density = a_groom.w;
+    v_clump_profile = clump_profile(h, u_clump_blend, u_layers);
     gl_Position = u_view_proj * world;
 }
