@@ -20,8 +20,7 @@
  * renderer from the view. */
 typedef struct pelt__frame_lod {
     bool full_mesh;       /* level of detail off: the mesh's own triangles */
-    unsigned mesh_level;  /* else this geometric level's triangles ... */
-    unsigned fin_level;   /* ... and this one's fins (as coarse or coarser) */
+    unsigned mesh_level;  /* else this geometric level's triangles and fins */
     unsigned shell_level; /* Lengyel §2.4: ceil(N / 2^level) shells ... */
     float shell_blend;    /* ... blending this far towards the next level */
     bool cull;            /* back-facing shells culled (closed meshes) */

@@ -114,7 +114,6 @@ static pelt__frame_lod choose_lod(const pelt_renderer *r, const pelt_view *v, co
     unsigned shell_levels = pelt__lod_shell_levels(r->layers);
     if (fl.mode == PELT_LOD_FIXED) {
         l.mesh_level = fl.mesh_level < c->count ? fl.mesh_level : c->count - 1;
-        l.fin_level = l.mesh_level;
         l.shell_level = one_height ? 0 : fl.shell_level < shell_levels ? fl.shell_level : shell_levels - 1;
         return l;
     }
@@ -136,8 +135,6 @@ static pelt__frame_lod choose_lod(const pelt_renderer *r, const pelt_view *v, co
     }
     if (v->height == 0) ppu = INFINITY;
     l.mesh_level = pelt__lod_pick(c, ppu, fl.mesh_error_pixels, fl.mesh_edge_pixels);
-    /* A fin only draws a silhouette: twice the error and edge allowed. */
-    l.fin_level = pelt__lod_pick(c, ppu, 2.0f * fl.mesh_error_pixels, 2.0f * fl.mesh_edge_pixels);
     if (!one_height)
         pelt__lod_shell_choice(r->layers, pelt_fur_get_desc(r->fur).length * ppu, fl.shell_pixels, &l.shell_level,
                                &l.shell_blend);
@@ -174,7 +171,6 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     const pelt__frame_lod lod = choose_lod(r, view, draw);
     const pelt__pass_frame frame = {&r->mesh, r->layers, draw, &stats, lod, view, shell_features(r, &lod, draw)};
     stats.mesh_level = frame.lod.mesh_level;
-    stats.fin_level = frame.lod.fin_level;
     stats.mesh_triangles = frame.lod.full_mesh ? r->mesh.triangle_count : r->mesh.level_triangles[frame.lod.mesh_level];
     stats.shell_level = frame.lod.shell_level;
     stats.shell_blend = frame.lod.shell_blend;

@@ -59,7 +59,6 @@ typedef struct pelt_render_stats {
     unsigned mesh_level;       /* the shells' and fins' geometric level of detail
                                   (0: the full mesh) */
     size_t mesh_triangles;     /* triangles of that level */
-    unsigned fin_level;        /* the fins' level (as coarse or coarser) */
     unsigned shell_level;      /* Lengyel §2.4: ceil(layers / 2^shell_level) shells */
     float shell_blend;         /* how far towards the next shell level (0..1) */
     bool culled;               /* back-facing shells were culled */

@@ -63,9 +63,8 @@ static void lod_auto_looks_like_lod_off_for_less_work(void)
     pelt_render_stats sa, sb;
     draw(ra, 4.2f, NULL, a, &sa);
     draw(rb, 4.2f, NULL, b, &sb);
-    printf("  auto: mesh level %u (%zu triangles), fins level %u, culled %d, %zu triangles submitted; "
-           "off: %zu\n",
-           sa.mesh_level, sa.mesh_triangles, sa.fin_level, sa.culled, sa.triangles, sb.triangles);
+    printf("  auto: mesh level %u (%zu triangles), culled %d, %zu triangles submitted; off: %zu\n",
+           sa.mesh_level, sa.mesh_triangles, sa.culled, sa.triangles, sb.triangles);
     CHECK(sa.mesh_level >= 1 && sa.culled);
     CHECK(sb.mesh_level == 0 && !sb.culled);
     CHECK(sa.triangles * 2 < sb.triangles);
