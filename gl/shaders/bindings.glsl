@@ -37,7 +37,7 @@
 
 // A fin is a strip of PELT_FIN_ROWS quads up the strand, 2 (PELT_FIN_ROWS + 1)
 // vertices; an instance draws PELT_FIN_CHUNK fins (gl/fin_pass.c).
-#define PELT_FIN_ROWS 4
+#define PELT_FIN_ROWS 3
 #define PELT_FIN_CHUNK 64
 
 // Uniform block binding points (gl/uniform_blocks.c, gl/shaders/blocks.glsl).

@@ -51,21 +51,25 @@ void main()
     uvec3 e = texelFetch(u_fin_edges, table_at(fin), 0).xyz;
     uvec2 a_edge = e.xy;
     float a_start = uintBitsToFloat(e.z);
-    vec3 pa = vertex_texel(a_edge.x, 0).xyz, pb = vertex_texel(a_edge.y, 0).xyz;
-    vec3 na = vertex_texel(a_edge.x, 1).xyz, nb = vertex_texel(a_edge.y, 1).xyz;
+    int side = corner % 2;
+    float h = float(corner / 2) / float(PELT_FIN_ROWS);
+    uint vi = side == 0 ? a_edge.x : a_edge.y, other = side == 0 ? a_edge.y : a_edge.x;
+    // This side's position and normal serve the strand too; the other
+    // end's two texels complete the fin normal.
+    vec4 t0 = vertex_texel(vi, 0);
+    vec3 n_raw = vertex_texel(vi, 1).xyz;
+    vec3 p_other = vertex_texel(other, 0).xyz, n_other = vertex_texel(other, 1).xyz;
+    vec3 pa = side == 0 ? t0.xyz : p_other, pb = side == 0 ? p_other : t0.xyz;
+    vec3 na = side == 0 ? n_raw : n_other, nb = side == 0 ? n_other : n_raw;
     vec3 fin_n = normalize(mat3(u_model) * fin_normal(pa, pb, na, nb));
     v_fade = u_unfaded != 0 ? 1.0 : fin_fade(fin_n, u_view_dir);
     // The fragment stage drops coverage below 0.05, so a fin faded below
-    // that draws nothing: collapse it here, before its vertex fetches.
+    // that draws nothing: collapse it here, before its other fetches.
     if (v_fade < 0.05) {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
         return;
     }
-    int side = corner % 2;
-    float h = float(corner / 2) / float(PELT_FIN_ROWS);
-    uint vi = side == 0 ? a_edge.x : a_edge.y;
-    vec4 t0 = vertex_texel(vi, 0);
-    vec3 n = normalize(vertex_texel(vi, 1).xyz);
+    vec3 n = normalize(n_raw);
     vec3 u = normalize(vertex_texel(vi, 2).xyz);
     vec3 v = cross(n, u) * t0.w;
     vec4 uvs = vertex_texel(vi, 3);
