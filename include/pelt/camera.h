@@ -29,7 +29,8 @@ typedef struct pelt_view {
     float eye[3];
     float model[16];          /* mesh placement, column-major */
     pelt_light light;
-    unsigned width, height;   /* viewport in pixels */
+    unsigned width, height;   /* viewport in pixels; level of detail needs the
+                                 height (0: the finest levels, docs/lod.md) */
 } pelt_view;
 
 /* Fills view/proj/eye of `view` from an orbit camera and an aspect ratio;

@@ -69,18 +69,8 @@ static void lod_auto_looks_like_lod_off_for_less_work(void)
     CHECK(sb.mesh_level == 0 && !sb.culled);
     CHECK(sa.triangles * 2 < sb.triangles);
     /* The golden tolerance of tests/gl/test_render.c, against LOD off. */
-    double sum = 0.0;
-    size_t off_px = 0;
-    for (size_t i = 0; i < NPX; i++) {
-        int worst = 0;
-        for (int k = 0; k < 3; k++) {
-            int e = abs((int)a[4 * i + k] - (int)b[4 * i + k]);
-            sum += e;
-            if (e > worst) worst = e;
-        }
-        off_px += worst > 32;
-    }
-    double mean = sum / (3.0 * (double)NPX), frac = (double)off_px / (double)NPX;
+    double mean, frac;
+    gl_test_compare(a, b, NPX, &mean, &frac);
     printf("  auto against off: mean error %.3f (max 4), pixels off %.4f (max 0.03)\n", mean, frac);
     CHECK(mean <= 4.0);
     CHECK(frac <= 0.03);

@@ -84,6 +84,26 @@ static inline size_t gl_test_coverage(const uint8_t *px, size_t n)
     return c;
 }
 
+/* Mean absolute channel error (0..255, RGB) of two RGBA8 images of n
+ * pixels, and the fraction of pixels with a channel off by more than 32:
+ * the measures of the golden tolerance. */
+static inline void gl_test_compare(const uint8_t *a, const uint8_t *b, size_t n, double *mean, double *frac)
+{
+    double sum = 0.0;
+    size_t off = 0;
+    for (size_t i = 0; i < n; i++) {
+        int worst = 0;
+        for (int k = 0; k < 3; k++) {
+            int e = abs((int)a[4 * i + k] - (int)b[4 * i + k]);
+            sum += e;
+            if (e > worst) worst = e;
+        }
+        if (worst > 32) off++;
+    }
+    *mean = sum / (3.0 * (double)n);
+    *frac = (double)off / (double)n;
+}
+
 /* Compares with a reference PNG (made on Mesa llvmpipe) under a tolerance:
  * mean absolute channel error <= max_mean (0..255) and the fraction of
  * pixels with a channel off by more than 32 <= max_frac. With
@@ -109,18 +129,8 @@ static inline void gl_test_golden(const char *name, const uint8_t *px, int w, in
     }
     CHECK(rw == w && rh == h);
     if (rw == w && rh == h) {
-        double sum = 0.0;
-        size_t off = 0, n = (size_t)w * (size_t)h;
-        for (size_t i = 0; i < n; i++) {
-            int worst = 0;
-            for (int k = 0; k < 3; k++) {
-                int e = abs((int)px[4 * i + k] - (int)ref[4 * i + k]);
-                sum += e;
-                if (e > worst) worst = e;
-            }
-            if (worst > 32) off++;
-        }
-        double mean = sum / (3.0 * (double)n), frac = (double)off / (double)n;
+        double mean, frac;
+        gl_test_compare(px, ref, (size_t)w * (size_t)h, &mean, &frac);
         printf("  %s: mean error %.3f (max %.3f), pixels off %.4f (max %.4f)\n", name, mean,
                max_mean, frac, max_frac);
         CHECK(mean <= max_mean);
