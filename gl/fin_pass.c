@@ -48,6 +48,7 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     }
     p->unfaded[features] = glGetUniformLocation(p->variants[features], "u_unfaded");
     p->fin_count[features] = glGetUniformLocation(p->variants[features], "u_fin_count");
+    p->fin_rows[features] = glGetUniformLocation(p->variants[features], "u_fin_rows");
     return PELT_OK;
 }
 
@@ -94,20 +95,26 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
 
-    /* One chunk of PELT_FIN_CHUNK strips as triangles: fin c's corner k is
-     * vertex c * corners + k, so the vertex cache shades each corner once. */
-    enum { CORNERS = 2 * (PELT_FIN_ROWS + 1), INDICES = 6 * PELT_FIN_ROWS };
-    uint32_t indices[PELT_FIN_CHUNK * INDICES];
-    for (uint32_t c = 0; c < PELT_FIN_CHUNK; c++)
-        for (uint32_t q = 0; q < PELT_FIN_ROWS; q++) {
-            uint32_t *t = indices + c * INDICES + q * 6, v = c * CORNERS + 2 * q;
-            t[0] = v, t[1] = v + 1, t[2] = v + 2, t[3] = v + 1, t[4] = v + 3, t[5] = v + 2;
-        }
+    /* One chunk of PELT_FIN_CHUNK strips of r quads as triangles, for each
+     * r = 1 .. PELT_FIN_ROWS one after the other: fin c's corner k is vertex
+     * c * corners + k, so the vertex cache shades each corner once. */
+    enum { MAX_INDICES = PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS };
+    uint32_t indices[MAX_INDICES];
     glGenVertexArrays(1, &p->vao);
     glBindVertexArray(p->vao);
     glGenBuffers(1, &p->ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, p->ebo);
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, sizeof indices, indices, GL_STATIC_DRAW);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, (GLsizeiptr)(PELT_FIN_ROWS * sizeof indices), NULL, GL_STATIC_DRAW);
+    for (uint32_t r = 1; r <= PELT_FIN_ROWS; r++) {
+        uint32_t corners = 2 * (r + 1);
+        for (uint32_t c = 0; c < PELT_FIN_CHUNK; c++)
+            for (uint32_t q = 0; q < r; q++) {
+                uint32_t *t = indices + (c * r + q) * 6, v = c * corners + 2 * q;
+                t[0] = v, t[1] = v + 1, t[2] = v + 2, t[3] = v + 1, t[4] = v + 3, t[5] = v + 2;
+            }
+        glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)((r - 1) * sizeof indices),
+                        (GLsizeiptr)(PELT_FIN_CHUNK * 6 * r * sizeof(uint32_t)), indices);
+    }
     glBindVertexArray(0);
     return PELT_OK;
 }
@@ -163,13 +170,16 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     glUseProgram(p->variants[features]);
     glUniform1i(p->unfaded[features], f->draw->fins_unfaded ? 1 : 0);
     glUniform1i(p->fin_count[features], (GLint)count);
+    unsigned rows = f->lod.fin_rows ? f->lod.fin_rows : PELT_FIN_ROWS;
+    glUniform1i(p->fin_rows[features], (GLint)rows);
     glBindVertexArray(p->vao);
-    glDrawElementsInstanced(GL_TRIANGLES, 6 * PELT_FIN_ROWS * PELT_FIN_CHUNK, GL_UNSIGNED_INT, NULL,
+    const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
+    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
                             (GLsizei)((count + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
     glBindVertexArray(f->mesh->vao);
     f->stats->fin_draw_calls++;
     f->stats->fins += count;
-    f->stats->triangles += count * 2 * PELT_FIN_ROWS;
+    f->stats->triangles += count * 2 * rows;
 }
 
 void pelt__fin_pass_destroy(pelt__fin_pass *p)

@@ -23,6 +23,7 @@ typedef struct pelt__frame_lod {
     unsigned mesh_level;  /* else this geometric level's triangles and fins */
     unsigned shell_level; /* Lengyel §2.4: ceil(N / 2^level) shells ... */
     float shell_blend;    /* ... blending this far towards the next level */
+    unsigned fin_rows;    /* quads up a fin, 1..PELT_FIN_ROWS (0: all) */
     bool cull;            /* back-facing shells culled (closed meshes) */
     bool front_cw;        /* the mesh winds its outside faces clockwise */
 } pelt__frame_lod;
@@ -73,6 +74,7 @@ typedef struct pelt__fin_pass {
     bool failed[PELT__SHELL_VARIANTS];
     GLint unfaded[PELT__SHELL_VARIANTS];   /* u_unfaded: 1 draws every fin at full opacity */
     GLint fin_count[PELT__SHELL_VARIANTS]; /* u_fin_count */
+    GLint fin_rows[PELT__SHELL_VARIANTS];  /* u_fin_rows */
     pelt_hooks hooks;
     GLuint vao, ebo;    /* the chunk's triangles */
     GLuint texture;     /* the fin texture, PELT_UNIT_FIN */

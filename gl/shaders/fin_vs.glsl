@@ -1,13 +1,15 @@
 // All fins in one instanced draw: an instance is PELT_FIN_CHUNK fins (one
 // instance per fin costs llvmpipe more than the fin itself), fin
-// gl_InstanceID * PELT_FIN_CHUNK + gl_VertexID / (2 (PELT_FIN_ROWS + 1)) of
+// gl_InstanceID * PELT_FIN_CHUNK + gl_VertexID / (2 (rows + 1)) of
 // this frame's fin table; the vertex is a point of a strip up the fin (row
-// = corner / 2 of PELT_FIN_ROWS + 1, side = corner % 2: vertex a or b). Each side rises along its
+// = corner / 2 of rows + 1, side = corner % 2: vertex a or b; fewer rows
+// when the fur is short on screen). Each side rises along its
 // vertex's displaced strand, the same beta + phi + shear as the shells
 // (shell_vs.glsl), so fins bend, curl and comb with them. A fin the fade
 // makes invisible collapses to one point outside the view: no fragments.
 uniform highp usampler2D u_fin_edges; // PELT_UNIT_FIN_EDGES: a, b, start bits
 uniform int u_fin_count;              // fins in the table this frame
+uniform int u_fin_rows;               // quads up a fin this frame, 1..PELT_FIN_ROWS
 
 uniform highp sampler2D u_vertices; // PELT_UNIT_VERTICES
 uniform highp sampler2D u_tips;     // PELT_UNIT_TIPS
@@ -41,7 +43,7 @@ uint groom_word(uint v, int k)
 
 void main()
 {
-    const int corners = 2 * (PELT_FIN_ROWS + 1);
+    int corners = 2 * (u_fin_rows + 1);
     int fin = gl_InstanceID * PELT_FIN_CHUNK + gl_VertexID / corners;
     int corner = gl_VertexID % corners;
     if (fin >= u_fin_count) { // the last chunk's spare fins
@@ -52,7 +54,7 @@ void main()
     uvec2 a_edge = e.xy;
     float a_start = uintBitsToFloat(e.z);
     int side = corner % 2;
-    float h = float(corner / 2) / float(PELT_FIN_ROWS);
+    float h = float(corner / 2) / float(u_fin_rows);
     uint vi = side == 0 ? a_edge.x : a_edge.y, other = side == 0 ? a_edge.y : a_edge.x;
     // This side's position and normal serve the strand too; the other
     // end's two texels complete the fin normal.
