@@ -85,7 +85,10 @@ void main()
     v_root = groom_root_color(u_color, hair_color);
     v_tip = groom_tip_color(u_color, u_tip_color, hair_color);
     v_density = uintBitsToFloat(groom_word(vi, 3));
-    float rho = textureLod(u_mask, uvs.xy, 0.0).a;
+    float rho = 0.0; // wetness straightens the curl; a dry frame reads no mask
+#ifdef PELT_WET
+    rho = textureLod(u_mask, uvs.xy, 0.0).a;
+#endif
     float L = u_length * s;
     float K = u_curl_radius * s;
     vec3 shear = fur_groom_shear(comb, u_slant, u, v, lean);

@@ -51,7 +51,10 @@ void main()
     vec3 n = normalize(a_normal);
     vec3 u = normalize(a_tangent.xyz);
     vec3 v = cross(n, u) * a_tangent.w;
-    float rho = textureLod(u_mask, a_uv, 0.0).a;
+    float rho = 0.0; // wetness straightens the curl; a dry frame reads no mask
+#ifdef PELT_WET
+    rho = textureLod(u_mask, a_uv, 0.0).a;
+#endif
     float s = a_groom.z;
     float L = u_length * s;
     vec3 tip = a_tip * s;
