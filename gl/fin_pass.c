@@ -1,11 +1,10 @@
 /* Fins (Lengyel et al. 2001 §2.3 pass 2): after the skin, before the
  * shells, every fin in ONE instanced draw, blended, depth tested without
- * depth write. Each frame the fins the view may show are gathered on the
- * CPU ("we collect the fins with nonzero alpha") into a table texture; an
- * instance draws PELT_FIN_CHUNK of them, each a strip rising along the
- * displaced strands of the edge's two vertices, read from the vertex
- * tables (gl/gpu_mesh.c). The exact fade (shaders/fins.glsl) still
- * collapses the faded ones in the vertex stage. */
+ * depth write. Each frame the fins the view shows and their fade ("we
+ * collect the fins with nonzero alpha"), and the displaced strands of the
+ * vertices they stand on, come from core/fur/fin_frame.c into two table
+ * textures; an instance draws PELT_FIN_CHUNK fins, each a strip rising
+ * along the strands of its two ends. */
 #include "gl/passes.h"
 
 #include "core/base/error.h"
@@ -15,6 +14,24 @@
 #include "gl/programs.h"
 
 #include <string.h>
+
+/* A table texture of `texels` RGBA texels (32-bit), PELT_TABLE_WIDTH a
+ * row. RGBA, not RGB: an RGB upload makes Mesa convert (and allocate). */
+static GLuint table_create(GLenum unit, GLenum internal, size_t texels)
+{
+    GLuint t;
+    glGenTextures(1, &t);
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, t);
+    size_t rows = (texels + PELT_TABLE_WIDTH - 1) / PELT_TABLE_WIDTH;
+    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, PELT_TABLE_WIDTH, (GLsizei)(rows ? rows : 1), 0,
+                 internal == GL_RGBA32UI ? GL_RGBA_INTEGER : GL_RGBA,
+                 internal == GL_RGBA32UI ? GL_UNSIGNED_INT : GL_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    return t;
+}
 
 /* A fin program with `features` (PELT__FIN_FEATURES bits) compiled in, as
  * the shells' variants (gl/shell_pass.c); PELT__FIN_FEATURES is generic. */
@@ -37,8 +54,6 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     fs[n] = NULL;
     vs[m++] = pelt__shader_shading;
     vs[m++] = pelt__shader_fur_light;
-    vs[m++] = pelt__shader_fur_shape;
-    vs[m++] = pelt__shader_fins;
     vs[m++] = pelt__shader_fin_vs;
     vs[m] = NULL;
     pelt_status st = pelt__gl_program_create("fin", vs, fs, &p->hooks, &p->variants[features], err);
@@ -46,7 +61,6 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
         p->failed[features] = true;
         return st;
     }
-    p->unfaded[features] = glGetUniformLocation(p->variants[features], "u_unfaded");
     p->fin_count[features] = glGetUniformLocation(p->variants[features], "u_fin_count");
     p->fin_rows[features] = glGetUniformLocation(p->variants[features], "u_fin_rows");
     return PELT_OK;
@@ -74,26 +88,24 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     glGenerateMipmap(GL_TEXTURE_2D);
 
-    /* The fins of every level (core/fur/lod.h); a frame's go to the table. */
+    /* Room for the most fins and fin vertices any level has. */
+    _Static_assert(PELT__FIN_HEIGHTS == PELT_FIN_HEIGHTS && PELT__FIN_VERTEX_TEXELS == PELT_FIN_VERTEX_TEXELS &&
+                       PELT_FIN_ROWS < PELT_FIN_HEIGHTS,
+                   "core/fur/fur_gpu.h and bindings.glsl agree on the fin vertices");
     const pelt__lod_chain *lod = pelt__fur_gpu_lod(fur);
-    size_t most = 0;
-    for (unsigned k = 0; k < lod->count; k++)
+    size_t most = 0, most_vertices = 0;
+    for (unsigned k = 0; k < lod->count; k++) {
         if (lod->levels[k].fin_count > most) most = lod->levels[k].fin_count;
+        if (lod->levels[k].fin_vertex_count > most_vertices) most_vertices = lod->levels[k].fin_vertex_count;
+    }
+    p->fur = fur;
     p->lod = lod;
     p->alloc = hooks->allocator;
-    p->staging = pelt__alloc(&p->alloc, (most ? most : 1) * sizeof *p->staging);
-    p->texels = pelt__alloc(&p->alloc, (most ? most : 1) * 4 * sizeof *p->texels);
-    if (!p->staging || !p->texels) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fins", most);
-    size_t rows = (most + PELT_TABLE_WIDTH - 1) / PELT_TABLE_WIDTH;
-    glGenTextures(1, &p->edges);
-    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN_EDGES);
-    glBindTexture(GL_TEXTURE_2D, p->edges);
-    /* RGBA, not RGB: an RGB upload makes Mesa convert (and allocate) each time. */
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32UI, PELT_TABLE_WIDTH, (GLsizei)(rows ? rows : 1), 0, GL_RGBA_INTEGER,
-                 GL_UNSIGNED_INT, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    p->fins = pelt__alloc(&p->alloc, (most ? most : 1) * 4 * sizeof *p->fins);
+    p->vertices = pelt__alloc(&p->alloc, (most_vertices ? most_vertices : 1) * 4 * PELT_FIN_VERTEX_TEXELS * sizeof(float));
+    if (!p->fins || !p->vertices) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fins", most);
+    p->edges = table_create(PELT_UNIT_FIN_EDGES, GL_RGBA32UI, most);
+    p->vertex_table = table_create(PELT_UNIT_FIN_VERTICES, GL_RGBA32F, most_vertices * PELT_FIN_VERTEX_TEXELS);
 
     /* One chunk of PELT_FIN_CHUNK strips of r quads as triangles, for each
      * r = 1 .. PELT_FIN_ROWS one after the other: fin c's corner k is vertex
@@ -119,48 +131,41 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     return PELT_OK;
 }
 
-/* Writes fins [0, count) into the table (a, b, start bits, 0 per texel),
- * whole rows then the last one. */
-static void write_table(const pelt__fin_pass *p, const pelt__fin_edge *fins, size_t count)
+/* Writes texels [0, count) of a table (4 words or floats each), whole
+ * rows then the last one. */
+static void table_write(GLenum unit, GLuint t, GLenum internal, const void *texels, size_t count)
 {
-    uint32_t *t = p->texels;
-    for (size_t i = 0; i < count; i++) {
-        t[4 * i] = fins[i].a;
-        t[4 * i + 1] = fins[i].b;
-        memcpy(&t[4 * i + 2], &fins[i].start, sizeof(uint32_t));
-        t[4 * i + 3] = 0;
-    }
-    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN_EDGES);
-    glBindTexture(GL_TEXTURE_2D, p->edges);
+    GLenum format = internal == GL_RGBA32UI ? GL_RGBA_INTEGER : GL_RGBA;
+    GLenum type = internal == GL_RGBA32UI ? GL_UNSIGNED_INT : GL_FLOAT;
+    glActiveTexture(GL_TEXTURE0 + unit);
+    glBindTexture(GL_TEXTURE_2D, t);
     size_t rows = count / PELT_TABLE_WIDTH, rest = count % PELT_TABLE_WIDTH;
-    if (rows)
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, PELT_TABLE_WIDTH, (GLsizei)rows, GL_RGBA_INTEGER, GL_UNSIGNED_INT, t);
+    const uint8_t *bytes = texels;
+    if (rows) glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, PELT_TABLE_WIDTH, (GLsizei)rows, format, type, bytes);
     if (rest)
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)rows, (GLsizei)rest, 1, GL_RGBA_INTEGER, GL_UNSIGNED_INT,
-                        t + 4 * rows * PELT_TABLE_WIDTH);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, (GLint)rows, (GLsizei)rest, 1, format, type,
+                        bytes + rows * PELT_TABLE_WIDTH * 16);
 }
 
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
 {
     unsigned level = f->lod.full_mesh ? 0 : f->lod.mesh_level;
     const pelt__lod_level *l = &p->lod->levels[level];
-    size_t count = l->fin_count;
-    const pelt__fin_edge *fins = l->fins;
+    unsigned rows = f->lod.fin_rows ? f->lod.fin_rows : PELT_FIN_ROWS;
+    /* The view direction in mesh space: the transpose of the model's
+     * rotation (exact for rotations and uniform scale). */
+    const float *m = f->view->model, *v = f->view->view;
+    pelt_vec3 fwd = v3(-v[2], -v[6], -v[10]);
+    pelt_vec3 local = v3(m[0] * fwd.x + m[1] * fwd.y + m[2] * fwd.z, m[4] * fwd.x + m[5] * fwd.y + m[6] * fwd.z,
+                         m[8] * fwd.x + m[9] * fwd.y + m[10] * fwd.z);
+    local = v3_norm_or(local, v3(0.0f, 0.0f, -1.0f));
+    pelt__fin_frame_desc fd = {level, rows, {local.x, local.y, local.z}, f->draw->fins_unfaded};
+    size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices);
     if (count == 0) return;
-    if (!f->draw->fins_unfaded) {
-        /* The view direction in mesh space: the transpose of the model's
-         * rotation (exact for rotations and uniform scale; the margin
-         * covers mild non-uniform scale). */
-        const float *m = f->view->model, *v = f->view->view;
-        pelt_vec3 fwd = v3(-v[2], -v[6], -v[10]);
-        pelt_vec3 local = v3(m[0] * fwd.x + m[1] * fwd.y + m[2] * fwd.z, m[4] * fwd.x + m[5] * fwd.y + m[6] * fwd.z,
-                             m[8] * fwd.x + m[9] * fwd.y + m[10] * fwd.z);
-        local = v3_norm_or(local, v3(0.0f, 0.0f, -1.0f));
-        count = pelt__fins_facing(l->fins, l->fin_normals, l->fin_count, local, 0.05f, p->staging);
-        if (count == 0) return;
-        fins = p->staging;
-    }
-    write_table(p, fins, count);
+    table_write(PELT_UNIT_FIN_EDGES, p->edges, GL_RGBA32UI, p->fins, count);
+    table_write(PELT_UNIT_FIN_VERTICES, p->vertex_table, GL_RGBA32F, p->vertices,
+                l->fin_vertex_count * PELT_FIN_VERTEX_TEXELS);
+    f->stats->upload_bytes += 16 * (count + l->fin_vertex_count * PELT_FIN_VERTEX_TEXELS);
     pelt__gl_blended_hair_state();
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
     glBindTexture(GL_TEXTURE_2D, p->texture);
@@ -168,9 +173,7 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     if (!p->variants[features] && !p->failed[features]) build(p, features, NULL);
     if (!p->variants[features]) features = PELT__FIN_FEATURES;
     glUseProgram(p->variants[features]);
-    glUniform1i(p->unfaded[features], f->draw->fins_unfaded ? 1 : 0);
     glUniform1i(p->fin_count[features], (GLint)count);
-    unsigned rows = f->lod.fin_rows ? f->lod.fin_rows : PELT_FIN_ROWS;
     glUniform1i(p->fin_rows[features], (GLint)rows);
     glBindVertexArray(p->vao);
     const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
@@ -188,8 +191,9 @@ void pelt__fin_pass_destroy(pelt__fin_pass *p)
         if (p->variants[k]) glDeleteProgram(p->variants[k]);
     if (p->ebo) glDeleteBuffers(1, &p->ebo);
     if (p->edges) glDeleteTextures(1, &p->edges);
-    pelt__free(&p->alloc, p->staging);
-    pelt__free(&p->alloc, p->texels);
+    if (p->vertex_table) glDeleteTextures(1, &p->vertex_table);
+    pelt__free(&p->alloc, p->fins);
+    pelt__free(&p->alloc, p->vertices);
     if (p->vao) glDeleteVertexArrays(1, &p->vao);
     if (p->texture) glDeleteTextures(1, &p->texture);
     memset(p, 0, sizeof *p);

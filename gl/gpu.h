@@ -46,12 +46,6 @@ typedef struct pelt__gpu_mesh {
     GLuint vbo_tips;   /* PELT_ATTR_TIP, rewritten when the strands move */
     GLuint vbo_groom;  /* PELT_ATTR_GROOM and PELT_ATTR_HAIR_COLOR, the
                           changed range rewritten after a brush or a map */
-    /* The same data as vertex tables (bindings.glsl), for passes that fetch
-     * a vertex by index: static, the tips (with their staging copy, made
-     * once) and the groom. */
-    GLuint table_vertices, table_tips, table_groom;
-    float *tip_staging;   /* 4 floats per vertex */
-    pelt_allocator alloc;
     GLuint ebo;           /* the mesh's triangles, then each level of detail's */
     size_t vertex_count;
     size_t triangle_count;
@@ -70,8 +64,6 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
  * the groom buffer; returns bytes sent. */
 size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
-/* Binds the vertex tables to PELT_UNIT_VERTICES, _TIPS and _GROOM. */
-void pelt__gpu_mesh_bind_tables(const pelt__gpu_mesh *g);
 
 /* ---- fur textures (gl/gpu_fur.c) --------------------------------------- */
 

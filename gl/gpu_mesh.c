@@ -9,97 +9,6 @@
 
 #include <string.h>
 
-/* ---- vertex tables: per-vertex data as textures, PELT_TABLE_WIDTH texels
- * a row, for passes that fetch a vertex by index (the fins). ---- */
-
-static GLuint table_create(GLenum internal, size_t texels)
-{
-    GLuint t;
-    glGenTextures(1, &t);
-    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_VERTICES);
-    glBindTexture(GL_TEXTURE_2D, t);
-    size_t rows = (texels + PELT_TABLE_WIDTH - 1) / PELT_TABLE_WIDTH;
-    GLenum format = internal == GL_R32UI ? GL_RED_INTEGER : GL_RGBA;
-    GLenum type = internal == GL_R32UI ? GL_UNSIGNED_INT : GL_FLOAT;
-    glTexImage2D(GL_TEXTURE_2D, 0, (GLint)internal, PELT_TABLE_WIDTH, (GLsizei)(rows ? rows : 1), 0,
-                 format, type, NULL);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
-    return t;
-}
-
-/* Writes texels [first, first + count) of a table, a partial first row,
- * whole rows, a partial last row; `data` points at texel `first`. */
-static void table_write(GLuint t, GLenum internal, size_t first, size_t count, const void *data,
-                        size_t texel_bytes)
-{
-    GLenum format = internal == GL_R32UI ? GL_RED_INTEGER : GL_RGBA;
-    GLenum type = internal == GL_R32UI ? GL_UNSIGNED_INT : GL_FLOAT;
-    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_VERTICES);
-    glBindTexture(GL_TEXTURE_2D, t);
-    const uint8_t *p = data;
-    while (count > 0) {
-        size_t x = first % PELT_TABLE_WIDTH, y = first / PELT_TABLE_WIDTH;
-        size_t n = PELT_TABLE_WIDTH - x;
-        size_t rows = 1;
-        if (x == 0 && count >= PELT_TABLE_WIDTH) {
-            rows = count / PELT_TABLE_WIDTH;
-            n = PELT_TABLE_WIDTH;
-        } else if (n > count) {
-            n = count;
-        }
-        glTexSubImage2D(GL_TEXTURE_2D, 0, (GLint)x, (GLint)y, (GLsizei)n, (GLsizei)rows, format, type, p);
-        p += n * rows * texel_bytes;
-        first += n * rows;
-        count -= n * rows;
-    }
-}
-
-/* The tips as the tip table wants them: 4 floats per vertex. */
-static void write_tips(pelt__gpu_mesh *g, const float *tips)
-{
-    for (size_t i = 0; i < g->vertex_count; i++) {
-        memcpy(g->tip_staging + 4 * i, tips + 3 * i, 3 * sizeof(float));
-        g->tip_staging[4 * i + 3] = 0.0f;
-    }
-    table_write(g->table_tips, GL_RGBA32F, 0, g->vertex_count, g->tip_staging, 4 * sizeof(float));
-}
-
-/* The static table from the interleaved vertex data (layout of attrs). */
-static pelt_status make_tables(pelt__gpu_mesh *g, const float *interleaved, unsigned floats,
-                               pelt_fur *fur, pelt_error *err)
-{
-    size_t n = g->vertex_count;
-    float *t = pelt__alloc_zero(&g->alloc, n ? n : 1, 4 * PELT_TABLE_TEXELS * sizeof(float));
-    g->tip_staging = pelt__alloc_zero(&g->alloc, n ? n : 1, 4 * sizeof(float));
-    if (!t || !g->tip_staging) {
-        pelt__free(&g->alloc, t);
-        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the vertex tables");
-    }
-    for (size_t i = 0; i < n; i++) {
-        const float *v = interleaved + i * floats; /* pos 3, normal 3, uv 2, fur uv 2, tangent 4, comb 3 */
-        float *o = t + i * 4 * PELT_TABLE_TEXELS;
-        memcpy(o, v, 3 * sizeof(float));
-        o[3] = v[13];                         /* tangent handedness */
-        memcpy(o + 4, v + 3, 3 * sizeof(float));
-        memcpy(o + 8, v + 10, 3 * sizeof(float));
-        memcpy(o + 12, v + 6, 4 * sizeof(float)); /* uv, fur uv */
-        memcpy(o + 16, v + 14, 3 * sizeof(float));
-    }
-    g->table_vertices = table_create(GL_RGBA32F, n * PELT_TABLE_TEXELS);
-    table_write(g->table_vertices, GL_RGBA32F, 0, n * PELT_TABLE_TEXELS, t, 4 * sizeof(float));
-    pelt__free(&g->alloc, t);
-    g->table_tips = table_create(GL_RGBA32F, n);
-    unsigned version;
-    write_tips(g, pelt__fur_gpu_tips(fur, &version));
-    size_t stride;
-    const void *groom = pelt__fur_gpu_groom(fur, &stride);
-    g->table_groom = table_create(GL_R32UI, n * PELT_GROOM_WORDS);
-    table_write(g->table_groom, GL_R32UI, 0, n * PELT_GROOM_WORDS, groom, 4);
-    return PELT_OK;
-}
-
 /* One interleaved attribute: where it comes from and where it goes. */
 typedef struct attribute {
     GLuint location;      /* PELT_ATTR_* */
@@ -128,7 +37,6 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
 
     g->vertex_count = m.vertex_count;
     g->triangle_count = m.triangle_count;
-    g->alloc = hooks->allocator;
     float *data = pelt__alloc_zero(&hooks->allocator, m.vertex_count, floats * sizeof(float));
     if (!data) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex data");
     for (size_t i = 0; i < m.vertex_count; i++) {
@@ -144,10 +52,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo_static);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * floats * sizeof(float)), data,
                  GL_STATIC_DRAW);
-    pelt_status st = make_tables(g, data, floats, fur, err);
     pelt__free(&hooks->allocator, data);
-    if (st != PELT_OK) return st;
-    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_static);
     size_t offset = 0;
     for (int k = 0; k < ATTRS; k++) {
         glEnableVertexAttribArray(attrs[k].location);
@@ -209,8 +114,6 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
         bytes = g->vertex_count * 3 * sizeof(float);
         glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
         glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, tips);
-        write_tips(g, tips);
-        bytes *= 2;
         g->tips_version = version;
     }
     /* Only the vertices a brush or a map changed. */
@@ -221,9 +124,7 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
         glBindBuffer(GL_ARRAY_BUFFER, g->vbo_groom);
         glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(range[0] * stride), (GLsizeiptr)n,
                         groom + range[0] * stride);
-        table_write(g->table_groom, GL_R32UI, range[0] * PELT_GROOM_WORDS,
-                    (range[1] - range[0]) * PELT_GROOM_WORDS, groom + range[0] * stride, 4);
-        bytes += 2 * n;
+        bytes += n;
     }
     return bytes;
 }
@@ -232,19 +133,6 @@ void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)
 {
     GLuint buffers[4] = {g->vbo_static, g->vbo_tips, g->vbo_groom, g->ebo};
     glDeleteBuffers(4, buffers);
-    GLuint tables[3] = {g->table_vertices, g->table_tips, g->table_groom};
-    glDeleteTextures(3, tables);
-    pelt__free(&g->alloc, g->tip_staging);
     if (g->vao) glDeleteVertexArrays(1, &g->vao);
     memset(g, 0, sizeof *g);
-}
-
-void pelt__gpu_mesh_bind_tables(const pelt__gpu_mesh *g)
-{
-    const GLuint units[3] = {PELT_UNIT_VERTICES, PELT_UNIT_TIPS, PELT_UNIT_GROOM};
-    const GLuint tables[3] = {g->table_vertices, g->table_tips, g->table_groom};
-    for (int k = 0; k < 3; k++) {
-        glActiveTexture(GL_TEXTURE0 + units[k]);
-        glBindTexture(GL_TEXTURE_2D, tables[k]);
-    }
 }

@@ -65,23 +65,24 @@ void pelt__skin_pass_draw(const pelt__skin_pass *p, const pelt__pass_frame *f);
 void pelt__skin_pass_destroy(pelt__skin_pass *p);
 
 /* All fins in one instanced draw (Lengyel et al. §2.3): the fins the view
- * may show, gathered each frame into a table texture (staging allocated
- * once), PELT_FIN_CHUNK strips of PELT_FIN_ROWS quads per instance up the
- * displaced strands; the exact fade collapses the rest in the vertex
- * stage. Owns the fin texture, the table and the chunk's index buffer. */
+ * shows and the strands of their vertices, worked out each frame by
+ * core/fur/fin_frame.c into two table textures (staging allocated once),
+ * PELT_FIN_CHUNK strips of up to PELT_FIN_ROWS quads per instance. Owns
+ * the fin texture, the tables and the chunks' index buffer. */
 typedef struct pelt__fin_pass {
     GLuint variants[PELT__SHELL_VARIANTS]; /* by the PELT__FIN_FEATURES bits */
     bool failed[PELT__SHELL_VARIANTS];
-    GLint unfaded[PELT__SHELL_VARIANTS];   /* u_unfaded: 1 draws every fin at full opacity */
     GLint fin_count[PELT__SHELL_VARIANTS]; /* u_fin_count */
     GLint fin_rows[PELT__SHELL_VARIANTS];  /* u_fin_rows */
     pelt_hooks hooks;
     GLuint vao, ebo;    /* the chunk's triangles */
     GLuint texture;     /* the fin texture, PELT_UNIT_FIN */
-    GLuint edges;       /* this frame's fins, PELT_UNIT_FIN_EDGES (RGBA32UI) */
+    GLuint edges;        /* this frame's fins, PELT_UNIT_FIN_EDGES (RGBA32UI) */
+    GLuint vertex_table; /* their vertices, PELT_UNIT_FIN_VERTICES (RGBA32F) */
+    const pelt_fur *fur;
     const pelt__lod_chain *lod;
-    pelt__fin_edge *staging;
-    uint32_t *texels;   /* the table's texels, 4 per fin */
+    uint32_t *fins;      /* staging, allocated once (core/fur/fur_gpu.h) */
+    float *vertices;
     pelt_allocator alloc;
 } pelt__fin_pass;
 

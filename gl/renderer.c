@@ -167,7 +167,6 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
 
     glBindVertexArray(r->mesh.vao);
     pelt__gpu_fur_bind(&r->textures);
-    pelt__gpu_mesh_bind_tables(&r->mesh);
     pelt__gpu_blocks_bind(&r->blocks);
     const pelt__frame_lod lod = choose_lod(r, view, draw);
     const pelt__pass_frame frame = {&r->mesh, r->layers, draw, &stats, lod, view, shell_features(r, &lod, draw)};

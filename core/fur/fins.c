@@ -70,16 +70,3 @@ void pelt__fin_normals(const pelt__fin_edge *edges, size_t count, const float *p
         v3_store(out + 3 * i, n);
     }
 }
-
-size_t pelt__fins_facing(const pelt__fin_edge *edges, const float *fin_normals, size_t count, pelt_vec3 view_dir,
-                         float margin, pelt__fin_edge *out)
-{
-    float limit = 0.5f - margin;
-    size_t kept = 0;
-    for (size_t i = 0; i < count; i++) {
-        const float *n = fin_normals + 3 * i;
-        float p = n[0] * view_dir.x + n[1] * view_dir.y + n[2] * view_dir.z;
-        if (fabsf(p) > limit) out[kept++] = edges[i];
-    }
-    return kept;
-}

@@ -1,7 +1,7 @@
 /* Fins (Lengyel et al. 2001 §2.3): one quad per mesh edge, rising from the
  * skin along the displaced strands of its two end vertices, faded in as
- * the edge nears the silhouette. The edge list and the C references of
- * gl/shaders/fins.glsl. No GL here. */
+ * the edge nears the silhouette. The edge list, the fin normal and the
+ * fade that core/fur/fin_frame.c gives the fin pass. No GL here. */
 #ifndef PELT_CORE_FUR_FINS_H
 #define PELT_CORE_FUR_FINS_H
 
@@ -36,13 +36,5 @@ float pelt__fin_fade(pelt_vec3 fin_normal, pelt_vec3 view_dir);
  * vertex normals), 3 floats per fin into `out`. */
 void pelt__fin_normals(const pelt__fin_edge *edges, size_t count, const float *positions, const float *normals,
                        float *out);
-
-/* Lengyel et al. §2.3, "we collect the fins with nonzero alpha": copies to
- * `out` the fins whose fade may be above zero seen along `view_dir` (unit,
- * in the normals' space): |n . view_dir| > 1/2 - margin. The margin
- * covers what the GPU's exact fade (fins.glsl, in world space) may differ
- * by. Returns how many were kept; keeps their order. */
-size_t pelt__fins_facing(const pelt__fin_edge *edges, const float *fin_normals, size_t count, pelt_vec3 view_dir,
-                         float margin, pelt__fin_edge *out);
 
 #endif

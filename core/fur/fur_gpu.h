@@ -45,6 +45,31 @@ bool pelt__fur_gpu_take_groom_dirty(pelt_fur *fur, size_t range[2]);
 /* Fins (core/fur/fins.h): one per mesh edge, and their texture (RGBA8,
  * premultiplied, width along the fin, row 0 at the root). */
 const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *fur, size_t *count);
+/* One frame of fins (core/fur/fin_frame.c), drawn from a table of fins
+ * and a table of the vertices they stand on. A fin: 4 words, its ends as
+ * indices into the level's fin_vertices, the bits of its texture start and
+ * of its fade (Lengyel's max(0, 2|p| - 1) for view_dir, in mesh space; 1
+ * when unfaded). A vertex: PELT__FIN_VERTEX_TEXELS texels of 4 floats: for
+ * h = r / rows, r = 0 .. rows, the displaced strand's point (w 1) and unit
+ * tangent (w 0), mesh-local, as shell_vs.glsl displaces it (with the fins'
+ * length multiple); then the normal with the density in w; then the uv
+ * and the hair colour's bytes, two a float (r 256 + g, b 256 + a). */
+#define PELT__FIN_HEIGHTS 4 /* rows + 1 at most */
+#define PELT__FIN_VERTEX_TEXELS (2 * PELT__FIN_HEIGHTS + 2)
+typedef struct pelt__fin_frame_desc {
+    unsigned level; /* the level of detail whose fins (lod.h) */
+    unsigned rows;  /* quads up a fin, 1 .. PELT__FIN_HEIGHTS - 1 */
+    float view_dir[3];
+    bool unfaded;   /* every fin at full opacity (Lengyel Fig. 4e) */
+} pelt__fin_frame_desc;
+
+/* Writes the fins the view shows (faded below 0.05 left out) into `fins`
+ * (4 words each, room for the level's fin_count) and returns how many;
+ * when any, writes all the level's fin vertices (fin_vertex_count of them)
+ * into `vertices`. No allocation. */
+size_t pelt__fur_gpu_fin_frame(const pelt_fur *fur, const pelt__fin_frame_desc *d, uint32_t *fins,
+                               float *vertices);
+
 /* The shell geometry levels (core/fur/lod.h), level 0 the full mesh in
  * vertex-cache order, each level with its fins. */
 const pelt__lod_chain *pelt__fur_gpu_lod(const pelt_fur *fur);

@@ -98,6 +98,48 @@ static int winding(const pelt_mesh_data *m)
     return share > 0.98 ? 1 : share < 0.02 ? -1 : 0;
 }
 
+static int cmp_u32(const void *x, const void *y)
+{
+    uint32_t a = *(const uint32_t *)x, b = *(const uint32_t *)y;
+    return (a > b) - (a < b);
+}
+
+static uint32_t index_of(const uint32_t *sorted, size_t n, uint32_t v)
+{
+    size_t lo = 0, hi = n;
+    while (hi - lo > 1) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (sorted[mid] <= v) lo = mid;
+        else hi = mid;
+    }
+    return (uint32_t)lo;
+}
+
+/* The fins' vertices once each, and each fin's ends among them: a frame
+ * works out the fins' strands once per vertex, not per fin. */
+static pelt_status fin_vertices(pelt__lod_level *l, const pelt_allocator *alloc, pelt_error *err)
+{
+    size_t n = 2 * l->fin_count;
+    l->fin_vertices = pelt__alloc(alloc, (n ? n : 1) * sizeof *l->fin_vertices);
+    l->fin_ends = pelt__alloc(alloc, (n ? n : 1) * sizeof *l->fin_ends);
+    if (!l->fin_vertices || !l->fin_ends)
+        return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the vertices of %zu fins", l->fin_count);
+    for (size_t i = 0; i < l->fin_count; i++) {
+        l->fin_vertices[2 * i] = l->fins[i].a;
+        l->fin_vertices[2 * i + 1] = l->fins[i].b;
+    }
+    qsort(l->fin_vertices, n, sizeof *l->fin_vertices, cmp_u32);
+    size_t unique = 0;
+    for (size_t i = 0; i < n; i++)
+        if (i == 0 || l->fin_vertices[i] != l->fin_vertices[i - 1]) l->fin_vertices[unique++] = l->fin_vertices[i];
+    l->fin_vertex_count = unique;
+    for (size_t i = 0; i < l->fin_count; i++) {
+        l->fin_ends[2 * i] = index_of(l->fin_vertices, unique, l->fins[i].a);
+        l->fin_ends[2 * i + 1] = index_of(l->fin_vertices, unique, l->fins[i].b);
+    }
+    return PELT_OK;
+}
+
 static pelt_status add_level(pelt__lod_chain *c, uint32_t *indices, size_t triangles, float error,
                              const pelt_mesh_data *m, uint32_t seed, const pelt_allocator *alloc,
                              pelt_error *err)
@@ -123,7 +165,7 @@ static pelt_status add_level(pelt__lod_chain *c, uint32_t *indices, size_t trian
     if (!l->fin_normals) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fin normals", l->fin_count);
     if (m->normals) pelt__fin_normals(l->fins, l->fin_count, m->positions, m->normals, l->fin_normals);
     else memset(l->fin_normals, 0, l->fin_count * 3 * sizeof(float));
-    return PELT_OK;
+    return fin_vertices(l, alloc, err);
 }
 
 pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned max_levels,
@@ -171,6 +213,8 @@ void pelt__lod_chain_free(pelt__lod_chain *c, const pelt_allocator *alloc)
         pelt__free(alloc, c->levels[i].indices);
         pelt__free(alloc, c->levels[i].fins);
         pelt__free(alloc, c->levels[i].fin_normals);
+        pelt__free(alloc, c->levels[i].fin_vertices);
+        pelt__free(alloc, c->levels[i].fin_ends);
     }
     memset(c, 0, sizeof *c);
 }

@@ -17,9 +17,12 @@ typedef struct pelt__lod_level {
     uint32_t *indices;      /* 3 per triangle, in vertex-cache order */
     size_t triangle_count;
     pelt__fin_edge *fins;   /* the level's edges (core/fur/fins.h) */
-    float *fin_normals;     /* 3 per fin: pelt__fin_normal, for the fins a
-                               view can show (pelt__fins_facing) */
+    float *fin_normals;     /* 3 per fin: pelt__fin_normal, for the fade of
+                               the fins a view shows (fin_frame.c) */
     size_t fin_count;
+    uint32_t *fin_vertices; /* the vertices the fins stand on, ascending */
+    size_t fin_vertex_count;
+    uint32_t *fin_ends;     /* 2 per fin: its a and b as indices into fin_vertices */
     float error;            /* mesh units: how far the level's surface strays
                                from the full mesh (meshoptimizer's measure) */
     float edge;             /* mesh units: the mean edge length, how far apart

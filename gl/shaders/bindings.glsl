@@ -22,23 +22,21 @@
 #define PELT_UNIT_COLOR 1 // sampler2D: the colour texture
 #define PELT_UNIT_MASK 2  // sampler2D: the wetness mask, nearest
 #define PELT_UNIT_FIN 3   // sampler2D: the fin texture (gl/fin_pass.c)
-#define PELT_UNIT_VERTICES 4 // sampler2D RGBA32F: the vertex table, PELT_TABLE_TEXELS per vertex
-#define PELT_UNIT_TIPS 5  // sampler2D RGBA32F: strand tips, one texel per vertex
-#define PELT_UNIT_GROOM 6 // usampler2D R32UI: the groom, PELT_GROOM_WORDS per vertex
-#define PELT_UNIT_LIGHT_TABLE 7 // sampler2D RG32F: Lengyel's hair lighting table
-#define PELT_UNIT_FIN_EDGES 8 // usampler2D RGBA32UI: this frame's fins (a, b, start bits, 0), a table
-#define PELT_UNIT_COUNT 9 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
+#define PELT_UNIT_LIGHT_TABLE 4 // sampler2D RG32F: Lengyel's hair lighting table
+#define PELT_UNIT_FIN_EDGES 5 // usampler2D RGBA32UI: this frame's fins (their ends, start and fade bits)
+#define PELT_UNIT_FIN_VERTICES 6 // sampler2D RGBA32F: this frame's fin vertices (core/fur/fur_gpu.h)
+#define PELT_UNIT_COUNT 7 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
 
-// Vertex tables: per-vertex data a pass fetches by vertex index (the fins
-// read both ends of an edge), row after row PELT_TABLE_WIDTH texels wide.
+// Tables: data a pass fetches by index (the fins and their vertices), row
+// after row PELT_TABLE_WIDTH texels wide.
 #define PELT_TABLE_WIDTH 1020
-#define PELT_TABLE_TEXELS 5 // position + tangent w, normal, tangent, uv + fur uv, comb
-#define PELT_GROOM_WORDS 5  // core/fur/groom.h: lean u, lean v, length, density, colour bytes
 
 // A fin is a strip of PELT_FIN_ROWS quads up the strand, 2 (PELT_FIN_ROWS + 1)
 // vertices; an instance draws PELT_FIN_CHUNK fins (gl/fin_pass.c).
 #define PELT_FIN_ROWS 3
 #define PELT_FIN_CHUNK 64
+#define PELT_FIN_HEIGHTS 4        // strand points a fin vertex has: core's PELT__FIN_HEIGHTS
+#define PELT_FIN_VERTEX_TEXELS 10 // texels a fin vertex has: core's PELT__FIN_VERTEX_TEXELS
 
 // Uniform block binding points (gl/uniform_blocks.c, gl/shaders/blocks.glsl).
 #define PELT_BLOCK_FRAME 0 // pelt_frame_block: matrices, eye, light

@@ -5,6 +5,7 @@
 
 #include "core/base/vec.h"
 #include "core/fur/fins.h"
+#include "core/fur/fur_gpu.h"
 #include "core/fur/lod.h"
 
 #include <math.h>
@@ -156,30 +157,57 @@ static void lod_shell_composite_is_over(void)
     for (unsigned s = 1; s <= N; s++) CHECK(top >= volume[(s * SIZE * SIZE) * 4 + 3]);
 }
 
-/* Lengyel: "we collect the fins with nonzero alpha". No fin the fade can
- * show is left out, and fins turned away are. */
-static void lod_fins_facing_keep_every_visible_fin(void)
+/* One frame of fins (core/fur/fin_frame.c): exactly the fins whose fade
+ * (pelt__fin_fade) reaches 0.05, with that fade; each vertex's strand
+ * starts at the vertex, rises along its normal at rest and is as long as
+ * the fur; ends index the level's fin vertices. */
+static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
 {
     pelt_mesh *m = NULL;
+    pelt_fur *fur = NULL;
     CHECK(pelt_mesh_sphere(1.0f, 32, 16, &m, NULL) == PELT_OK);
-    if (!m) return;
-    pelt__lod_chain c;
-    CHECK(pelt__lod_chain_build(m, 1, 1, &heap, &c, NULL) == PELT_OK);
-    const pelt__lod_level *l = &c.levels[0];
-    pelt__fin_edge *out = malloc(l->fin_count * sizeof *out);
+    CHECK(m && pelt_fur_create(m, &(pelt_fur_desc){.look.texture_size = 16, .length = 0.1f}, &fur, NULL) == PELT_OK);
+    if (!fur) {
+        pelt_mesh_destroy(m);
+        return;
+    }
+    const pelt__lod_chain *c = pelt__fur_gpu_lod(fur);
+    const pelt__lod_level *l = &c->levels[0];
+    uint32_t *fins = malloc(l->fin_count * 4 * sizeof *fins);
+    float *verts = malloc(l->fin_vertex_count * 4 * PELT__FIN_VERTEX_TEXELS * sizeof *verts);
     const pelt_mesh_data d = pelt_mesh_get_data(m);
     pelt_vec3 view = v3_norm_or(v3(0.3f, -0.4f, -1.0f), v3(0, 0, -1));
-    size_t kept = out ? pelt__fins_facing(l->fins, l->fin_normals, l->fin_count, view, 0.0f, out) : 0;
-    size_t visible = 0;
-    for (size_t i = 0; i < l->fin_count; i++) {
+    pelt__fin_frame_desc fd = {0, 3, {view.x, view.y, view.z}, false};
+    size_t kept = fins && verts ? pelt__fur_gpu_fin_frame(fur, &fd, fins, verts) : 0;
+    size_t shown = 0, bad_fade = 0, bad_end = 0;
+    for (size_t i = 0, k = 0; i < l->fin_count; i++) {
         pelt_vec3 n = pelt__fin_normal(v3_load(d.positions + 3 * l->fins[i].a), v3_load(d.positions + 3 * l->fins[i].b),
                                        v3_load(d.normals + 3 * l->fins[i].a), v3_load(d.normals + 3 * l->fins[i].b));
-        visible += pelt__fin_fade(n, view) > 0.0f;
+        float fade = pelt__fin_fade(n, view);
+        if (fade < 0.05f) continue;
+        shown++;
+        if (k < kept) {
+            float got;
+            memcpy(&got, &fins[4 * k + 3], sizeof got);
+            bad_fade += fabsf(got - fade) > 1e-6f;
+            bad_end += l->fin_vertices[fins[4 * k]] != l->fins[i].a || l->fin_vertices[fins[4 * k + 1]] != l->fins[i].b;
+            k++;
+        }
     }
-    CHECK(kept == visible);
-    CHECK(kept > 0 && kept < l->fin_count);
-    free(out);
-    pelt__lod_chain_free(&c, &heap);
+    printf("  %zu of %zu fins shown\n", kept, l->fin_count);
+    CHECK(kept == shown && kept > 0 && kept < l->fin_count);
+    CHECK(bad_fade == 0 && bad_end == 0);
+    size_t bad_root = 0, bad_tip = 0;
+    for (size_t v = 0; v < l->fin_vertex_count && kept; v++) {
+        const float *t = verts + v * 4 * PELT__FIN_VERTEX_TEXELS;
+        pelt_vec3 p = v3_load(d.positions + 3 * l->fin_vertices[v]), n = v3_load(d.normals + 3 * l->fin_vertices[v]);
+        bad_root += v3_len(v3_sub(v3_load(t), p)) > 1e-6f;
+        /* At rest, no curl, no comb: the tip (h = 1, row 3) is p + L n. */
+        bad_tip += v3_len(v3_sub(v3_load(t + 8 * 3), v3_mad(p, n, 0.1f))) > 1e-5f;
+    }
+    CHECK(bad_root == 0 && bad_tip == 0);
+    free(fins), free(verts);
+    pelt_fur_destroy(fur);
     pelt_mesh_destroy(m);
 }
 
@@ -191,6 +219,6 @@ int main(void)
     RUN(lod_shell_levels_halve_to_one_shell);
     RUN(lod_shell_choice_blends_without_a_jump);
     RUN(lod_shell_composite_is_over);
-    RUN(lod_fins_facing_keep_every_visible_fin);
+    RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);
     return check_summary();
 }
