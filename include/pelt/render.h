@@ -65,7 +65,8 @@ typedef struct pelt_render_stats {
     size_t upload_bytes;       /* bytes sent to GL for this frame: pelt_renderer_upload
                                   calls since the previous draw and the draw's own
                                   (strand tips, colour texture, changed mask
-                                  rectangle, uniform blocks) */
+                                  rectangle, uniform blocks, the fins a view shows
+                                  and their strands) */
 } pelt_render_stats;
 
 /* GL state contract of pelt_renderer_create, pelt_renderer_upload and
