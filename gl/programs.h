@@ -17,6 +17,7 @@ extern const char pelt__shader_skin_fs[];
 extern const char pelt__shader_shell_vs[];
 extern const char pelt__shader_shell_fs[];
 extern const char pelt__shader_shell_floor_fs[];
+extern const char pelt__shader_shell_lod[];
 extern const char pelt__shader_fur_light[];
 extern const char pelt__shader_fin_vs[];
 extern const char pelt__shader_fin_fs[];

@@ -21,7 +21,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
         if (features & (1u << k))
             at += (size_t)snprintf(defines + at, sizeof defines - at, "#define %s 1\n", feature_defines[k]);
     const char *vs[] = {defines, pelt__shader_shading, pelt__shader_fur_light, pelt__shader_fur_shape,
-                        pelt__shader_clump, pelt__shader_shell_vs, NULL};
+                        pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_shell_vs, NULL};
     const char *fs[] = {defines, pelt__shader_shading, pelt__shader_clump, pelt__shader_shell_fs, NULL};
     const char *floor_fs[] = {pelt__shader_shell_floor_fs, NULL};
     pelt_status st = pelt__gl_program_create(floor ? "shell floor" : "shell", vs, floor ? floor_fs : fs, hooks,
@@ -60,19 +60,9 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
     unsigned n = f->layers, level = lod->shell_level;
     float shells[4], next[2];
     unsigned count;
-    if (level == 0 && lod->shell_blend == 0.0f) {
-        /* Layers first .. first + count - 1 of N (count 0: to the outermost). */
-        unsigned first = f->draw->first_layer;
-        unsigned to_top = first >= n ? 0 : n - first;
-        count = to_top;
-        if (f->draw->layer_count && f->draw->layer_count < count) count = f->draw->layer_count;
-        shells[0] = (float)to_top, shells[1] = 1.0f, shells[2] = (float)(1 + first), shells[3] = 0.0f;
-    } else {
-        count = pelt__lod_shell_count(n, level);
-        shells[0] = (float)count, shells[1] = (float)(1u << level);
-        shells[2] = (float)pelt__lod_shell_base(n, level), shells[3] = lod->shell_blend;
-    }
-    next[0] = (float)pelt__lod_shell_base(n, level + 1), next[1] = (float)pelt__lod_shell_count(n, level + 1);
+    pelt__lod_shell_uniforms(n, level, lod->shell_blend, f->draw->first_layer, shells, next, &count);
+    if (level == 0 && lod->shell_blend == 0.0f && f->draw->layer_count && f->draw->layer_count < count)
+        count = f->draw->layer_count;
     if (count == 0) return;
     pelt__gl_blended_hair_state();
     if (lod->cull) {

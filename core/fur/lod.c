@@ -332,3 +332,32 @@ void pelt__lod_shell_choice(unsigned layers, float fur_pixels, float shell_pixel
     float f = lambda - (float)*level;
     *blend = f <= 0.5f ? 0.0f : (f - 0.5f) * 2.0f;
 }
+
+void pelt__lod_shell_uniforms(unsigned layers, unsigned level, float blend, unsigned first, float shells[4],
+                              float next[2], unsigned *count)
+{
+    if (level == 0 && blend == 0.0f) {
+        unsigned to_top = first >= layers ? 0 : layers - first;
+        *count = to_top;
+        shells[0] = (float)to_top, shells[1] = 1.0f, shells[2] = (float)(1 + first), shells[3] = 0.0f;
+    } else {
+        *count = pelt__lod_shell_count(layers, level);
+        shells[0] = (float)*count, shells[1] = (float)(1u << level);
+        shells[2] = (float)pelt__lod_shell_base(layers, level), shells[3] = blend;
+    }
+    next[0] = (float)pelt__lod_shell_base(layers, level + 1);
+    next[1] = (float)pelt__lod_shell_count(layers, level + 1);
+}
+
+float pelt__lod_shell_instance(const float shells[4], const float next[2], float layers, float i, float slices[3],
+                               float *alpha)
+{
+    float j = shells[0] - 1.0f - i;
+    bool kept = fmodf(j, 2.0f) < 0.5f;
+    float own = shells[2] + i;
+    slices[0] = own;
+    slices[1] = kept ? next[0] + next[1] - 1.0f - floorf(j * 0.5f) : own;
+    slices[2] = kept ? shells[3] : 0.0f;
+    *alpha = kept ? 1.0f : 1.0f - shells[3];
+    return layers - 1.0f - j * shells[1];
+}

@@ -77,6 +77,21 @@ size_t pelt__lod_shell_extra_slices(unsigned layers);       /* slices beyond N +
 /* Layer n of the i-th shell of a level, inner first. */
 unsigned pelt__lod_shell_layer(unsigned layers, unsigned level, unsigned i);
 
+/* The shell pass's draw of a level (gl/shell_pass.c): shells = (shells from
+ * the draw's first to the outermost, step 2^level, slice of instance 0,
+ * blend), next = (the next level's first slice, its shell count); the
+ * instance count goes to *count. Level 0 without a blend may start at
+ * layer `first` (pelt_draw_desc.first_layer); other levels ignore it. */
+void pelt__lod_shell_uniforms(unsigned layers, unsigned level, float blend, unsigned first, float shells[4],
+                              float next[2], unsigned *count);
+
+/* Instance i of such a draw, mirroring shell_instance() in
+ * gl/shaders/shell_lod.glsl: returns its layer n; slices = (its slice, the
+ * next level's slice it blends into, the blend: 0 for the shells that fade
+ * out), *alpha = its opacity (1 - blend when it fades out). */
+float pelt__lod_shell_instance(const float shells[4], const float next[2], float layers, float i, float slices[3],
+                               float *alpha);
+
 /* Writes the coarser levels' slices (pelt__lod_shell_extra_slices of
  * size x size RGBA8, premultiplied) from the volume's N + 1 slices. */
 void pelt__lod_shell_composite(const uint8_t *volume, unsigned size, unsigned layers, uint8_t *extra);

@@ -14,8 +14,7 @@ layout(location = PELT_ATTR_GROOM) in vec4 a_groom;  // lean u, lean v, length s
 layout(location = PELT_ATTR_HAIR_COLOR) in vec4 a_hair_color; // rgb, weight over u_color
 
 // The shell pass's own: which shells this draw covers (Lengyel §2.4 level
-// of detail, gl/shell_pass.c). Instance i, inner first, is the shell
-// j = x - 1 - i from the outside, at layer N - 1 - j * step.
+// of detail, shell_lod.glsl).
 uniform vec4 u_shells;     // x: shells from the first to the outermost, y: step 2^k,
                            // z: slice of instance 0, w: blend towards the next level
 uniform vec2 u_shells_next; // the next level: x: its first slice, y: its shell count
@@ -38,16 +37,8 @@ flat out float v_alpha;  // the shell's opacity: fades as its level leaves
 
 void main()
 {
-    float i = float(gl_InstanceID);
-    float j = u_shells.x - 1.0 - i;
-    float layer = u_layers - 1.0 - j * u_shells.y;
+    float layer = shell_instance(float(gl_InstanceID), u_shells, u_shells_next, u_layers, v_slices, v_alpha);
     float h = (1.0 + layer) / u_layers;
-    // Lengyel §2.4: the even shells (from the outside) blend into the next
-    // level's composite, the odd ones fade out.
-    bool kept = mod(j, 2.0) < 0.5;
-    float next = u_shells_next.x + u_shells_next.y - 1.0 - floor(j * 0.5);
-    v_slices = vec3(u_shells.z + i, kept ? next : u_shells.z + i, kept ? u_shells.w : 0.0);
-    v_alpha = kept ? 1.0 : 1.0 - u_shells.w;
     vec3 n = normalize(a_normal);
     vec3 u = normalize(a_tangent.xyz);
     vec3 v = cross(n, u) * a_tangent.w;

@@ -96,6 +96,18 @@ static void lod_shell_levels_halve_to_one_shell(void)
             CHECK(pelt__lod_shell_layer(n, k, c - 1) == n - 1);
             CHECK(pelt__lod_shell_layer(n, k, 0) < (1u << k));
         }
+    /* The draw's instances are the level's shells, inner first. */
+    for (unsigned k = 0; k < pelt__lod_shell_levels(16); k++) {
+        float shells[4], next[2], slices[3], alpha;
+        unsigned count;
+        pelt__lod_shell_uniforms(16, k, 0.0f, 0, shells, next, &count);
+        CHECK(count == pelt__lod_shell_count(16, k));
+        for (unsigned i = 0; i < count; i++) {
+            float layer = pelt__lod_shell_instance(shells, next, 16.0f, (float)i, slices, &alpha);
+            CHECK(layer == (float)pelt__lod_shell_layer(16, k, i));
+            CHECK(slices[0] == (float)(pelt__lod_shell_base(16, k) + i) && alpha == 1.0f);
+        }
+    }
     CHECK(pelt__lod_shell_base(16, 0) == 1);
     CHECK(pelt__lod_shell_base(16, 1) == 17);
     CHECK(pelt__lod_shell_base(16, 2) == 25);

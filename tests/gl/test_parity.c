@@ -6,6 +6,7 @@
 #include "core/wet/clump.h"
 #include "core/fur/fur_shape.h"
 #include "core/wet/mask.h"
+#include "core/fur/lod.h"
 #include "core/fur/shading.h"
 
 enum { W = 64, H = 48 };
@@ -300,6 +301,64 @@ static void inter_shadow_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+/* Lengyel §2.4 in the shell draw: instance -> layer, slices, blend and
+ * opacity (shell_lod.glsl) against pelt__lod_shell_instance, over draws of
+ * several layer counts, levels, blends and a first layer. The uniforms of
+ * each draw come from pelt__lod_shell_uniforms, as in gl/shell_pass.c. */
+enum { SHELL_CASES = 8 };
+static const struct { unsigned layers, level, first; float blend; } shell_cases[SHELL_CASES] = {
+    {16, 0, 0, 0.0f}, {16, 0, 4, 0.0f}, {16, 0, 0, 0.6f}, {16, 1, 0, 0.3f},
+    {16, 2, 0, 0.0f}, {10, 1, 0, 0.5f}, {10, 2, 0, 0.25f}, {3, 1, 0, 0.8f}};
+
+static void shell_lod_glsl_matches_c(void)
+{
+    float shells[SHELL_CASES][4], next[SHELL_CASES][2];
+    unsigned count[SHELL_CASES];
+    char consts[2048];
+    int at = snprintf(consts, sizeof consts, "const vec4 SH[%d] = vec4[%d](", SHELL_CASES, SHELL_CASES);
+    for (int c = 0; c < SHELL_CASES; c++) {
+        pelt__lod_shell_uniforms(shell_cases[c].layers, shell_cases[c].level, shell_cases[c].blend,
+                                 shell_cases[c].first, shells[c], next[c], &count[c]);
+        at += snprintf(consts + at, sizeof consts - (size_t)at, "%svec4(%.9g, %.9g, %.9g, %.9g)", c ? ", " : "",
+                       (double)shells[c][0], (double)shells[c][1], (double)shells[c][2], (double)shells[c][3]);
+    }
+    at += snprintf(consts + at, sizeof consts - (size_t)at, ");\nconst vec3 NX[%d] = vec3[%d](", SHELL_CASES,
+                   SHELL_CASES);
+    for (int c = 0; c < SHELL_CASES; c++)
+        at += snprintf(consts + at, sizeof consts - (size_t)at, "%svec3(%.9g, %.9g, %u.0)", c ? ", " : "",
+                       (double)next[c][0], (double)next[c][1], shell_cases[c].layers);
+    snprintf(consts + at, sizeof consts - (size_t)at, ");\n");
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  int c = int(gl_FragCoord.y) % 8;\n"
+        "  vec3 slices; float alpha;\n"
+        "  float layer = shell_instance(floor(gl_FragCoord.x), SH[c], NX[c].xy, NX[c].z, slices, alpha);\n"
+        "  o = u_which == 0 ? vec4(layer, slices) : vec4(alpha, 0.0, 0.0, 0.0);\n"
+        "}\n";
+    double worst = 0.0;
+    for (int which = 0; which < 2; which++) {
+        char define[64];
+        snprintf(define, sizeof define, "#define u_which %d\n", which);
+        const char *fs[] = {pelt__shader_shell_lod, consts, define, main_glsl, NULL};
+        CHECK(gl_test_eval(gl, fs, W, H, out));
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                int c = y % SHELL_CASES;
+                if ((unsigned)x >= count[c]) continue;
+                float slices[3], alpha;
+                float layer = pelt__lod_shell_instance(shells[c], next[c], (float)shell_cases[c].layers, (float)x,
+                                                       slices, &alpha);
+                float r[4] = {layer, slices[0], slices[1], slices[2]};
+                if (which == 1) r[0] = alpha, r[1] = r[2] = r[3] = 0.0f;
+                const float *g = out + 4 * (y * W + x);
+                for (int k = 0; k < 4; k++) worst = fmax(worst, fabs(g[k] - r[k]));
+            }
+    }
+    printf("  shell_instance: worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 1e-5);
+}
+
 static const char table_main[] =
     "uniform sampler2D u_table;\n"
     "out vec4 o;\n"
@@ -356,6 +415,7 @@ int main(void)
     RUN(clump_coverage_glsl_matches_c);
     RUN(groom_glsl_matches_c);
     RUN(inter_shadow_glsl_matches_c);
+    RUN(shell_lod_glsl_matches_c);
     RUN(lengyel_table_lookup_matches_the_formula);
     pelt_headless_destroy(gl);
     return check_summary();
