@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Renders every picture under docs/images/ into OUTDIR with the commands the
 # docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/gallery-grooming.md,
-# docs/gallery-fins.md, docs/atlas.md;
+# docs/gallery-fins.md, docs/atlas.md, docs/lod.md;
 # README.md only shows pictures of gallery.md), so that the result can be
 # compared with the committed pictures by scripts/docs-images-compare.sh.
 #
@@ -17,7 +17,7 @@
 #                    default bunny_dry elephant bunny_combed elephant_combed
 #                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water
 #                    wind_square turntable curl groom_torus groom_bunny groom_maps
-#                    fins_torus fins_bunny inter_shadow
+#                    fins_torus fins_bunny inter_shadow lod
 #
 # Each command runs in its own fresh working directory (symlinks to the source
 # tree's top-level entries, an empty docs/images/) with its own empty
@@ -261,13 +261,23 @@ img_inter_shadow() {
   for F in kenwright_off kenwright_on kenwright_torus_off kenwright_torus_on kenwright_bunny_off \
            kenwright_bunny_on lengyel_table; do collect $F.png $F.png; done
 }
+img_lod() {
+  for K in 0 1 2; do
+    pelt render --size 480x360 --distance 6 --set fur.lod=fixed --set fur.lod_shell_level=$K -o lod_shells_$K.png
+    collect lod_shells_$K.png lod_shells_$K.png
+  done
+  pelt render --mesh $M/bunny00.off --size 480x360 --set fur.lod=off -o lod_bunny_off.png
+  pelt render --mesh $M/bunny00.off --size 480x360 -o lod_bunny_auto.png
+  collect lod_bunny_off.png lod_bunny_off.png
+  collect lod_bunny_auto.png lod_bunny_auto.png
+}
 
 # ---- Running them.
 
 all="default bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny whirl
      bunny_wet bunny_rain word_in_water wind_square turntable curl groom_torus groom_bunny groom_maps
-     fins_torus fins_bunny inter_shadow"
-needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow "
+     fins_torus fins_bunny inter_shadow lod"
+needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow lod "
 groups="${DOCS_IMAGES:-$all}"
 
 now() { date +%s.%N; }
