@@ -36,6 +36,12 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_session_close(s);
         return false;
     }
+    if (pelt_renderer_set_shadows(s->renderer, &sc->shadows, &err) != PELT_OK) {
+        cli_error(cmd, "shadows: %s", err.message);
+        cli_session_close(s);
+        return false;
+    }
+    pelt_renderer_set_ground(s->renderer, &sc->ground);
     s->pixels = malloc((size_t)sc->output.width * sc->output.height * 4);
     if (!s->pixels) {
         cli_error(cmd, "out of memory for a %ux%u image", sc->output.width, sc->output.height);

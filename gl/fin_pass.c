@@ -42,8 +42,9 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
         {PELT__SHELL_COLOR_TEXTURE, "#define PELT_COLOR_TEXTURE 1\n"},
         {PELT__SHELL_KAJIYA_KAY, "#define PELT_SHADING_KK 1\n"},
         {PELT__SHELL_LIGHT_TABLE, "#define PELT_SHADING_TABLE 1\n"},
+        {PELT__SHELL_SHADOW_MAP, "#define PELT_SHADOW_MAP 1\n"},
     };
-    const char *fs[8], *vs[10];
+    const char *fs[9], *vs[11];
     int n = 0;
     for (size_t k = 0; k < sizeof defines / sizeof defines[0]; k++)
         if (features & defines[k].bit) fs[n++] = defines[k].define;
@@ -53,6 +54,7 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     fs[n++] = pelt__shader_fin_fs;
     fs[n] = NULL;
     vs[m++] = pelt__shader_shading;
+    vs[m++] = pelt__shader_shadow_map;
     vs[m++] = pelt__shader_fur_light;
     vs[m++] = pelt__shader_fin_vs;
     vs[m] = NULL;

@@ -94,6 +94,9 @@ typedef struct pelt__frame_block {
     float light_dir[3], pad0_;
     float light_color[3], pad1_;
     float view_dir[3], pad2_;
+    float light_matrix[16];
+    float shadow_map[4];  /* on, slices, 1 / size, filter radius in texels */
+    float shadow_slab[4]; /* slab depth, density, fur bias, keep gamma */
 } pelt__frame_block;
 
 typedef struct pelt__fur_block {
@@ -107,6 +110,12 @@ typedef struct pelt__fur_block {
     float fin_length, inter_shadow, inter_shadow_step, shading_model;
 } pelt__fur_block;
 
+/* The frame block's shadow fields (shaders/blocks.glsl). */
+typedef struct pelt__frame_shadow {
+    float light_matrix[16];
+    float map[4], slab[4];
+} pelt__frame_shadow;
+
 typedef struct pelt__gpu_blocks {
     GLuint frame, fur;        /* uniform buffers */
     pelt__fur_block fur_sent; /* what the fur buffer holds, once fur_valid */
@@ -115,7 +124,7 @@ typedef struct pelt__gpu_blocks {
 
 void pelt__gpu_blocks_create(pelt__gpu_blocks *b);
 /* Uploads the per-frame block; returns bytes sent. */
-size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *view);
+size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *view, const pelt__frame_shadow *shadow);
 /* Uploads the fur block when the fur's look differs from what was sent;
  * returns bytes sent. */
 size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur);

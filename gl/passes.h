@@ -48,12 +48,16 @@ enum {
     PELT__SHELL_COLOR_TEXTURE = 1 << 3, /* the fur has a colour texture */
     PELT__SHELL_KAJIYA_KAY = 1 << 4,    /* the hair lighting models */
     PELT__SHELL_LIGHT_TABLE = 1 << 5,
-    PELT__SHELL_VARIANTS = 1 << 6,
-    PELT__SHELL_GENERIC = PELT__SHELL_VARIANTS - 1 /* everything, chosen per fragment */
+    PELT__SHELL_SHADOW_MAP = 1 << 6,    /* the light's shadow maps darken the direct light */
+    PELT__SHELL_GENERIC = (1 << 7) - 1, /* everything, chosen per fragment */
+    PELT__SHELL_LIGHT_PASS = 1 << 7,    /* drawn from the light into its opacity slices */
+    PELT__SHELL_VARIANTS = 1 << 8
 };
 
 /* The fins use the features that concern them. */
-#define PELT__FIN_FEATURES (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE)
+#define PELT__FIN_FEATURES                                                                                \
+    (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE |    \
+     PELT__SHELL_SHADOW_MAP)
 
 /* Opaque skin with depth write: the mesh with the innermost fur slice. */
 typedef struct pelt__skin_pass {
@@ -109,7 +113,57 @@ typedef struct pelt__shell_pass {
 } pelt__shell_pass;
 
 pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks, pelt_error *err);
+/* The program with `features`, built on first use; the generic one when
+ * it does not build (a light-pass variant that does not build: NULL). */
+const pelt__shell_program *pelt__shell_pass_program(pelt__shell_pass *p, unsigned features);
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f);
 void pelt__shell_pass_destroy(pelt__shell_pass *p);
+
+/* The light's maps (Yuksel and Keyser's deep opacity maps, docs/shadows.md):
+ * the skin's depth, then the fur's opacity in slices of a slab in front of
+ * it, both drawn from the light into textures of its own framebuffers
+ * (made by pelt__shadow_pass_resize, never in a frame). Binds them to
+ * PELT_UNIT_SHADOW_* for the passes that receive. */
+typedef struct pelt__shadow_pass {
+    GLuint depth_program;
+    GLuint depth_fbo, opacity_fbo;
+    GLuint depth, opacity; /* DEPTH_COMPONENT24; RGBA16F array, 2 layers */
+    unsigned size;         /* texels a side, 0 before the first resize */
+} pelt__shadow_pass;
+
+/* What the light pass needs of the frame besides the pass frame. */
+typedef struct pelt__shadow_frame {
+    unsigned mesh_level;  /* the geometric level drawn from the light */
+    unsigned shell_level; /* and the shell level */
+    bool full_mesh;       /* level of detail off */
+    bool cull;            /* back faces (from the light) culled */
+    bool front_cw;
+    unsigned features;    /* the shells' PELT__SHELL_WET | _LOD_BLEND bits */
+} pelt__shadow_frame;
+
+pelt_status pelt__shadow_pass_create(pelt__shadow_pass *p, const pelt_hooks *hooks, pelt_error *err);
+/* (Re)makes the maps at size x size; PELT_ERR_GL when the framebuffers are
+ * incomplete. */
+pelt_status pelt__shadow_pass_resize(pelt__shadow_pass *p, unsigned size, pelt_error *err);
+/* Draws the maps; restores the caller's framebuffers, viewport, scissor
+ * test and colour mask. */
+void pelt__shadow_pass_draw(const pelt__shadow_pass *p, pelt__shell_pass *shells, const pelt__pass_frame *f,
+                            const pelt__shadow_frame *sf);
+/* Binds the maps to their units (after the draw, for the receivers). */
+void pelt__shadow_pass_bind(const pelt__shadow_pass *p);
+void pelt__shadow_pass_destroy(pelt__shadow_pass *p);
+
+/* The ground disc (pelt/shadow.h), opaque but for its faded rim, drawn
+ * first with depth write. */
+typedef struct pelt__ground_pass {
+    GLuint program;
+    GLint ground, color; /* uniform locations */
+} pelt__ground_pass;
+
+pelt_status pelt__ground_pass_create(pelt__ground_pass *p, const pelt_hooks *hooks, pelt_error *err);
+/* disc: centre x, plane height, centre z, radius (world). */
+void pelt__ground_pass_draw(const pelt__ground_pass *p, const pelt__pass_frame *f, const float disc[4],
+                            const float color[3]);
+void pelt__ground_pass_destroy(pelt__ground_pass *p);
 
 #endif

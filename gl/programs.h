@@ -21,6 +21,11 @@ extern const char pelt__shader_shell_lod[];
 extern const char pelt__shader_fur_light[];
 extern const char pelt__shader_fin_vs[];
 extern const char pelt__shader_fin_fs[];
+extern const char pelt__shader_shadow_map[];
+extern const char pelt__shader_shadow_depth_vs[];
+extern const char pelt__shader_shadow_depth_fs[];
+extern const char pelt__shader_ground_vs[];
+extern const char pelt__shader_ground_fs[];
 
 /* Compiles and links a program. Each stage is a NULL-terminated list of
  * at most 12 source pieces, concatenated after the version header (GLSL

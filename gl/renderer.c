@@ -6,6 +6,7 @@
 
 #include "core/base/error.h"
 #include "core/fur/fur_gpu.h"
+#include "core/fur/shadow_map.h"
 #include "gl/passes.h"
 
 #include <math.h>
@@ -21,6 +22,14 @@ struct pelt_renderer {
     pelt__skin_pass skin;
     pelt__fin_pass fins;
     pelt__shell_pass shells;
+    pelt__shadow_pass shadow;
+    pelt__ground_pass ground;
+    pelt_shadow_desc shadow_desc; /* resolved (core/fur/shadow_map.h) */
+    pelt_ground_desc ground_desc;
+    const pelt_mesh *source; /* the mesh as given: its positions place the ground */
+    float ground_model[16]; /* the model the ground's height was found for */
+    float ground_y;         /* the mesh's lowest world y under it */
+    bool ground_valid;
     size_t pending_upload; /* bytes uploaded since the last draw */
     pelt_render_stats stats;
 };
@@ -45,10 +54,13 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
     r->hooks = hooks;
     r->fur = fur;
     r->layers = pelt_fur_get_desc(fur).layers;
+    r->source = mesh;
 
     pelt_status st = pelt__skin_pass_create(&r->skin, &hooks, err);
     if (st == PELT_OK) st = pelt__shell_pass_create(&r->shells, &hooks, err);
     if (st == PELT_OK) st = pelt__fin_pass_create(&r->fins, fur, &hooks, err);
+    if (st == PELT_OK) st = pelt__shadow_pass_create(&r->shadow, &hooks, err);
+    if (st == PELT_OK) st = pelt__ground_pass_create(&r->ground, &hooks, err);
     if (st == PELT_OK) st = pelt__gpu_mesh_create(&r->mesh, mesh, fur, &hooks, err);
     if (st == PELT_OK) {
         pelt__gpu_fur_create(&r->textures, fur);
@@ -69,6 +81,8 @@ void pelt_renderer_destroy(pelt_renderer *r)
     if (!r) return;
     pelt__shell_pass_destroy(&r->shells);
     pelt__fin_pass_destroy(&r->fins);
+    pelt__shadow_pass_destroy(&r->shadow);
+    pelt__ground_pass_destroy(&r->ground);
     pelt__skin_pass_destroy(&r->skin);
     pelt__gpu_blocks_destroy(&r->blocks);
     pelt__gpu_fur_destroy(&r->textures);
@@ -94,6 +108,21 @@ void pelt_renderer_upload(pelt_renderer *r)
     pelt__gl_state_reset();
 }
 
+/* The largest scale of the model matrix's columns. */
+static float model_scale(const float *m)
+{
+    float scale = 0.0f;
+    for (int col = 0; col < 3; col++)
+        scale = fmaxf(scale, sqrtf(m[4 * col] * m[4 * col] + m[4 * col + 1] * m[4 * col + 1] +
+                                   m[4 * col + 2] * m[4 * col + 2]));
+    return scale;
+}
+
+static void transform_point(const float *m, const float p[3], float out[3])
+{
+    for (int k = 0; k < 3; k++) out[k] = m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k];
+}
+
 /* The levels of detail for this view (core/fur/lod.h): the geometric level
  * by the error it makes on screen, the shell level by the fur's length on
  * screen, both measured at the bounding sphere's point nearest the eye. */
@@ -117,14 +146,8 @@ static pelt__frame_lod choose_lod(const pelt_renderer *r, const pelt_view *v, co
         l.shell_level = one_height ? 0 : fl.shell_level < shell_levels ? fl.shell_level : shell_levels - 1;
         return l;
     }
-    const float *m = v->model;
-    float scale = 0.0f;
-    for (int col = 0; col < 3; col++)
-        scale = fmaxf(scale, sqrtf(m[4 * col] * m[4 * col] + m[4 * col + 1] * m[4 * col + 1] +
-                                   m[4 * col + 2] * m[4 * col + 2]));
-    float center[3];
-    for (int k = 0; k < 3; k++)
-        center[k] = m[k] * c->center[0] + m[4 + k] * c->center[1] + m[8 + k] * c->center[2] + m[12 + k];
+    float scale = model_scale(v->model), center[3];
+    transform_point(v->model, c->center, center);
     float ppu;
     if (v->proj[11] == 0.0f) { /* orthographic: the same size at any distance */
         ppu = v->proj[5] * 0.5f * (float)v->height * scale;
@@ -142,6 +165,109 @@ static pelt__frame_lod choose_lod(const pelt_renderer *r, const pelt_view *v, co
     return l;
 }
 
+pelt_status pelt_renderer_set_shadows(pelt_renderer *r, const pelt_shadow_desc *shadows, pelt_error *err)
+{
+    if (!r) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_renderer_set_shadows: renderer is NULL");
+    pelt_shadow_desc d = shadows ? *shadows : (pelt_shadow_desc){0};
+    if (d.map_size && (d.map_size < 16 || d.map_size > PELT_SHADOW_MAX_MAP_SIZE))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "shadow map size %u is outside 16..%u", d.map_size,
+                          PELT_SHADOW_MAX_MAP_SIZE);
+    if (d.slices > PELT_SHADOW_MAX_SLICES)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%u shadow slices: at most %u", d.slices,
+                          PELT_SHADOW_MAX_SLICES);
+    if (!isfinite(d.softness) || !isfinite(d.depth) || !isfinite(d.density))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "shadow softness, depth and density must be finite");
+    d = pelt__shadow_resolved(&d);
+    r->shadow_desc.enabled = false;
+    if (d.enabled) {
+        pelt_status st = pelt__shadow_pass_resize(&r->shadow, d.map_size, err);
+        pelt__gl_state_reset();
+        if (st != PELT_OK) return st;
+    }
+    r->shadow_desc = d;
+    return PELT_OK;
+}
+
+void pelt_renderer_set_ground(pelt_renderer *r, const pelt_ground_desc *ground)
+{
+    if (r) r->ground_desc = pelt__ground_resolved(ground);
+}
+
+/* The light's frame and what the light pass draws (docs/shadows.md): an
+ * orthographic frame around the mesh's bounding sphere grown by the fur,
+ * a geometric level whose error stays under the maps' texels, and a shell
+ * level of at most 8 shells (Lengyel's composited levels keep the fur's
+ * opacity). */
+static bool shadow_frame(const pelt_renderer *r, const pelt_view *v, const pelt_draw_desc *draw,
+                         pelt__frame_shadow *fs, pelt__shadow_frame *sf)
+{
+    memset(fs, 0, sizeof *fs);
+    memset(sf, 0, sizeof *sf);
+    const pelt_shadow_desc *d = &r->shadow_desc;
+    const pelt_fur_desc fd = pelt_fur_get_desc(r->fur);
+    const pelt__lod_chain *c = pelt__fur_gpu_lod(r->fur);
+    float scale = model_scale(v->model), center[3];
+    transform_point(v->model, c->center, center);
+    float radius = (c->radius + 1.5f * fd.length) * scale;
+    const float depth_range = 2.0f; /* radii behind the centre: room for a ground */
+    float clip[16];
+    pelt__shadow_light_frame(center, radius, v->light.direction, depth_range, fs->light_matrix, clip);
+    bool on = d->enabled && !draw->no_shadows && r->shadow.size > 0;
+    if (!on) return false;
+    float depth_unit = radius * (1.0f + depth_range), texel = 2.0f * radius / (float)d->map_size;
+    fs->map[0] = 1.0f;
+    fs->map[1] = (float)d->slices;
+    fs->map[2] = 1.0f / (float)d->map_size;
+    fs->map[3] = d->softness;
+    fs->slab[0] = d->depth * fd.length * scale / depth_unit;
+    fs->slab[1] = d->density;
+    fs->slab[2] = (1.5f + d->softness) * texel / depth_unit;
+    fs->slab[3] = d->keep_gamma ? 1.0f : 0.0f;
+
+    unsigned slices_lod;
+    pelt__fur_gpu_volume_lod(r->fur, &slices_lod);
+    if (fd.lod.mode == PELT_LOD_OFF || c->count <= 1) {
+        sf->full_mesh = true;
+    } else {
+        float ppu = (float)d->map_size / (2.0f * radius) * scale; /* map texels per mesh unit */
+        sf->mesh_level = fd.lod.mode == PELT_LOD_FIXED ? (fd.lod.mesh_level < c->count ? fd.lod.mesh_level : c->count - 1)
+                                                       : pelt__lod_pick(c, ppu, fd.lod.mesh_error_pixels,
+                                                                        fd.lod.mesh_edge_pixels);
+    }
+    if (slices_lod)
+        while (sf->shell_level + 1 < pelt__lod_shell_levels(r->layers) &&
+               pelt__lod_shell_count(r->layers, sf->shell_level) > 8)
+            sf->shell_level++;
+    sf->cull = c->closed && c->winding != 0;
+    sf->front_cw = c->winding < 0;
+    return true;
+}
+
+/* The ground's disc: under the bounding sphere's centre, at the mesh's
+ * lowest world height (found again when the model matrix changes). */
+static void ground_disc(pelt_renderer *r, const pelt_view *v, float disc[4])
+{
+    if (!r->ground_valid || memcmp(r->ground_model, v->model, sizeof r->ground_model)) {
+        const pelt_mesh_data md = pelt_mesh_get_data(r->source);
+        float lowest = INFINITY;
+        for (size_t i = 0; i < md.vertex_count; i++) {
+            float p[3];
+            transform_point(v->model, md.positions + 3 * i, p);
+            lowest = fminf(lowest, p[1]);
+        }
+        memcpy(r->ground_model, v->model, sizeof r->ground_model);
+        r->ground_y = isfinite(lowest) ? lowest : 0.0f;
+        r->ground_valid = true;
+    }
+    const pelt__lod_chain *c = pelt__fur_gpu_lod(r->fur);
+    float center[3];
+    transform_point(v->model, c->center, center);
+    disc[0] = center[0];
+    disc[1] = r->ground_y;
+    disc[2] = center[2];
+    disc[3] = r->ground_desc.size * c->radius * model_scale(v->model);
+}
+
 /* The shell shader's features this frame needs (PELT__SHELL_*). */
 static unsigned shell_features(const pelt_renderer *r, const pelt__frame_lod *lod, const pelt_draw_desc *draw)
 {
@@ -153,6 +279,7 @@ static unsigned shell_features(const pelt_renderer *r, const pelt__frame_lod *lo
     if (lod->shell_blend > 0.0f) f |= PELT__SHELL_LOD_BLEND;
     if (pelt__fur_gpu_color(r->fur, &w, &h, &version)) f |= PELT__SHELL_COLOR_TEXTURE;
     f |= look.shading == PELT_SHADING_LENGYEL_TABLE ? PELT__SHELL_LIGHT_TABLE : PELT__SHELL_KAJIYA_KAY;
+    if (r->shadow_desc.enabled && !draw->no_shadows && r->shadow.size) f |= PELT__SHELL_SHADOW_MAP;
     return f;
 }
 
@@ -162,7 +289,10 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     if (!draw) draw = &everything;
     upload(r);
     pelt_render_stats stats = {0};
-    stats.upload_bytes = r->pending_upload + pelt__gpu_blocks_set_frame(&r->blocks, view);
+    pelt__frame_shadow shadow;
+    pelt__shadow_frame light_pass;
+    bool shadows = shadow_frame(r, view, draw, &shadow, &light_pass);
+    stats.upload_bytes = r->pending_upload + pelt__gpu_blocks_set_frame(&r->blocks, view, &shadow);
     r->pending_upload = 0;
 
     glBindVertexArray(r->mesh.vao);
@@ -175,7 +305,17 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     stats.shell_level = frame.lod.shell_level;
     stats.shell_blend = frame.lod.shell_blend;
     stats.culled = frame.lod.cull && !draw->no_shells;
-    /* Frame order (DESIGN.md): skin, fins, shells. */
+    /* Frame order (DESIGN.md): the light's maps, ground, skin, fins, shells. */
+    if (shadows) {
+        light_pass.features = frame.shell_features & PELT__SHELL_WET;
+        pelt__shadow_pass_draw(&r->shadow, &r->shells, &frame, &light_pass);
+        pelt__shadow_pass_bind(&r->shadow);
+    }
+    if (r->ground_desc.enabled) {
+        float disc[4];
+        ground_disc(r, view, disc);
+        pelt__ground_pass_draw(&r->ground, &frame, disc, r->ground_desc.color);
+    }
     if (!draw->no_skin) pelt__skin_pass_draw(&r->skin, &frame);
     if (!draw->no_fins) pelt__fin_pass_draw(&r->fins, &frame);
     if (!draw->no_shells) pelt__shell_pass_draw(&r->shells, &frame);

@@ -10,19 +10,22 @@
 #include <string.h>
 
 static const char *const feature_defines[] = {"PELT_WET", "PELT_INTER_SHADOW", "PELT_LOD_BLEND",
-                                              "PELT_COLOR_TEXTURE", "PELT_SHADING_KK", "PELT_SHADING_TABLE"};
+                                              "PELT_COLOR_TEXTURE", "PELT_SHADING_KK", "PELT_SHADING_TABLE",
+                                              "PELT_SHADOW_MAP", "PELT_LIGHT_PASS"};
 
 static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor, const pelt_hooks *hooks,
                          pelt_error *err)
 {
-    char defines[256] = "";
+    char defines[384] = "";
     size_t at = 0;
     for (unsigned k = 0; k < sizeof feature_defines / sizeof feature_defines[0]; k++)
         if (features & (1u << k))
             at += (size_t)snprintf(defines + at, sizeof defines - at, "#define %s 1\n", feature_defines[k]);
-    const char *vs[] = {defines, pelt__shader_shading, pelt__shader_fur_light, pelt__shader_fur_shape,
-                        pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_shell_vs, NULL};
-    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_clump, pelt__shader_shell_fs, NULL};
+    const char *vs[] = {defines,          pelt__shader_shading,   pelt__shader_shadow_map,
+                        pelt__shader_fur_light, pelt__shader_fur_shape, pelt__shader_clump,
+                        pelt__shader_shell_lod, pelt__shader_shell_vs,  NULL};
+    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_clump,
+                        pelt__shader_shell_fs, NULL};
     const char *floor_fs[] = {pelt__shader_shell_floor_fs, NULL};
     pelt_status st = pelt__gl_program_create(floor ? "shell floor" : "shell", vs, floor ? floor_fs : fs, hooks,
                                              &sp->program, err);
@@ -45,13 +48,15 @@ pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks
     return st;
 }
 
-/* The program for this frame's features, built on first use; the generic
- * program when a variant does not build (logged through the hooks). */
-static const pelt__shell_program *program_for(pelt__shell_pass *p, unsigned features)
+/* Built on first use; a variant that does not build is logged through the
+ * hooks, and the generic program stands in. */
+const pelt__shell_program *pelt__shell_pass_program(pelt__shell_pass *p, unsigned features)
 {
-    pelt__shell_program *sp = &p->variants[features & PELT__SHELL_GENERIC];
-    if (!sp->program && !sp->failed) build(sp, features & PELT__SHELL_GENERIC, false, &p->hooks, NULL);
-    return sp->program ? sp : &p->variants[PELT__SHELL_GENERIC];
+    features &= PELT__SHELL_VARIANTS - 1;
+    pelt__shell_program *sp = &p->variants[features];
+    if (!sp->program && !sp->failed) build(sp, features, false, &p->hooks, NULL);
+    if (sp->program) return sp;
+    return features & PELT__SHELL_LIGHT_PASS ? NULL : &p->variants[PELT__SHELL_GENERIC];
 }
 
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
@@ -70,7 +75,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
         glEnable(GL_CULL_FACE);
         glFrontFace(lod->front_cw ? GL_CW : GL_CCW);
     }
-    const pelt__shell_program *sp = f->draw->floor_shader ? &p->floor : program_for(p, f->shell_features);
+    const pelt__shell_program *sp = f->draw->floor_shader ? &p->floor : pelt__shell_pass_program(p, f->shell_features);
     glUseProgram(sp->program);
     glUniform4fv(sp->shells, 1, shells);
     glUniform2fv(sp->shells_next, 1, next);

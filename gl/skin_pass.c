@@ -8,7 +8,7 @@
 pelt_status pelt__skin_pass_create(pelt__skin_pass *p, const pelt_hooks *hooks, pelt_error *err)
 {
     const char *vs[] = {pelt__shader_skin_vs, NULL};
-    const char *fs[] = {pelt__shader_shading, pelt__shader_skin_fs, NULL};
+    const char *fs[] = {pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_skin_fs, NULL};
     return pelt__gl_program_create("skin", vs, fs, hooks, &p->program, err);
 }
 

@@ -18,7 +18,10 @@ OFFSET(pelt__frame_block, ambient, 140);
 OFFSET(pelt__frame_block, light_dir, 144);
 OFFSET(pelt__frame_block, light_color, 160);
 OFFSET(pelt__frame_block, view_dir, 176);
-_Static_assert(sizeof(pelt__frame_block) == 192, "std140 size of pelt_frame_block");
+OFFSET(pelt__frame_block, light_matrix, 192);
+OFFSET(pelt__frame_block, shadow_map, 256);
+OFFSET(pelt__frame_block, shadow_slab, 272);
+_Static_assert(sizeof(pelt__frame_block) == 288, "std140 size of pelt_frame_block");
 OFFSET(pelt__fur_block, color, 0);
 OFFSET(pelt__fur_block, layers, 12);
 OFFSET(pelt__fur_block, tip_color, 16);
@@ -62,7 +65,7 @@ static void send(GLuint buffer, const void *data, size_t bytes)
     glBufferSubData(GL_UNIFORM_BUFFER, 0, (GLsizeiptr)bytes, data);
 }
 
-size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v)
+size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v, const pelt__frame_shadow *shadow)
 {
     pelt__frame_block f;
     memset(&f, 0, sizeof f);
@@ -75,6 +78,9 @@ size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v)
     /* Forward is minus the third row of the view rotation. */
     pelt_vec3 fwd = v3_norm_or(v3(-v->view[2], -v->view[6], -v->view[10]), v3(0.0f, 0.0f, -1.0f));
     v3_store(f.view_dir, fwd);
+    memcpy(f.light_matrix, shadow->light_matrix, sizeof f.light_matrix);
+    memcpy(f.shadow_map, shadow->map, sizeof f.shadow_map);
+    memcpy(f.shadow_slab, shadow->slab, sizeof f.shadow_slab);
     send(b->frame, &f, sizeof f);
     return sizeof f;
 }

@@ -25,7 +25,9 @@
 #define PELT_UNIT_LIGHT_TABLE 4 // sampler2D RG32F: Lengyel's hair lighting table
 #define PELT_UNIT_FIN_EDGES 5 // usampler2D RGBA32UI: this frame's fins (their ends, start and fade bits)
 #define PELT_UNIT_FIN_VERTICES 6 // sampler2D RGBA32F: this frame's fin vertices (core/fur/fur_gpu.h)
-#define PELT_UNIT_COUNT 7 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
+#define PELT_UNIT_SHADOW_DEPTH 7 // sampler2D DEPTH_COMPONENT24: the skin's depth from the light (gl/shadow_pass.c)
+#define PELT_UNIT_SHADOW_OPACITY 8 // sampler2DArray RGBA16F: the fur's opacity slices, 4 a layer
+#define PELT_UNIT_COUNT 9 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
 
 // Tables: data a pass fetches by index (the fins and their vertices), row
 // after row PELT_TABLE_WIDTH texels wide.

@@ -12,6 +12,10 @@ layout(std140) uniform pelt_frame_block {
     vec3 u_light_dir;    // towards the light, not unit
     vec3 u_light_color;
     vec3 u_view_dir;     // the camera's forward direction (the infinite viewer)
+    // Shadows from the light (shadow_map.glsl, docs/shadows.md).
+    mat4 u_light_matrix; // world -> (s, t, depth) on the light's maps
+    vec4 u_shadow_map;   // x: on (1) or off (0), y: slices S, z: 1 / map size, w: filter radius, texels
+    vec4 u_shadow_slab;  // x: the slab's depth, y: opacity density, z: the fur's bias, w: keep gamma (1)
 };
 
 // Per fur, uploaded when it changes: the look (Silva et al. Eq. 4-6).

@@ -2,7 +2,7 @@
 // hair model (Kajiya-Kay, Silva Eq. 6, or Lengyel's §2.4 table; both in
 // shading.glsl) with the displaced strand's tangent T, the body's own
 // shadow on hair facing away from the light, and gamma(h). Reads the
-// uniform blocks, so it comes after blocks.glsl.
+// uniform blocks, so it comes after blocks.glsl (and shadow_map.glsl).
 uniform sampler2D u_light_table; // PELT_UNIT_LIGHT_TABLE
 
 // As a factor and a term, colour = base * mul + add, so the shells and the
@@ -27,6 +27,12 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
     // body's shadow: Kajiya-Kay alone would light it as brightly.
     float facing = clamp(dot(normalize(normal), L) * 0.8 + 0.35, 0.0, 1.0);
     float gamma = shadow_factor(u_shadow, h);
+#ifdef PELT_SHADOW_MAP
+    // The light's shadow maps (shadow_map.glsl) darken the direct light;
+    // gamma, their cheap stand-in, stays only when asked for.
+    facing *= shadow_light(world, u_shadow_slab.z);
+    if (u_shadow_map.x > 0.5) gamma = mix(1.0, gamma, u_shadow_slab.w);
+#endif
     mul = gamma * (u_ambient + kk.x * facing * u_light_color);
     add = gamma * u_specular * kk.y * facing * u_light_color;
 }

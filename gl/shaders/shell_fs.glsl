@@ -17,7 +17,14 @@ uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
 uniform sampler2D u_mask;          // PELT_UNIT_MASK
 uniform int u_no_inter_shadow;     // the shell pass's own: 1 skips inter-fur shadows
 
+#ifdef PELT_LIGHT_PASS
+// The light pass (gl/shadow_pass.c): the fur's opacity into slices 0-3, 4-7.
+in float v_light_depth;
+layout(location = 0) out vec4 o_slices0;
+layout(location = 1) out vec4 o_slices1;
+#else
 out vec4 o_color;
+#endif
 
 // The shell pass builds this shader in variants (gl/shell_pass.c): each
 // PELT_* feature below is compiled in only when the frame needs it, so the
@@ -53,6 +60,21 @@ void main()
         hair.a = clump_coverage(hair.a, k);
     }
 #endif
+#ifdef PELT_LIGHT_PASS
+    // Deep opacity maps: this hair's -ln(1 - alpha) into the slices at and
+    // behind its depth in the slab in front of the skin. Hair behind the
+    // skin is in the body's shadow and shades nothing that is lit.
+    if (hair.a < 0.05) discard;
+    float z_skin = texelFetch(u_shadow_depth, ivec2(gl_FragCoord.xy), 0).r;
+    if (v_light_depth - u_shadow_slab.z > z_skin) discard;
+    float k = (v_light_depth - (z_skin - u_shadow_slab.x)) / u_shadow_slab.x * u_shadow_map.y;
+    vec4 w0, w1;
+    shadow_slice_weights(k, u_shadow_map.y, w0, w1);
+    float sigma = shadow_sigma(hair.a);
+    o_slices0 = sigma * w0;
+    o_slices1 = sigma * w1;
+    return;
+#else
     if (hair.a < 0.05) {
 #ifdef PELT_INTER_SHADOW
         // Kenwright: no hair here, but the hair a step towards the light
@@ -72,4 +94,5 @@ void main()
 #endif
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
     o_color = vec4(base * v_light_mul + v_light_add, hair.a);
+#endif
 }

@@ -34,6 +34,9 @@ out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
 flat out float v_clump_profile; // Silva Eq. 5's f(h), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
 flat out float v_alpha;  // the shell's opacity: fades as its level leaves
+#ifdef PELT_LIGHT_PASS
+out float v_light_depth; // the light pass (gl/shadow_pass.c): depth from the light
+#endif
 
 void main()
 {
@@ -56,9 +59,17 @@ void main()
                 + fur_comb(shear, L, 1.0, h);
     vec3 t = fur_tangent_combed(n, L, tip, u, v, shear, u_curl_frequency, K, rho, 1.0, h);
     vec4 world = u_model * vec4(a_position + offset, 1.0);
+#ifdef PELT_LIGHT_PASS
+    // Drawn from the light into its opacity slices: no lighting.
+    vec3 lc = shadow_coord(world.xyz);
+    v_light_depth = lc.z;
+    gl_Position = vec4(lc * 2.0 - 1.0, 1.0);
+#else
     fur_light_terms(mat3(u_model) * t, mat3(u_model) * n, world.xyz, h, v_light_mul, v_light_add);
     v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),
                                         normalize(mat3(u_model) * v), u_inter_shadow_step);
+    gl_Position = u_view_proj * world;
+#endif
     v_root = groom_root_color(u_color, a_hair_color);
     v_tip = groom_tip_color(u_color, u_tip_color, a_hair_color);
     v_uv = a_uv;
@@ -66,5 +77,4 @@ void main()
     v_h = h;
     v_density = a_groom.w;
     v_clump_profile = clump_profile(h, u_clump_blend, u_layers);
-    gl_Position = u_view_proj * world;
 }

@@ -6,6 +6,7 @@ in vec2 v_uv;
 in vec2 v_fur_uv;
 in float v_density;
 in vec4 v_hair_color;
+in vec3 v_world;
 
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
@@ -18,8 +19,16 @@ void main()
     float shade = texture(u_fur, vec3(v_fur_uv, 0.0)).r;
     vec3 roots = groom_root_color(u_color, v_hair_color) * texture(u_color_tex, v_uv * u_color_scale).rgb * shade;
     vec3 base = mix(u_skin_color, roots, clamp(v_density, 0.0, 1.0));
-    float lambert = max(dot(n, normalize(u_light_dir)), 0.0);
-    // The skin sits under all the fur: gamma at h = 0.
+    vec3 L = normalize(u_light_dir);
+    float lambert = max(dot(n, L), 0.0);
+    // The skin sits under all the fur: gamma at h = 0; with the light's
+    // shadow maps, the fur's real opacity instead (unless gamma is kept),
+    // read with a bias that grows as the light grazes the skin.
     float gamma = shadow_factor(u_shadow, 0.0);
+    if (u_shadow_map.x > 0.5 && lambert > 0.0) {
+        float nl = max(lambert, 0.1);
+        lambert *= shadow_transmittance(v_world, u_shadow_slab.z * (1.0 + min(sqrt(1.0 - nl * nl) / nl, 4.0)));
+        gamma = mix(1.0, gamma, u_shadow_slab.w);
+    }
     o_color = vec4(base * gamma * (u_ambient + lambert * u_light_color), 1.0);
 }

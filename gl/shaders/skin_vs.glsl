@@ -11,11 +11,13 @@ out vec2 v_uv;
 out vec2 v_fur_uv;
 out float v_density;
 out vec4 v_hair_color;
+out vec3 v_world;
 
 void main()
 {
     vec4 world = u_model * vec4(a_position, 1.0);
     v_normal = mat3(u_model) * a_normal;
+    v_world = world.xyz;
     v_uv = a_uv;
     v_fur_uv = a_fur_uv;
     v_density = a_groom.w;

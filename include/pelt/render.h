@@ -7,6 +7,7 @@
 #include "pelt/camera.h"
 #include "pelt/fur.h"
 #include "pelt/mesh.h"
+#include "pelt/shadow.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -44,6 +45,9 @@ typedef struct pelt_draw_desc {
      * shader, the fur's coverage against a 0.05 threshold in a constant
      * colour, over the same geometry and levels of detail. */
     bool floor_shader;
+    /* Skip the light's shadow maps this frame, as if they were off (for
+       measuring; pelt_renderer_set_shadows turns them on). */
+    bool no_shadows;
 } pelt_draw_desc;
 
 /* What the last pelt_renderer_draw did. */
@@ -52,6 +56,9 @@ typedef struct pelt_render_stats {
     unsigned shell_draw_calls; /* 1 when shells were drawn: all in one instanced draw */
     unsigned shell_instances;  /* shell layers that draw covered */
     unsigned fin_draw_calls;   /* 1 when fins were drawn: all in one instanced draw */
+    unsigned shadow_draw_calls; /* the light's maps: 2 (skin depth, all shells'
+                                   opacity in one instanced draw), else 0 */
+    unsigned ground_draw_calls; /* 1 when the ground was drawn */
     size_t fins;               /* fins (mesh edges) that draw submitted; the
                                   faded-out ones collapse in the vertex stage */
     size_t triangles;          /* triangles submitted by all passes, every shell
@@ -78,12 +85,15 @@ typedef struct pelt_render_stats {
  * Used as found, never changed: framebuffer bindings, viewport, scissor,
  * stencil, clear values, colour write mask, polygon mode and offset,
  * glCullFace/glFrontFace (culling itself is off), multisampling, sRGB,
- * primitive restart, pixel pack state, texture units 3 and up.
+ * primitive restart, pixel pack state, texture units 9 and up. With the
+ * light's shadows on, draw renders its maps into its own framebuffers
+ * first and puts back the framebuffer bindings, viewport, scissor test and
+ * colour mask it found (read with glGet).
  * Set by each call for itself, so what it finds there does not matter,
  * and left at GL's initial values afterwards:
  *   - program 0, vertex array 0, GL_ARRAY_BUFFER 0;
  *   - GL_UNIFORM_BUFFER 0, and 0 on uniform buffer binding points 0 and 1;
- *   - texture units 0, 1 and 2 with texture 0 on GL_TEXTURE_2D and
+ *   - texture units 0 to 8 with texture 0 on GL_TEXTURE_2D and
  *     GL_TEXTURE_2D_ARRAY; GL_ACTIVE_TEXTURE GL_TEXTURE0;
  *   - GL_DEPTH_TEST off, glDepthFunc(GL_LESS), glDepthMask(GL_TRUE);
  *   - GL_BLEND off, glBlendFunc(GL_ONE, GL_ZERO), glBlendEquation(GL_FUNC_ADD);
@@ -110,6 +120,15 @@ void pelt_renderer_upload(pelt_renderer *renderer);
  * (everything). No allocation, no file I/O. */
 void pelt_renderer_draw(pelt_renderer *renderer, const pelt_view *view,
                         const pelt_draw_desc *draw);
+
+/* The light's shadows (pelt/shadow.h, docs/shadows.md): off until set.
+ * Makes or remakes the maps when their size changes (never in a draw).
+ * PELT_ERR_INVALID_ARGUMENT for a size or slice count out of range,
+ * PELT_ERR_GL when the maps cannot be drawn into; the shadows are then off. */
+pelt_status pelt_renderer_set_shadows(pelt_renderer *renderer, const pelt_shadow_desc *shadows,
+                                      pelt_error *err);
+/* The ground plane under the mesh (pelt/shadow.h): off until set. */
+void pelt_renderer_set_ground(pelt_renderer *renderer, const pelt_ground_desc *ground);
 
 /* What the last pelt_renderer_draw did (all zero before the first). */
 pelt_render_stats pelt_renderer_get_stats(const pelt_renderer *renderer);

@@ -15,6 +15,7 @@
 #include "pelt/dynamics.h"
 #include "pelt/fur.h"
 #include "pelt/groom.h"
+#include "pelt/shadow.h"
 #include "pelt/wetness.h"
 
 #ifdef __cplusplus
@@ -206,6 +207,9 @@ typedef struct pelt_scene {
     pelt_scene_texture texture;
     pelt_camera camera;    /* default yaw 30, pitch 25, distance 4.2, fov_y 40, target 0 */
     pelt_light light;      /* default direction (0.5, 1, 0.8), colour 1, ambient 0.25 */
+    pelt_shadow_desc shadows; /* the light's shadows: off by default (pelt/shadow.h);
+                                 keys shadows.*, "shadows.gamma" is keep_gamma */
+    pelt_ground_desc ground;  /* a ground plane: off by default (the Table 1 set-up) */
     pelt_scene_output output;
     pelt_forces forces;    /* default pelt_forces_default() */
     pelt_scene_animation animation;

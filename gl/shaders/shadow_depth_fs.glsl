@@ -1,0 +1,4 @@
+// Depth only: the light pass's depth map has no colour.
+void main()
+{
+}

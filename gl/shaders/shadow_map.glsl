@@ -1,0 +1,74 @@
+// Deep opacity maps (docs/shadows.md), the receiving side, mirrored by
+// core/fur/shadow_map.c: the skin's depth from the light, and the fur's
+// opacity in up to 8 slices (two RGBA layers) of a slab in front of it.
+// Reads the frame block, so it comes after blocks.glsl.
+uniform highp sampler2D u_shadow_depth;        // PELT_UNIT_SHADOW_DEPTH: skin depth, nearest
+uniform highp sampler2DArray u_shadow_opacity; // PELT_UNIT_SHADOW_OPACITY: slice sums, linear
+
+// The weights a fragment at slice position k adds to slices 0-3 and 4-7
+// of S (pelt__shadow_slice_weight): a one-slice ramp, the last slice all.
+void shadow_slice_weights(float k, float S, out vec4 w0, out vec4 w1)
+{
+    w0 = clamp(vec4(1.0, 2.0, 3.0, 4.0) - k, 0.0, 1.0);
+    w1 = clamp(vec4(5.0, 6.0, 7.0, 8.0) - k, 0.0, 1.0);
+    w0 = mix(w0, vec4(1.0), step(vec4(S - 1.0), vec4(0.0, 1.0, 2.0, 3.0)));
+    w1 = mix(w1, vec4(1.0), step(vec4(S - 1.0), vec4(4.0, 5.0, 6.0, 7.0)));
+}
+
+// What a fur fragment of coverage a adds (pelt__shadow_sigma).
+float shadow_sigma(float a)
+{
+    return -log(1.0 - clamp(a, 0.0, 0.98));
+}
+
+// The opacity in front of slice position k (pelt__shadow_opacity).
+float shadow_opacity(vec4 s0, vec4 s1, float S, float k)
+{
+    float x = clamp(k, 0.0, S);
+    float i = min(floor(x), S - 1.0);
+    float f = x - i; // 1 at x = S
+    float sums[9];
+    sums[0] = 0.0;
+    sums[1] = s0.x; sums[2] = s0.y; sums[3] = s0.z; sums[4] = s0.w;
+    sums[5] = s1.x; sums[6] = s1.y; sums[7] = s1.z; sums[8] = s1.w;
+    int j = int(i);
+    return mix(sums[j], sums[j + 1], f);
+}
+
+// Light-space position: (s, t) on the maps, d the depth from the light.
+vec3 shadow_coord(vec3 world)
+{
+    return (u_light_matrix * vec4(world, 1.0)).xyz;
+}
+
+// The transmittance towards the light at a world point, `bias` (depth
+// units) towards the light: 1 outside the maps; 0 behind the skin; else
+// exp(-density x the fur's opacity in front). A few taps of radius
+// softness texels soften the edges (percentage-closer filtering).
+float shadow_transmittance(vec3 world, float bias)
+{
+    vec3 c = shadow_coord(world);
+    if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return 1.0;
+    float d = min(c.z, 1.0) - bias;
+    float S = u_shadow_map.y, slab = u_shadow_slab.x;
+    vec2 r = vec2(u_shadow_map.z * u_shadow_map.w);
+    float lit = 0.0;
+    for (int tap = 0; tap < 4; tap++) {
+        // A rotated grid of four taps; all at the centre when hard.
+        vec2 o = r * vec2(tap == 0 ? -0.25 : tap == 1 ? 0.75 : tap == 2 ? 0.25 : -0.75,
+                          tap == 0 ? -0.75 : tap == 1 ? -0.25 : tap == 2 ? 0.75 : 0.25);
+        float z_skin = textureLod(u_shadow_depth, c.xy + o, 0.0).r;
+        if (d > z_skin) continue; // behind the skin: the body's own shadow
+        float k = (d - (z_skin - slab)) / slab * S;
+        vec4 s0 = textureLod(u_shadow_opacity, vec3(c.xy + o, 0.0), 0.0);
+        vec4 s1 = S > 4.0 ? textureLod(u_shadow_opacity, vec3(c.xy + o, 1.0), 0.0) : vec4(0.0);
+        lit += exp(-u_shadow_slab.y * shadow_opacity(s0, s1, S, k));
+    }
+    return lit * 0.25;
+}
+
+// The light's direct term at a receiver: 1 without shadow maps.
+float shadow_light(vec3 world, float bias)
+{
+    return u_shadow_map.x > 0.5 ? shadow_transmittance(world, bias) : 1.0;
+}
