@@ -41,15 +41,15 @@ vec3 shadow_coord(vec3 world)
     return (u_light_matrix * vec4(world, 1.0)).xyz;
 }
 
-// The transmittance towards the light at a world point, `bias` (depth
-// units) towards the light: 1 outside the maps; 0 behind the skin; else
+// The transmittance towards the light at a world point: 1 outside the
+// maps; 0 behind the skin (more than `bias`, depth units); else
 // exp(-density x the fur's opacity in front). A few taps of radius
 // softness texels soften the edges (percentage-closer filtering).
 float shadow_transmittance(vec3 world, float bias)
 {
     vec3 c = shadow_coord(world);
     if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return 1.0;
-    float d = min(c.z, 1.0) - bias;
+    float d = min(c.z, 1.0);
     float S = u_shadow_map.y, slab = u_shadow_slab.x;
     vec2 r = vec2(u_shadow_map.z * u_shadow_map.w);
     float lit = 0.0;
@@ -58,8 +58,10 @@ float shadow_transmittance(vec3 world, float bias)
         vec2 o = r * vec2(tap == 0 ? -0.25 : tap == 1 ? 0.75 : tap == 2 ? 0.25 : -0.75,
                           tap == 0 ? -0.75 : tap == 1 ? -0.25 : tap == 2 ? 0.75 : 0.25);
         float z_skin = textureLod(u_shadow_depth, c.xy + o, 0.0).r;
-        if (d > z_skin) continue; // behind the skin: the body's own shadow
-        float k = (d - (z_skin - slab)) / slab * S;
+        if (d - bias > z_skin) continue; // behind the skin: the body's own shadow
+        // Half a slice towards the light: the receiver's own hair, and
+        // what lies level with it, does not shade it.
+        float k = (d - (z_skin - slab)) / slab * S - 0.5;
         vec4 s0 = textureLod(u_shadow_opacity, vec3(c.xy + o, 0.0), 0.0);
         vec4 s1 = S > 4.0 ? textureLod(u_shadow_opacity, vec3(c.xy + o, 1.0), 0.0) : vec4(0.0);
         lit += exp(-u_shadow_slab.y * shadow_opacity(s0, s1, S, k));
