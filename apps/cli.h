@@ -87,6 +87,7 @@ typedef struct cli_session {
     float background[4];
     pelt_draw_desc draw;           /* the scene's passes (draw.*) */
     uint8_t *pixels;               /* width * height * 4 */
+    bool shadows;                  /* the light's shadows are on (shadows.enabled) */
 } cli_session;
 
 /* Instantiates the scene, makes the context and the renderer. Prints the
@@ -94,6 +95,8 @@ typedef struct cli_session {
  * Warnings print as "pelt CMD: warning: ...". */
 bool cli_session_open(const char *cmd, const pelt_scene *scene, cli_session *s);
 void cli_session_close(cli_session *s);
+/* Whether the scene turned the light's shadows on. */
+bool cli_session_has_shadows(const cli_session *s);
 
 /* Drops water where the rays through the --drop-at pixels hit the mesh;
  * prints a warning for a ray that misses. */

@@ -196,42 +196,57 @@ static double timed_draw(cli_session *s, const pelt_draw_desc *dd)
 }
 
 /* Variants of the same frame drawn alternately, so the machine's noise hits
- * them alike: with and without fins (their share of the frame), and with
- * and without the inter-fur shadows when the fur has them on. */
+ * them alike: with and without fins (their share of the frame), with and
+ * without the inter-fur shadows, the floor shader, and with the light's
+ * shadows on: without them and the light pass alone. */
 static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
 {
-    enum { VARIANTS = 4 };
-    int variants = with_floor ? 4 : 3;
+    enum { FULL, NO_FINS, NO_INTER, FLOOR, NO_LIGHT, LIGHT_ONLY, VARIANTS };
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
-    pelt_draw_desc full = s->draw, no_fins = full, no_shadow = full, floor = full;
+    pelt_draw_desc v[VARIANTS];
+    for (int k = 0; k < VARIANTS; k++) v[k] = s->draw;
     /* Without fins the back-facing shells would come back; keep them
      * culled so the difference is the fins alone. */
-    no_fins.no_fins = true;
-    no_fins.cull_shells = 1;
-    no_shadow.no_inter_shadow = true;
+    v[NO_FINS].no_fins = true;
+    v[NO_FINS].cull_shells = 1;
+    v[NO_INTER].no_inter_shadow = true;
     /* The floor: the skin and the same shells with a one-fetch shader. */
-    floor.no_fins = true;
-    floor.cull_shells = 1;
-    floor.floor_shader = true;
-    const pelt_draw_desc *v[VARIANTS] = {&full, &no_fins, &no_shadow, &floor};
+    v[FLOOR].no_fins = true;
+    v[FLOOR].cull_shells = 1;
+    v[FLOOR].floor_shader = true;
+    v[NO_LIGHT].no_shadows = true;
+    v[LIGHT_ONLY].no_skin = v[LIGHT_ONLY].no_fins = v[LIGHT_ONLY].no_shells = true;
+    bool light = cli_session_has_shadows(s);
+    bool run[VARIANTS] = {true, true, true, with_floor, light, light};
     for (unsigned i = 0; i < frames; i++)
-        for (int k = 0; k < variants; k++) t[(size_t)k * frames + i] = timed_draw(s, v[k]);
+        for (int k = 0; k < VARIANTS; k++)
+            if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
     stats st[VARIANTS];
-    for (int k = 0; k < variants; k++) st[k] = summarize(t + (size_t)k * frames, frames);
+    for (int k = 0; k < VARIANTS; k++)
+        if (run[k]) st[k] = summarize(t + (size_t)k * frames, frames);
     printf("draw variants, alternated (median of %u each):\n", frames);
-    print_stats("as drawn", st[0]);
-    print_stats("no fins", st[1]);
-    print_stats("no inter-sh.", st[2]);
-    if (with_floor) print_stats("floor", st[3]);
-    if (!full.no_fins)
-        printf("  fins: %.1f%% of the frame's draw\n", 100.0 * (1.0 - st[1].median / st[0].median));
+    print_stats("as drawn", st[FULL]);
+    print_stats("no fins", st[NO_FINS]);
+    print_stats("no inter-sh.", st[NO_INTER]);
+    if (with_floor) print_stats("floor", st[FLOOR]);
+    if (light) {
+        print_stats("no light sh.", st[NO_LIGHT]);
+        print_stats("light pass", st[LIGHT_ONLY]);
+    }
+    if (!s->draw.no_fins)
+        printf("  fins: %.1f%% of the frame's draw\n", 100.0 * (1.0 - st[NO_FINS].median / st[FULL].median));
     if (with_floor)
         printf("  the frame takes %.2fx the floor (skin + the same shells with a one-fetch shader)\n",
-               st[0].median / st[3].median);
+               st[FULL].median / st[FLOOR].median);
     bool shadows = pelt_fur_get_desc(pelt_scene_instance_fur(s->instance)).look.inter_shadow;
     if (shadows)
-        printf("  inter-fur shadows: the draw takes %.3fx as long with them\n", st[0].median / st[2].median);
+        printf("  inter-fur shadows: the draw takes %.3fx as long with them\n", st[FULL].median / st[NO_INTER].median);
+    if (light)
+        printf("  the light's shadows: %.1f%% of the frame's draw (the light pass alone %.1f%%, receiving "
+               "them the rest; with the ground when it is on)\n",
+               100.0 * (1.0 - st[NO_LIGHT].median / st[FULL].median),
+               100.0 * st[LIGHT_ONLY].median / st[FULL].median);
     free(t);
     return 0;
 }

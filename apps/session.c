@@ -42,6 +42,7 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         return false;
     }
     pelt_renderer_set_ground(s->renderer, &sc->ground);
+    s->shadows = sc->shadows.enabled;
     s->pixels = malloc((size_t)sc->output.width * sc->output.height * 4);
     if (!s->pixels) {
         cli_error(cmd, "out of memory for a %ux%u image", sc->output.width, sc->output.height);
@@ -50,6 +51,8 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
     }
     return true;
 }
+
+bool cli_session_has_shadows(const cli_session *s) { return s->shadows; }
 
 void cli_session_close(cli_session *s)
 {

@@ -236,7 +236,7 @@ static bool shadow_frame(const pelt_renderer *r, const pelt_view *v, const pelt_
     }
     if (slices_lod)
         while (sf->shell_level + 1 < pelt__lod_shell_levels(r->layers) &&
-               pelt__lod_shell_count(r->layers, sf->shell_level) > 8)
+               pelt__lod_shell_count(r->layers, sf->shell_level) > 4)
             sf->shell_level++;
     sf->cull = c->closed && c->winding != 0;
     sf->front_cw = c->winding < 0;

@@ -30,7 +30,7 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
 #ifdef PELT_SHADOW_MAP
     // The light's shadow maps (shadow_map.glsl) darken the direct light;
     // gamma, their cheap stand-in, stays only when asked for.
-    facing *= shadow_light(world, u_shadow_slab.z);
+    facing *= shadow_light(world, u_shadow_slab.z, 1);
     if (u_shadow_map.x > 0.5) gamma = mix(1.0, gamma, u_shadow_slab.w);
 #endif
     mul = gamma * (u_ambient + kk.x * facing * u_light_color);

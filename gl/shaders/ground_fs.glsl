@@ -13,6 +13,6 @@ void main()
     if (r > 1.0) discard;
     vec3 L = normalize(u_light_dir);
     float lambert = max(L.y, 0.0);
-    if (lambert > 0.0) lambert *= shadow_light(v_world, u_shadow_slab.z);
+    if (lambert > 0.0) lambert *= shadow_light(v_world, u_shadow_slab.z, 4);
     o_color = vec4(u_ground_color * (u_ambient + lambert * u_light_color), 1.0 - smoothstep(0.6, 1.0, r));
 }

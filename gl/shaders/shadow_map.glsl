@@ -41,36 +41,39 @@ vec3 shadow_coord(vec3 world)
     return (u_light_matrix * vec4(world, 1.0)).xyz;
 }
 
-// The transmittance towards the light at a world point: 1 outside the
-// maps; 0 behind the skin (more than `bias`, depth units); else
-// exp(-density x the fur's opacity in front). A few taps of radius
-// softness texels soften the edges (percentage-closer filtering).
-float shadow_transmittance(vec3 world, float bias)
+// One tap of the maps at light-space point c moved by o on the maps: 0
+// behind the skin (more than `bias`, depth units); else exp(-density x
+// the fur's opacity in front).
+float shadow_tap(vec3 c, float bias, vec2 o)
+{
+    float S = u_shadow_map.y, slab = u_shadow_slab.x;
+    float z_skin = textureLod(u_shadow_depth, c.xy + o, 0.0).r;
+    if (c.z - bias > z_skin) return 0.0; // behind the skin: the body's own shadow
+    // Half a slice towards the light: the receiver's own hair, and what
+    // lies level with it, does not shade it.
+    float k = (c.z - (z_skin - slab)) / slab * S - 0.5;
+    vec4 s0 = textureLod(u_shadow_opacity, vec3(c.xy + o, 0.0), 0.0);
+    vec4 s1 = S > 4.0 ? textureLod(u_shadow_opacity, vec3(c.xy + o, 1.0), 0.0) : vec4(0.0);
+    return exp(-u_shadow_slab.y * shadow_opacity(s0, s1, S, k));
+}
+
+// The transmittance towards the light at a world point; 1 outside the
+// maps. `taps` 4 soften the edges with a rotated grid of radius softness
+// texels (percentage-closer filtering); 1 is the fur's per-vertex lookup,
+// whose interpolation over the triangle softens it already.
+float shadow_transmittance(vec3 world, float bias, int taps)
 {
     vec3 c = shadow_coord(world);
     if (any(lessThan(c.xy, vec2(0.0))) || any(greaterThan(c.xy, vec2(1.0)))) return 1.0;
-    float d = min(c.z, 1.0);
-    float S = u_shadow_map.y, slab = u_shadow_slab.x;
+    c.z = min(c.z, 1.0);
+    if (taps == 1) return shadow_tap(c, bias, vec2(0.0));
     vec2 r = vec2(u_shadow_map.z * u_shadow_map.w);
-    float lit = 0.0;
-    for (int tap = 0; tap < 4; tap++) {
-        // A rotated grid of four taps; all at the centre when hard.
-        vec2 o = r * vec2(tap == 0 ? -0.25 : tap == 1 ? 0.75 : tap == 2 ? 0.25 : -0.75,
-                          tap == 0 ? -0.75 : tap == 1 ? -0.25 : tap == 2 ? 0.75 : 0.25);
-        float z_skin = textureLod(u_shadow_depth, c.xy + o, 0.0).r;
-        if (d - bias > z_skin) continue; // behind the skin: the body's own shadow
-        // Half a slice towards the light: the receiver's own hair, and
-        // what lies level with it, does not shade it.
-        float k = (d - (z_skin - slab)) / slab * S - 0.5;
-        vec4 s0 = textureLod(u_shadow_opacity, vec3(c.xy + o, 0.0), 0.0);
-        vec4 s1 = S > 4.0 ? textureLod(u_shadow_opacity, vec3(c.xy + o, 1.0), 0.0) : vec4(0.0);
-        lit += exp(-u_shadow_slab.y * shadow_opacity(s0, s1, S, k));
-    }
-    return lit * 0.25;
+    return 0.25 * (shadow_tap(c, bias, r * vec2(-0.25, -0.75)) + shadow_tap(c, bias, r * vec2(0.75, -0.25)) +
+                   shadow_tap(c, bias, r * vec2(0.25, 0.75)) + shadow_tap(c, bias, r * vec2(-0.75, 0.25)));
 }
 
 // The light's direct term at a receiver: 1 without shadow maps.
-float shadow_light(vec3 world, float bias)
+float shadow_light(vec3 world, float bias, int taps)
 {
-    return u_shadow_map.x > 0.5 ? shadow_transmittance(world, bias) : 1.0;
+    return u_shadow_map.x > 0.5 ? shadow_transmittance(world, bias, taps) : 1.0;
 }

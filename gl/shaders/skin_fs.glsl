@@ -27,7 +27,7 @@ void main()
     float gamma = shadow_factor(u_shadow, 0.0);
     if (u_shadow_map.x > 0.5 && lambert > 0.0) {
         float nl = max(lambert, 0.1);
-        lambert *= shadow_transmittance(v_world, u_shadow_slab.z * (1.0 + min(sqrt(1.0 - nl * nl) / nl, 4.0)));
+        lambert *= shadow_transmittance(v_world, u_shadow_slab.z * (1.0 + min(sqrt(1.0 - nl * nl) / nl, 4.0)), 4);
         gamma = mix(1.0, gamma, u_shadow_slab.w);
     }
     o_color = vec4(base * gamma * (u_ambient + lambert * u_light_color), 1.0);
