@@ -17,7 +17,7 @@
 #                    default bunny_dry elephant bunny_combed elephant_combed
 #                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water
 #                    wind_square turntable curl groom_torus groom_bunny groom_maps
-#                    fins_torus fins_bunny inter_shadow lod
+#                    fins_torus fins_bunny inter_shadow lod shadows
 #
 # Each command runs in its own fresh working directory (symlinks to the source
 # tree's top-level entries, an empty docs/images/) with its own empty
@@ -271,13 +271,27 @@ img_lod() {
   collect lod_bunny_off.png lod_bunny_off.png
   collect lod_bunny_auto.png lod_bunny_auto.png
 }
+img_shadows() {
+  pelt render scenes/shadows-sphere-box.json --size 480x360 -o shadows_sphere_box_on.png
+  pelt render scenes/shadows-sphere-box.json --size 480x360 --no-shadows -o shadows_sphere_box_off.png
+  B="--mesh $M/bunny00.off --size 480x360 --ground --set light.direction=[-0.45,1,-0.05]"
+  pelt render $B --shadows -o shadows_bunny_on.png
+  pelt render $B -o shadows_bunny_off.png
+  E="--mesh $M/elephant.off --size 480x360 --ground --set light.direction=[-1,0.8,0.5] --set fur.length=0.03"
+  pelt render $E --shadows -o shadows_elephant_on.png
+  pelt render $E -o shadows_elephant_off.png
+  for F in sphere_box bunny elephant; do
+    collect shadows_${F}_on.png shadows_${F}_on.png
+    collect shadows_${F}_off.png shadows_${F}_off.png
+  done
+}
 
 # ---- Running them.
 
 all="default bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny whirl
      bunny_wet bunny_rain word_in_water wind_square turntable curl groom_torus groom_bunny groom_maps
-     fins_torus fins_bunny inter_shadow lod"
-needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow lod "
+     fins_torus fins_bunny inter_shadow lod shadows"
+needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow lod shadows "
 groups="${DOCS_IMAGES:-$all}"
 
 now() { date +%s.%N; }

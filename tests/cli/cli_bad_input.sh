@@ -93,6 +93,9 @@ expect_fail stroke_no_place "strokes[0]" $r --set 'strokes=[{"tool":"comb","radi
 expect_fail stroke_bad_tool "strokes[0].tool" $r --set 'strokes=[{"tool":"rake","radius":0.1,"at":[0,0,0]}]'
 expect_fail stroke_missed "does not see the mesh" $r --set 'strokes=[{"tool":"comb","radius":0.1,"pixel":[1,1]}]'
 expect_fail length_map_corrupt "corrupt.png" $r --set fur.length_map="$out/corrupt.png"
+expect_fail shadow_map_too_small "shadows.map_size: expected an integer from 16 to 4096" $r --set shadows.map_size=8
+expect_fail shadow_slices_too_many "shadows.slices" $r --set shadows.slices=9
+expect_fail ground_size_negative "ground.size" $r --set ground.size=-1
 expect_fail vertex_colors_none "no vertex colours" $r --set fur.vertex_colors=hair
 
 expect_fail unknown_flag "--bogus" $r --bogus
