@@ -6,7 +6,6 @@
 
 #include "core/base/error.h"
 #include "core/fur/fur_gpu.h"
-#include "core/fur/shadow_map.h"
 #include "gl/passes.h"
 
 #include <math.h>
@@ -195,9 +194,9 @@ void pelt_renderer_set_ground(pelt_renderer *r, const pelt_ground_desc *ground)
 
 /* The light's frame and what the light pass draws (docs/shadows.md): an
  * orthographic frame around the mesh's bounding sphere grown by the fur,
- * a geometric level whose error stays under the maps' texels, and a shell
- * level of at most 8 shells (Lengyel's composited levels keep the fur's
- * opacity). */
+ * a geometric level whose error stays under the maps' texels, and the
+ * coarsest shell level of at most 4 shells (Lengyel's composited levels
+ * keep the fur's opacity). */
 static bool shadow_frame(const pelt_renderer *r, const pelt_view *v, const pelt_draw_desc *draw,
                          pelt__frame_shadow *fs, pelt__shadow_frame *sf)
 {

@@ -10,6 +10,7 @@
 
 #include "core/fur/fins.h"
 #include "core/fur/lod.h"
+#include "core/fur/shadow_map.h" /* the light's maps (gl/shadow_pass.c, renderer.c) */
 
 /* The mesh the fur was made for. */
 const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *fur);
