@@ -13,6 +13,7 @@
 #include <assimp/scene.h>
 
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -105,8 +106,66 @@ static void mat_mul(struct aiMatrix4x4 *out, const struct aiMatrix4x4 *a, const 
     memcpy(&out->a1, r, sizeof r);
 }
 
-/* Appends one mesh instance under transform m (row-major, column vectors). */
-static pelt_status append_mesh(merge_state *s, const struct aiMesh *mesh, const struct aiMatrix4x4 *m)
+/* The node named `name` under `node` (depth-first), or NULL. */
+static const struct aiNode *find_node(const struct aiNode *node, const struct aiString *name, int depth)
+{
+    if (!node || depth > PELT__MAX_NODE_DEPTH) return NULL;
+    if (node->mName.length == name->length && !memcmp(node->mName.data, name->data, name->length)) return node;
+    for (unsigned k = 0; k < node->mNumChildren; k++) {
+        const struct aiNode *hit = find_node(node->mChildren[k], name, depth + 1);
+        if (hit) return hit;
+    }
+    return NULL;
+}
+
+/* A node's transform to the scene root: its own and its parents'. */
+static void node_global(const struct aiNode *node, struct aiMatrix4x4 *out)
+{
+    struct aiMatrix4x4 m = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    for (int depth = 0; node && depth <= PELT__MAX_NODE_DEPTH; node = node->mParent, depth++) {
+        struct aiMatrix4x4 t;
+        mat_mul(&t, &node->mTransformation, &m);
+        m = t;
+    }
+    *out = m;
+}
+
+/* A skinned mesh is placed by its skeleton, as a viewer of the format
+ * places it: each vertex goes through its bones' transforms (the bone's
+ * node in the file's pose, times the bone's offset from the mesh's bind
+ * space) blended by the weights; the node holding the mesh moves it not
+ * at all. Writes the blended matrices' rows, 12 floats a vertex, into
+ * `skin` (zero where a vertex has no weight: those keep transform m).
+ * False when a bone names no node or refers to a vertex out of range. */
+static pelt_status skin_matrices(merge_state *s, const struct aiMesh *mesh, float *skin, float *weight)
+{
+    for (unsigned b = 0; b < mesh->mNumBones; b++) {
+        const struct aiBone *bone = mesh->mBones[b];
+        if (!bone) continue;
+        const struct aiNode *node = find_node(s->scene->mRootNode, &bone->mName, 0);
+        if (!node)
+            return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: bone '%s' of mesh '%s' names no node", s->path,
+                              bone->mName.data, mesh->mName.data);
+        struct aiMatrix4x4 g, m;
+        node_global(node, &g);
+        mat_mul(&m, &g, &bone->mOffsetMatrix);
+        const float *x = &m.a1;
+        for (unsigned w = 0; w < bone->mNumWeights; w++) {
+            const struct aiVertexWeight vw = bone->mWeights[w];
+            if (vw.mVertexId >= mesh->mNumVertices)
+                return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: bone '%s' weighs vertex %u of %u", s->path,
+                                  bone->mName.data, vw.mVertexId, mesh->mNumVertices);
+            if (!(vw.mWeight > 0.0f) || !isfinite(vw.mWeight)) continue;
+            for (int k = 0; k < 12; k++) skin[12 * (size_t)vw.mVertexId + k] += vw.mWeight * x[k];
+            weight[vw.mVertexId] += vw.mWeight;
+        }
+    }
+    return PELT_OK;
+}
+
+/* One vertex of a mesh instance under transform m. */
+static pelt_status append_vertex(merge_state *s, const struct aiMesh *mesh, unsigned v, size_t base,
+                                 const struct aiMatrix4x4 *m)
 {
     const float *x = &m->a1;
     /* Normals go through the cofactor matrix (det * inverse transpose), signed
@@ -118,8 +177,7 @@ static pelt_status append_mesh(merge_state *s, const struct aiMesh *mesh, const 
     };
     float det = x[0] * c[0] + x[1] * c[1] + x[2] * c[2];
     float sign = det < 0.0f ? -1.0f : 1.0f;
-    size_t base = s->v_at;
-    for (unsigned v = 0; v < mesh->mNumVertices; v++) {
+    {
         const struct aiVector3D p = mesh->mVertices[v];
         float *o = s->positions + 3 * (base + v);
         for (int k = 0; k < 3; k++) o[k] = x[4 * k] * p.x + x[4 * k + 1] * p.y + x[4 * k + 2] * p.z + x[4 * k + 3];
@@ -143,6 +201,16 @@ static pelt_status append_mesh(merge_state *s, const struct aiMesh *mesh, const 
             oc[0] = c4.r, oc[1] = c4.g, oc[2] = c4.b, oc[3] = c4.a;
         }
     }
+    return PELT_OK;
+}
+
+/* The faces of a mesh instance whose vertices start at `base`; a node
+ * transform that mirrors flips them to keep them counter-clockwise. */
+static pelt_status append_faces(merge_state *s, const struct aiMesh *mesh, const struct aiMatrix4x4 *m, size_t base)
+{
+    const float *x = &m->a1;
+    float det = x[0] * (x[5] * x[10] - x[6] * x[9]) + x[1] * (x[6] * x[8] - x[4] * x[10]) +
+                x[2] * (x[4] * x[9] - x[5] * x[8]);
     for (unsigned f = 0; f < mesh->mNumFaces; f++) {
         const struct aiFace *face = &mesh->mFaces[f];
         if (face->mNumIndices != 3 || !face->mIndices) continue;
@@ -159,6 +227,40 @@ static pelt_status append_mesh(merge_state *s, const struct aiMesh *mesh, const 
     }
     s->v_at += mesh->mNumVertices;
     return PELT_OK;
+}
+
+/* Appends one mesh instance under transform m (row-major, column vectors). */
+static pelt_status append_mesh(merge_state *s, const struct aiMesh *mesh, const struct aiMatrix4x4 *node_m)
+{
+    float *skin = NULL, *weight = NULL;
+    if (mesh->mNumBones > 0 && mesh->mBones) {
+        skin = pelt__calloc(mesh->mNumVertices, 12 * sizeof(float));
+        weight = pelt__calloc(mesh->mNumVertices, sizeof(float));
+        pelt_status st = skin && weight ? skin_matrices(s, mesh, skin, weight)
+                                        : pelt__fail(s->err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", s->path);
+        if (st) {
+            free(skin);
+            free(weight);
+            return st;
+        }
+    }
+    pelt_status st = PELT_OK;
+    size_t base = s->v_at;
+    for (unsigned v = 0; v < mesh->mNumVertices && st == PELT_OK; v++) {
+        /* This vertex's transform: its bones' blend (weights renormalised)
+           or the node's. */
+        struct aiMatrix4x4 mv = *node_m;
+        if (skin && weight[v] > 0.0f) {
+            float *x = &mv.a1;
+            for (int k = 0; k < 12; k++) x[k] = skin[12 * (size_t)v + k] / weight[v];
+            x[12] = x[13] = x[14] = 0.0f, x[15] = 1.0f;
+        }
+        st = append_vertex(s, mesh, v, base, &mv);
+    }
+    free(skin);
+    free(weight);
+    if (st) return st;
+    return append_faces(s, mesh, node_m, base);
 }
 
 /* Walks the node tree; counts (first pass, positions == NULL) or copies. */
