@@ -28,6 +28,17 @@ int cmd_info(int argc, char **argv)
            s.computed_normals ? "computed" : "from file",
            s.fallback_uvs ? "none in file (fallback mapping)" : "from file", (double)lo[0],
            (double)lo[1], (double)lo[2], (double)hi[0], (double)hi[1], (double)hi[2]);
+    pelt_skin_info sk = pelt_mesh_skin_info(m);
+    if (sk.nodes) {
+        printf("  skeleton   %zu bones, %zu nodes, %zu skinned vertices\n", sk.bones, sk.nodes,
+               sk.skinned_vertices);
+        printf("  animations %zu\n", sk.animations);
+        for (size_t i = 0; i < sk.animations; i++) {
+            pelt_animation_info a;
+            if (pelt_mesh_animation(m, i, &a))
+                printf("    %zu  '%s'  %.3f s, %u animated nodes\n", i, a.name, (double)a.duration, a.channels);
+        }
+    }
     pelt_mesh_destroy(m);
     return 0;
 }

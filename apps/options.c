@@ -70,6 +70,8 @@ static const flag flags[] = {
     {"--frames", NULL, "N", FLAG_KEY, "animation.frames", "frames to render (bench: frames to time)"},
     {"--fps", NULL, "F", FLAG_KEY, "animation.fps", "frames per second of the animation (default 30)"},
     {"--turntable", NULL, "DEG/S", FLAG_KEY, "animation.turntable", "spin the mesh about +Y"},
+    {"--animation", NULL, "NAME|INDEX", FLAG_KEY, "animation.name",
+     "play a skinned mesh's animation (pelt info lists them): the fur follows and lags"},
     {"--wind", NULL, "X,Y,Z", FLAG_VEC3, "forces.wind", "wind (acceleration, world units/s^2)"},
     {"--gravity", NULL, "X,Y,Z", FLAG_VEC3, "forces.gravity", "gravity (default 0,-9.81,0)"},
     {"--curl-frequency", NULL, "W", FLAG_KEY, "fur.curl_frequency", "curl frequency omega (Silva Eq. 4)"},

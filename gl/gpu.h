@@ -42,7 +42,8 @@ pelt_status pelt__gl_program_create(const char *what, const char *const *vertex_
 
 typedef struct pelt__gpu_mesh {
     GLuint vao;
-    GLuint vbo_static; /* interleaved, PELT_ATTR_* except the tips */
+    GLuint vbo_static; /* interleaved: uv, fur uv, comb */
+    GLuint vbo_pose;   /* interleaved: position, normal, tangent (the fur's pose) */
     GLuint vbo_tips;   /* PELT_ATTR_TIP, rewritten when the strands move */
     GLuint vbo_groom;  /* PELT_ATTR_GROOM and PELT_ATTR_HAIR_COLOR, the
                           changed range rewritten after a brush or a map */
@@ -53,6 +54,7 @@ typedef struct pelt__gpu_mesh {
     size_t level_triangles[PELT__LOD_MAX_LEVELS];
     unsigned level_count;
     unsigned tips_version;
+    unsigned pose_version;
 } pelt__gpu_mesh;
 
 /* Uploads the mesh's attributes with the fur's uvs and strand tips. The

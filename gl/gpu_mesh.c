@@ -1,7 +1,9 @@
 /* Vertex and index buffers: the mesh's attributes (through the public
  * pelt_mesh_get_data) with the fur's per-vertex data (core/fur/fur_gpu.h),
  * one VAO that every pass draws. The strand tips change every frame, so
- * they live in their own buffer, rewritten in place. */
+ * they live in their own buffer, rewritten in place; so do position,
+ * normal and tangent, rewritten when an animation poses the mesh
+ * (pelt_fur_set_pose), laid out as the fur's pose is. */
 #include "gl/gpu.h"
 
 #include "core/base/error.h"
@@ -17,49 +19,62 @@ typedef struct attribute {
     unsigned stride;
 } attribute;
 
+/* A buffer of `count` attributes interleaved, bound to their locations
+ * in the bound VAO. */
+static pelt_status interleave(GLuint *buffer, const attribute *attrs, int count, size_t vertices, GLenum usage,
+                              const pelt_hooks *hooks, pelt_error *err)
+{
+    unsigned floats = 0;
+    for (int k = 0; k < count; k++) floats += attrs[k].size;
+    float *data = pelt__alloc_zero(&hooks->allocator, vertices, floats * sizeof(float));
+    if (!data) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex data");
+    for (size_t i = 0; i < vertices; i++) {
+        float *v = data + i * floats;
+        for (int k = 0; k < count; k++) {
+            memcpy(v, attrs[k].source + i * attrs[k].stride, attrs[k].size * sizeof(float));
+            v += attrs[k].size;
+        }
+    }
+    glGenBuffers(1, buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, *buffer);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(vertices * floats * sizeof(float)), data, usage);
+    pelt__free(&hooks->allocator, data);
+    size_t offset = 0;
+    for (int k = 0; k < count; k++) {
+        glEnableVertexAttribArray(attrs[k].location);
+        glVertexAttribPointer(attrs[k].location, (GLint)attrs[k].size, GL_FLOAT, GL_FALSE,
+                              (GLsizei)(floats * sizeof(float)), (const void *)offset);
+        offset += attrs[k].size * sizeof(float);
+    }
+    return PELT_OK;
+}
+
 pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt_fur *fur,
                                   const pelt_hooks *hooks, pelt_error *err)
 {
     const pelt_mesh_data m = pelt_mesh_get_data(mesh);
     const float *tangents = pelt_mesh_tangents(mesh);
     /* Without a direction field, comb along the fur texture's u axis. */
-    const attribute attrs[] = {
+    const attribute pose_attrs[] = {
         {PELT_ATTR_POSITION, 3, m.positions, 3},
         {PELT_ATTR_NORMAL, 3, m.normals, 3},
+        {PELT_ATTR_TANGENT, 4, tangents, 4},
+    };
+    const attribute attrs[] = {
         {PELT_ATTR_UV, 2, m.uvs, 2},
         {PELT_ATTR_FUR_UV, 2, pelt__fur_gpu_uvs(fur), 2},
-        {PELT_ATTR_TANGENT, 4, tangents, 4},
         {PELT_ATTR_COMB, 3, m.comb ? m.comb : tangents, m.comb ? 3 : 4},
     };
     enum { ATTRS = sizeof attrs / sizeof attrs[0] };
-    unsigned floats = 0;
-    for (int k = 0; k < ATTRS; k++) floats += attrs[k].size;
-
-    g->vertex_count = m.vertex_count;
-    g->triangle_count = m.triangle_count;
-    float *data = pelt__alloc_zero(&hooks->allocator, m.vertex_count, floats * sizeof(float));
-    if (!data) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex data");
-    for (size_t i = 0; i < m.vertex_count; i++) {
-        float *v = data + i * floats;
-        for (int k = 0; k < ATTRS; k++) {
-            memcpy(v, attrs[k].source + i * attrs[k].stride, attrs[k].size * sizeof(float));
-            v += attrs[k].size;
-        }
-    }
     glGenVertexArrays(1, &g->vao);
     glBindVertexArray(g->vao);
-    glGenBuffers(1, &g->vbo_static);
-    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_static);
-    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * floats * sizeof(float)), data,
-                 GL_STATIC_DRAW);
-    pelt__free(&hooks->allocator, data);
-    size_t offset = 0;
-    for (int k = 0; k < ATTRS; k++) {
-        glEnableVertexAttribArray(attrs[k].location);
-        glVertexAttribPointer(attrs[k].location, (GLint)attrs[k].size, GL_FLOAT, GL_FALSE,
-                              (GLsizei)(floats * sizeof(float)), (const void *)offset);
-        offset += attrs[k].size * sizeof(float);
-    }
+    pelt_status st = interleave(&g->vbo_pose, pose_attrs, 3, m.vertex_count, GL_DYNAMIC_DRAW, hooks, err);
+    if (st != PELT_OK) return st;
+    pelt__fur_gpu_pose(fur, &g->pose_version);
+    st = interleave(&g->vbo_static, attrs, ATTRS, m.vertex_count, GL_STATIC_DRAW, hooks, err);
+    if (st != PELT_OK) return st;
+    g->vertex_count = m.vertex_count;
+    g->triangle_count = m.triangle_count;
 
     glGenBuffers(1, &g->vbo_tips);
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
@@ -109,11 +124,20 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
 {
     size_t bytes = 0;
     unsigned version;
+    const float *pose = pelt__fur_gpu_pose(fur, &version);
+    if (pose && version != g->pose_version) {
+        size_t n = g->vertex_count * 10 * sizeof(float);
+        glBindBuffer(GL_ARRAY_BUFFER, g->vbo_pose);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)n, pose);
+        g->pose_version = version;
+        bytes += n;
+    }
     const float *tips = pelt__fur_gpu_tips(fur, &version);
     if (version != g->tips_version) {
-        bytes = g->vertex_count * 3 * sizeof(float);
+        size_t n = g->vertex_count * 3 * sizeof(float);
         glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
-        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)bytes, tips);
+        glBufferSubData(GL_ARRAY_BUFFER, 0, (GLsizeiptr)n, tips);
+        bytes += n;
         g->tips_version = version;
     }
     /* Only the vertices a brush or a map changed. */
@@ -131,8 +155,8 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
 
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)
 {
-    GLuint buffers[4] = {g->vbo_static, g->vbo_tips, g->vbo_groom, g->ebo};
-    glDeleteBuffers(4, buffers);
+    GLuint buffers[5] = {g->vbo_static, g->vbo_pose, g->vbo_tips, g->vbo_groom, g->ebo};
+    glDeleteBuffers(5, buffers);
     if (g->vao) glDeleteVertexArrays(1, &g->vao);
     memset(g, 0, sizeof *g);
 }

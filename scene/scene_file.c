@@ -128,6 +128,7 @@ typedef enum kind {
     K_PATH,     /* string into char[PELT_SCENE_PATH_MAX], resolved */
     K_ENUM,     /* one of names[], stored as its index in an int */
     K_PRESET,   /* a curl preset name or "", stored as the string */
+    K_NAME,     /* a name (string) or an index (integer) into char[PELT_ANIMATION_NAME_MAX] */
     K_DROPLETS, /* array of droplet objects: pointer at off, count at off2 */
     K_WINDKEYS, /* array of wind keyframes: pointer at off, count at off2 */
     K_STROKES   /* array of brush strokes: pointer at off, count at off2 */
@@ -193,6 +194,7 @@ static const key_def scene_keys[] = {
     FLT("mesh.scale", mesh.scale, 0, BIG, F_LO_OPEN),
 
     {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, preset_names},
+    {"animation.name", K_NAME, OFF(animation.name), 0, 0, 0, 0, 0, NULL},
     UINT_("fur.layers", fur.layers, 1, 256, 0),
     FLT("fur.length", fur.length, 0, BIG, 0),
     UINT_("fur.texture_size", fur.look.texture_size, 1, 16384, 0),
@@ -568,6 +570,18 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
         if (mm[0] > mm[1]) return bad(c, key, "[min, max] with min <= max", v);
         *(float *)(void *)field = mm[0];
         *(float *)(void *)((unsigned char *)base + d->off2) = mm[1];
+        break;
+    }
+    case K_NAME: {
+        char *out = (char *)field;
+        if (cJSON_IsNumber(v) && v->valuedouble >= 0.0 && v->valuedouble < 1e9 &&
+            v->valuedouble == (double)(long)v->valuedouble) {
+            snprintf(out, PELT_ANIMATION_NAME_MAX, "%ld", (long)v->valuedouble);
+        } else if (cJSON_IsString(v) && strlen(v->valuestring) < PELT_ANIMATION_NAME_MAX) {
+            memcpy(out, v->valuestring, strlen(v->valuestring) + 1);
+        } else {
+            return bad(c, key, "an animation's name (a string under 64 bytes) or index (an integer >= 0)", v);
+        }
         break;
     }
     case K_PATH:

@@ -31,6 +31,9 @@ struct pelt_scene_instance {
     float time;
     bool armed;             /* past the settling: the rain schedule runs */
     bool rain_override;     /* set_rain_rate: the schedule no longer applies */
+    bool animated;          /* animation.name plays: the mesh is posed each step */
+    size_t animation;       /* which one */
+    float *pose;            /* room for a pose: positions, normals (3 n each), tangents (4 n) */
     pelt_scene_instance_stats stats;
 };
 
@@ -299,6 +302,12 @@ static void step_at(pelt_scene_instance *inst, float t, float dt)
     const pelt_scene *sc = &inst->scene;
     pelt_scene_model_at(sc, t, inst->view.model);
     pelt_fur_set_transform(inst->fur, inst->view.model, NULL);
+    if (inst->animated) {
+        size_t n = pelt_mesh_get_data(inst->mesh).vertex_count;
+        float *p = inst->pose, *nrm = p + 3 * n, *tan = p + 6 * n;
+        if (pelt_mesh_pose(inst->mesh, inst->animation, t, p, nrm, tan, NULL) == PELT_OK)
+            pelt_fur_set_pose(inst->fur, p, nrm, tan, NULL);
+    }
     pelt_forces forces = sc->forces;
     pelt_scene_wind_at(sc, t, forces.wind);
     const pelt_scene_wetness *w = &sc->wetness;
@@ -387,6 +396,21 @@ static pelt_status copy_scene(pelt_scene_instance *inst, const pelt_scene *sc, p
     return PELT_OK;
 }
 
+/* animation.name: which animation plays, and room for its poses. */
+static pelt_status arm_animation(pelt_scene_instance *inst, pelt_error *err)
+{
+    const pelt_scene *sc = &inst->scene;
+    pelt_error e = {0};
+    if (pelt_mesh_find_animation(inst->mesh, sc->animation.name, &inst->animation, &e) != PELT_OK)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "animation.name: %s: %s",
+                          sc->mesh.shape == PELT_SHAPE_FILE ? sc->mesh.file : "the procedural mesh", e.message);
+    size_t n = pelt_mesh_get_data(inst->mesh).vertex_count;
+    inst->pose = pelt__alloc_zero(&inst->hooks.allocator, n, 10 * sizeof(float));
+    if (!inst->pose) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the animation's poses");
+    inst->animated = true;
+    return PELT_OK;
+}
+
 static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
                                const pelt_scene_instance_desc *desc, pelt_error *err)
 {
@@ -421,6 +445,7 @@ static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
         if (st != PELT_OK) return st;
     }
     st = pelt_fur_create(inst->mesh, &fd, &inst->fur, err);
+    if (st == PELT_OK && sc->animation.name[0]) st = arm_animation(inst, err);
     if (st == PELT_OK) st = apply_color(inst, err);
     if (st == PELT_OK) st = apply_water(inst, sc, err);
     if (st == PELT_OK) st = apply_groom(inst, err);
@@ -477,6 +502,7 @@ void pelt_scene_instance_destroy(pelt_scene_instance *inst)
     pelt_fur_destroy(inst->fur);
     pelt_mesh_destroy(inst->mesh);
     pelt__free(&inst->hooks.allocator, inst->scene.animation.wind_keys);
+    pelt__free(&inst->hooks.allocator, inst->pose);
     pelt_allocator a = inst->hooks.allocator;
     pelt__free(&a, inst);
 }

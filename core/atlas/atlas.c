@@ -1,5 +1,6 @@
 /* Atlas build orchestration and public API: defaults, cache use, mode choice, output mesh (Lengyel §2.1, §3). */
 #include "core/atlas/atlas_internal.h"
+#include "core/mesh/skeleton.h"
 
 #include "core/atlas/atlas_cache.h"
 #include "core/atlas/direction_field.h"
@@ -205,6 +206,11 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
         return pelt__fail(err, PELT_ERR_FORMAT,
                           "pelt_atlas_create: validation kept %zu of %zu triangles of the output mesh",
                           out.triangle_count, tc);
+    }
+    st = pelt__mesh_copy_skeleton(m, in, a->source_vertex, err);
+    if (st != PELT_OK) {
+        pelt_mesh_destroy(m);
+        return st;
     }
     a->mesh = m;
     a->stats.vertex_count = vc;

@@ -37,8 +37,15 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
 
     /* The fins and their fade, max(0, 2|p| - 1) (pelt__fin_fade). */
     size_t kept = 0;
+    const float *pose = f->pose; /* a posed mesh: its own positions, normals, tangents */
     for (size_t i = 0; i < l->fin_count; i++) {
-        float fade = d->unfaded ? 1.0f : pelt__fin_fade(v3_load(l->fin_normals + 3 * i), view);
+        pelt_vec3 fn = v3_load(l->fin_normals + 3 * i);
+        if (pose) {
+            size_t a = l->fins[i].a, b = l->fins[i].b;
+            fn = pelt__fin_normal(v3_load(pose + 10 * a), v3_load(pose + 10 * b), v3_load(pose + 10 * a + 3),
+                                  v3_load(pose + 10 * b + 3));
+        }
+        float fade = d->unfaded ? 1.0f : pelt__fin_fade(fn, view);
         if (fade < 0.05f) continue; /* the fragment stage's own cut: nothing to draw */
         uint32_t *t = fins + 4 * kept++;
         t[0] = l->fin_ends[2 * i], t[1] = l->fin_ends[2 * i + 1];
@@ -55,11 +62,13 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
         size_t i = l->fin_vertices[c];
         float *t = vertices + c * 4 * PELT__FIN_VERTEX_TEXELS;
         const pelt__groom_vertex *g = &f->groom.v[i];
-        pelt_vec3 p = v3_load(m.positions + 3 * i);
-        pelt_vec3 n = v3_norm_or(v3_load(m.normals + 3 * i), v3(0.0f, 1.0f, 0.0f));
-        pelt_vec3 u = v3_norm_or(v3_load(tangents + 4 * i), v3(1.0f, 0.0f, 0.0f));
-        pelt_vec3 v = v3_scale(v3_cross(n, u), tangents[4 * i + 3]);
-        pelt_vec3 comb = m.comb ? v3_load(m.comb + 3 * i) : v3_load(tangents + 4 * i);
+        const float *pv = pose ? pose + 10 * i : NULL;
+        const float *ti = pv ? pv + 6 : tangents + 4 * i;
+        pelt_vec3 p = v3_load(pv ? pv : m.positions + 3 * i);
+        pelt_vec3 n = v3_norm_or(v3_load(pv ? pv + 3 : m.normals + 3 * i), v3(0.0f, 1.0f, 0.0f));
+        pelt_vec3 u = v3_norm_or(v3_load(ti), v3(1.0f, 0.0f, 0.0f));
+        pelt_vec3 v = v3_scale(v3_cross(n, u), ti[3]);
+        pelt_vec3 comb = m.comb ? v3_load(m.comb + 3 * i) : v3_load(ti);
         float rho = wet ? rho_at(f->wetness, m.uvs[2 * i], m.uvs[2 * i + 1]) : 0.0f;
         float s = g->length * fd->fins.length;
         float L = fd->length * s, K = fd->look.curl_radius * s;

@@ -275,6 +275,7 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__lod_chain_free(&f->lod, &a);
     pelt__free(&a, f->lod_slices);
     pelt__free(&a, f->fin_texture);
+    pelt__free(&a, f->pose);
     pelt__free(&a, f);
 }
 
@@ -283,6 +284,30 @@ pelt_status pelt_fur_set_transform(pelt_fur *f, const float model[16], pelt_erro
     if (!pelt__strands_set_transform(f->strands, model))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "fur transform must be finite and invertible");
+    return PELT_OK;
+}
+
+pelt_status pelt_fur_set_pose(pelt_fur *f, const float *positions, const float *normals, const float *tangents,
+                              pelt_error *err)
+{
+    const pelt_mesh_data m = pelt_mesh_get_data(f->mesh);
+    if (!positions || !normals || !tangents)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_set_pose: positions, normals and tangents are needed");
+    for (size_t i = 0; i < 3 * m.vertex_count; i++)
+        if (!isfinite(positions[i]) || !isfinite(normals[i]))
+            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_set_pose: vertex %zu is not finite", i / 3);
+    if (!f->pose) {
+        f->pose = pelt__alloc_zero(&f->desc.hooks.allocator, m.vertex_count, 10 * sizeof(float));
+        if (!f->pose) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "pelt_fur_set_pose: out of memory");
+    }
+    float *p = f->pose;
+    for (size_t i = 0; i < m.vertex_count; i++) {
+        memcpy(p + 10 * i, positions + 3 * i, 3 * sizeof *p);
+        memcpy(p + 10 * i + 3, normals + 3 * i, 3 * sizeof *p);
+        memcpy(p + 10 * i + 6, tangents + 4 * i, 4 * sizeof *p);
+    }
+    pelt__strands_set_pose(f->strands, positions, normals);
+    f->pose_version++;
     return PELT_OK;
 }
 

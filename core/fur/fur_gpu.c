@@ -13,6 +13,12 @@ const uint8_t *pelt__fur_gpu_volume(const pelt_fur *f, unsigned *size, unsigned 
     return f->texture;
 }
 
+const float *pelt__fur_gpu_pose(const pelt_fur *f, unsigned *version)
+{
+    *version = f->pose_version;
+    return f->pose;
+}
+
 const uint8_t *pelt__fur_gpu_volume_lod(const pelt_fur *f, unsigned *slices)
 {
     *slices = f->lod_slice_count;

@@ -12,6 +12,10 @@
 #include "core/fur/lod.h"
 #include "core/fur/shadow_map.h" /* the light's maps (gl/shadow_pass.c, renderer.c) */
 
+/* The posed mesh (pelt_fur_set_pose), 10 floats a vertex: position,
+ * normal, tangent; NULL before the first pose. *version changes with it. */
+const float *pelt__fur_gpu_pose(const pelt_fur *fur, unsigned *version);
+
 /* The mesh the fur was made for. */
 const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *fur);
 

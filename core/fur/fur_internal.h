@@ -39,6 +39,9 @@ struct pelt_fur {
     uint8_t *lod_slices;     /* the coarser shell levels' slices (Lengyel
                                 §2.4, core/fur/lod.h), NULL with lod off */
     unsigned lod_slice_count;
+    float *pose;             /* NULL, or the mesh posed (pelt_fur_set_pose): 10
+                                floats a vertex, position, normal, tangent */
+    unsigned pose_version;   /* bumped when the pose changes */
     uint8_t *fin_texture;    /* RGBA8 fin texture, see pelt__fintex_generate */
     unsigned fin_width, fin_height;
 };

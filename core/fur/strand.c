@@ -294,6 +294,16 @@ bool pelt__strands_set_transform(pelt__strands *s, const float model[16])
     return true;
 }
 
+void pelt__strands_set_pose(pelt__strands *s, const float *positions, const float *normals)
+{
+    for (size_t i = 0; i < s->count; i++) {
+        pelt_vec3 nrm = v3_norm_or(v3_load(normals + 3 * i), v3(0.0f, 1.0f, 0.0f));
+        store_soa(s->root_local, i, v3_load(positions + 3 * i));
+        store_soa(s->rest_local, i, v3_scale(nrm, s->params.length));
+    }
+    s->dirty = true;
+}
+
 void pelt__strands_reset(pelt__strands *s)
 {
     if (!s) return;

@@ -54,6 +54,12 @@ pelt__strand_params pelt__strands_params(const pelt__strands *s);
  * when the matrix has a non-finite entry or a singular 3x3 part. */
 bool pelt__strands_set_transform(pelt__strands *s, const float model[16]);
 
+/* Where each root is on a posed (skinned) mesh: mesh-local positions and
+ * normals, 3 floats per vertex each. As a new transform, it takes effect
+ * at the next step: roots move, tips keep their world position and lag.
+ * Allocates nothing. */
+void pelt__strands_set_pose(pelt__strands *s, const float *positions, const float *normals);
+
 /* Advances every strand by dt seconds under `f` (NULL: pelt_forces_default)
  * at `time` seconds (the time the step starts; it drives the gusts). dt <= 0
  * or NaN does nothing; dt is clamped to PELT__STRAND_MAX_DT. Non-finite

@@ -1,6 +1,7 @@
 /* Mesh validation and per-vertex frames: the base surface the fur shells
  * are offset from (Lengyel et al. 2001, §2: shells over a triangle mesh). */
 #include "core/mesh/mesh_internal.h"
+#include "core/mesh/skeleton.h"
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
@@ -59,6 +60,7 @@ void pelt_mesh_destroy(pelt_mesh *mesh)
     free(mesh->directions);
     free(mesh->colors);
     free(mesh->indices);
+    pelt__skeleton_free(mesh->skeleton);
     free(mesh);
 }
 
@@ -349,6 +351,13 @@ static void fallback_uvs(pelt_mesh *m)
 
 pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_error *err)
 {
+    return pelt__mesh_create_remap(data, out, NULL, err);
+}
+
+pelt_status pelt__mesh_create_remap(const pelt_mesh_data *data, pelt_mesh **out, uint32_t **remap_out,
+                                    pelt_error *err)
+{
+    if (remap_out) *remap_out = NULL;
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_mesh_create: out is NULL");
     *out = NULL;
     if (!data) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_mesh_create: data is NULL");
@@ -518,7 +527,10 @@ pelt_status pelt_mesh_create(const pelt_mesh_data *data, pelt_mesh **out, pelt_e
         }
     }
     free(keep);
-    free(remap);
+    if (remap_out)
+        *remap_out = remap;
+    else
+        free(remap);
 
     m->stats.dropped_degenerate = dropped;
     if (!data->uvs) {

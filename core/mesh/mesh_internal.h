@@ -25,6 +25,7 @@ struct pelt_mesh {
     uint32_t *indices; /* 3 per triangle */
     float bounds_min[3], bounds_max[3];
     pelt_mesh_stats stats;
+    struct pelt__skeleton *skeleton; /* NULL, or the bones and animations (skeleton.h) */
 };
 
 /* Area of triangle t in world space. */
@@ -45,6 +46,11 @@ static inline float pelt__triangle_area_2d(const pelt_mesh *m, const float *coor
     const float *a = coords + 2 * ix[0], *b = coords + 2 * ix[1], *c = coords + 2 * ix[2];
     return 0.5f * fabsf((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
 }
+
+/* pelt_mesh_create that also hands over where each input vertex went:
+ * remap[i] - 1 is its index in the mesh, 0 when it was dropped (free it). */
+pelt_status pelt__mesh_create_remap(const pelt_mesh_data *data, pelt_mesh **out, uint32_t **remap_out,
+                                    pelt_error *err);
 
 /* Allocates an empty mesh with room for the given counts (arrays zeroed).
  * Returns NULL when out of memory or when the counts overflow. */

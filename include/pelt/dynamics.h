@@ -34,6 +34,18 @@ pelt_forces pelt_forces_default(void);
  * non-finite or singular matrix (the previous one is kept). */
 pelt_status pelt_fur_set_transform(pelt_fur *fur, const float model[16], pelt_error *err);
 
+/* The mesh in a new pose (a skinned mesh's animation, pelt/animation.h:
+ * pelt_mesh_pose writes these): positions and normals (3 floats per
+ * vertex) and tangents (4, w the handedness) in the mesh's coordinates.
+ * Like a new transform, it takes effect at the next step: the strands'
+ * roots follow the surface and their tips lag by inertia; the renderer
+ * draws skin, fins and shells on the posed mesh (one upload a frame,
+ * shared by all layers). The first call allocates room for the pose;
+ * later ones allocate nothing. PELT_ERR_INVALID_ARGUMENT for a NULL
+ * array or a non-finite position or normal. */
+pelt_status pelt_fur_set_pose(pelt_fur *fur, const float *positions, const float *normals, const float *tangents,
+                              pelt_error *err);
+
 /* Advances the fur by dt seconds (any dt: the strands substep internally):
  * mass-spring strands under `forces` (NULL: pelt_forces_default()). The
  * renderer uploads the new tips at its next draw. No allocation, no I/O. */

@@ -2,6 +2,7 @@
 #ifndef PELT_H
 #define PELT_H
 
+#include "pelt/animation.h"
 #include "pelt/base.h"
 #include "pelt/camera.h"
 #include "pelt/dynamics.h"
@@ -12,6 +13,7 @@
 #include "pelt/render.h"
 #include "pelt/scene.h"
 #include "pelt/scene_instance.h"
+#include "pelt/shadow.h"
 #include "pelt/wetness.h"
 
 #define PELT_VERSION_STRING "0.1.0"

@@ -9,6 +9,7 @@
 #ifndef PELT_SCENE_H
 #define PELT_SCENE_H
 
+#include "pelt/animation.h"
 #include "pelt/atlas.h"
 #include "pelt/base.h"
 #include "pelt/camera.h"
@@ -84,6 +85,10 @@ typedef struct pelt_scene_animation {
     unsigned frames;        /* images to write, default 1 (a still) */
     float fps;              /* frames per second, default 30; frame i is at
                                time i / fps, the duration is frames / fps */
+    /* A skinned mesh's animation, by name or index (pelt/animation.h), ""
+       (default) for none: it plays from time 0, looping; the fur's roots
+       follow the surface and its tips lag. */
+    char name[PELT_ANIMATION_NAME_MAX];
     float turntable;        /* degrees per second about +Y, default 0 */
     float shake_amplitude;  /* world units along X, default 0 */
     float shake_frequency;  /* Hz, default 2 */

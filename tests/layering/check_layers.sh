@@ -15,7 +15,7 @@ forbidden_system='^(epoxy/|EGL/|GL/|GLES|GLFW/|cjson/|assimp/)'
 allowed_local() {
     case "$1" in
         core/base/*)  echo '^(pelt/base\.h|pelt/camera\.h|core/base/)' ;;
-        core/mesh/*)  echo '^(pelt/(base|mesh)\.h|core/(base|mesh)/)' ;;
+        core/mesh/*)  echo '^(pelt/(base|mesh|animation)\.h|core/(base|mesh)/)' ;;
         core/atlas/*) echo '^(pelt/(base|mesh|atlas)\.h|core/(base|mesh|atlas)/)' ;;
         core/wet/*)   echo '^(pelt/(base|mesh|wetness|fur)\.h|core/(base|mesh|wet)/)' ;;
         core/fur/*)   echo '^(pelt/(base|mesh|fur|groom|dynamics|wetness|shadow)\.h|core/(base|mesh|wet|fur)/)' ;;
