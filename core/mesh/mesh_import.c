@@ -251,7 +251,9 @@ static pelt_status weigh_mesh(merge_state *s, const struct aiMesh *mesh, const s
     for (unsigned v = 0; v < mesh->mNumVertices; v++) {
         float *ws = s->vweights + PELT__BONES_PER_VERTEX * (base + v);
         if (ws[0] > 0.0f) continue;
-        if (ws[1] < 0.0f)
+        /* A skinned mesh's vertex that no bone weighs would stay behind
+           while the rest of the mesh moves: the file is broken there. */
+        if (ws[1] < 0.0f || (mesh->mNumBones > 0 && mesh->mBones))
             return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: vertex %u of mesh '%s' has bone weights summing to 0",
                               s->path, v, mesh->mName.data);
         if (own < 0) continue;
