@@ -11,7 +11,7 @@ packages=(build-essential cmake pkg-config
           libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
           libglfw3-dev libassimp-dev libstb-dev libcjson-dev libmeshoptimizer-dev)
 if [ "${1:-}" = "--tests" ]; then
-  packages+=(libcgal-demo ffmpeg man-db dpkg-dev file xvfb xauth)
+  packages+=(libcgal-demo assimp-testmodels ffmpeg man-db dpkg-dev file xvfb xauth)
 fi
 
 missing=()
