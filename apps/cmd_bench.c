@@ -76,6 +76,51 @@ static void report(const char *title, const stats st[PARTS])
            100.0 * (st[PART_STEP].median + st[PART_UPLOAD].median) / st[PART_FRAME].median);
 }
 
+/* --animation: the skinning of one frame on the CPU (pelt_mesh_pose, then
+ * pelt_fur_set_pose hands it to the strands and the renderer), timed alone
+ * and set against the frame; its upload is part of "upload" above. */
+static int bench_skinning(cli_session *s, const pelt_scene *sc, unsigned frames, double frame_ms)
+{
+    const pelt_mesh *mesh = pelt_scene_instance_mesh(s->instance);
+    pelt_fur *fur = pelt_scene_instance_fur(s->instance);
+    size_t index, n = pelt_mesh_get_data(mesh).vertex_count;
+    pelt_error err = {0};
+    if (pelt_mesh_find_animation(mesh, sc->animation.name, &index, &err) != PELT_OK) {
+        cli_error("bench", "%s", err.message);
+        return 1;
+    }
+    pelt_animation_info info;
+    pelt_mesh_animation(mesh, index, &info);
+    float *pose = malloc(n * 10 * sizeof(float));
+    double *t = calloc(frames, 2 * sizeof *t);
+    if (!pose || !t) {
+        free(pose);
+        free(t);
+        cli_error("bench", "out of memory");
+        return 1;
+    }
+    for (unsigned i = 0; i < frames; i++) {
+        float time = info.duration * (float)i / (float)frames;
+        double t0 = now_ms();
+        pelt_mesh_pose(mesh, index, time, pose, pose + 3 * n, pose + 6 * n, NULL);
+        double t1 = now_ms();
+        pelt_fur_set_pose(fur, pose, pose + 3 * n, pose + 6 * n, NULL);
+        t[i] = t1 - t0;
+        t[frames + i] = now_ms() - t0;
+    }
+    stats pose_st = summarize(t, frames), all = summarize(t + frames, frames);
+    pelt_skin_info sk = pelt_mesh_skin_info(mesh);
+    printf("skinning '%s' on the CPU, %zu vertices (%zu skinned), %zu bones (median of %u):\n", info.name, n,
+           sk.skinned_vertices, sk.bones, frames);
+    print_stats("pose", pose_st);
+    print_stats("pose + hand", all);
+    printf("  skinning: %.2f%% of the frame (%.3f of %.3f ms), once a frame for skin, fins, shells and strands\n",
+           100.0 * all.median / frame_ms, all.median, frame_ms);
+    free(pose);
+    free(t);
+    return 0;
+}
+
 /* 50 clumps whose discs cover a third of the mask (uv) area. */
 static void add_third_of_clumps(pelt_fur *fur)
 {
@@ -339,6 +384,7 @@ int cmd_bench(int argc, char **argv)
            rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.shell_level,
            (double)rs.shell_blend, rs.culled ? "culled" : "drawn");
     if (bench_variants(&s, frames, o.bench_floor)) rc = 1;
+    if (rc == 0 && sc->animation.name[0]) rc = bench_skinning(&s, sc, frames, plain[PART_FRAME].median);
     if (rc == 0 && o.bench_dolly) bench_dolly(&s, frames);
     if (o.bench_clumps) {
         add_third_of_clumps(fur);

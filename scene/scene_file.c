@@ -152,6 +152,7 @@ typedef struct key_def {
 } key_def;
 
 static const char *const shape_names[] = {"torus", "sphere", "square", "file", NULL};
+static const char *const up_names[] = {"file", "+y", "-y", "+x", "-x", "+z", "-z", NULL};
 static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
 static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
@@ -191,6 +192,7 @@ static const key_def scene_keys[] = {
     FLT("mesh.size", mesh.size, 0, BIG, F_LO_OPEN),
     UINT_("mesh.subdivisions", mesh.subdivisions, 1, 16384, 0),
     VEC("mesh.rotation", mesh.rotation, 3, -BIG, BIG, 0),
+    ENUM("mesh.up", mesh.up, up_names),
     FLT("mesh.scale", mesh.scale, 0, BIG, F_LO_OPEN),
 
     {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, preset_names},

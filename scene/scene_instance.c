@@ -34,6 +34,7 @@ struct pelt_scene_instance {
     bool animated;          /* animation.name plays: the mesh is posed each step */
     size_t animation;       /* which one */
     float *pose;            /* room for a pose: positions, normals (3 n each), tangents (4 n) */
+    float up_fix[16];       /* turns the mesh's up axis to +Y (mesh.up) */
     pelt_scene_instance_stats stats;
 };
 
@@ -296,11 +297,44 @@ static void frame_camera(pelt_scene_instance *inst)
         0.8f * radius / sinf(inst->camera.fov_y * 0.5f * 3.14159265f / 180.0f);
 }
 
+/* mesh.up: the rotation that takes the mesh's up axis to +Y. */
+static void up_rotation(const pelt_scene *sc, const pelt_mesh *mesh, float m[16])
+{
+    static const float axes[7][3] = {{0, 0, 0}, {0, 1, 0}, {0, -1, 0}, {1, 0, 0}, {-1, 0, 0}, {0, 0, 1}, {0, 0, -1}};
+    float up[3];
+    if (sc->mesh.up == PELT_UP_FILE) pelt_mesh_up(mesh, up);
+    else memcpy(up, axes[sc->mesh.up], sizeof up);
+    memset(m, 0, 16 * sizeof *m);
+    m[15] = 1.0f;
+    /* The columns are where x, y, z go: up goes to +Y. */
+    int a = fabsf(up[0]) > 0.5f ? 0 : fabsf(up[2]) > 0.5f ? 2 : 1;
+    float s = up[a] < 0.0f ? -1.0f : 1.0f;
+    if (a == 1) { /* +Y: identity; -Y: half a turn about X */
+        m[0] = 1.0f, m[5] = s, m[10] = s;
+    } else if (a == 2) { /* +Z to +Y: a quarter turn about X */
+        m[0] = 1.0f, m[6] = -s, m[9] = s;
+    } else { /* +X to +Y: a quarter turn about Z */
+        m[1] = s, m[4] = -s, m[10] = 1.0f;
+    }
+}
+
+/* The model matrix at time t: the scene's placement after mesh.up. */
+static void place_at(pelt_scene_instance *inst, float t)
+{
+    float placed[16];
+    pelt_scene_model_at(&inst->scene, t, placed);
+    for (int c = 0; c < 4; c++)
+        for (int i = 0; i < 4; i++)
+            inst->view.model[4 * c + i] = placed[i] * inst->up_fix[4 * c] + placed[4 + i] * inst->up_fix[4 * c + 1] +
+                                          placed[8 + i] * inst->up_fix[4 * c + 2] +
+                                          placed[12 + i] * inst->up_fix[4 * c + 3];
+}
+
 /* Places the mesh and steps the fur by dt under the forces of time t. */
 static void step_at(pelt_scene_instance *inst, float t, float dt)
 {
     const pelt_scene *sc = &inst->scene;
-    pelt_scene_model_at(sc, t, inst->view.model);
+    place_at(inst, t);
     pelt_fur_set_transform(inst->fur, inst->view.model, NULL);
     if (inst->animated) {
         size_t n = pelt_mesh_get_data(inst->mesh).vertex_count;
@@ -457,7 +491,8 @@ static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
     inst->view.light = sc->light;
     inst->view.width = o->width;
     inst->view.height = o->height;
-    pelt_scene_model_at(sc, 0.0f, inst->view.model);
+    up_rotation(sc, inst->mesh, inst->up_fix);
+    place_at(inst, 0.0f);
     st = apply_strokes(inst, sc, err);
     if (st != PELT_OK) return st;
 

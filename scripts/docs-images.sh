@@ -17,7 +17,7 @@
 #                    default bunny_dry elephant bunny_combed elephant_combed
 #                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water
 #                    wind_square turntable curl groom_torus groom_bunny groom_maps
-#                    fins_torus fins_bunny inter_shadow lod shadows
+#                    fins_torus fins_bunny inter_shadow lod shadows animation
 #
 # Each command runs in its own fresh working directory (symlinks to the source
 # tree's top-level entries, an empty docs/images/) with its own empty
@@ -285,12 +285,23 @@ img_shadows() {
     collect shadows_${F}_off.png shadows_${F}_off.png
   done
 }
+img_animation() {
+  A=/usr/share/assimp/models
+  pelt render --mesh $A/X/BCN_Epileptic.X --animation Epileptisch --frames 8 --fps 2.4 --size 240x320 \
+      --set 'camera.target=[0,-0.1,0]' --distance 3.6 -o bcn_%02d.png
+  ffmpeg -loglevel error -y -i bcn_%02d.png -vf tile=4x2 anim_bcn_sheet.png
+  pelt render --mesh $A/glTF2/simple_skin/simple_skin.gltf --animation 0 --frames 6 --fps 1.2 --size 200x240 \
+      --set 'camera.target=[0,1,0]' --distance 4.5 -o skin_%02d.png
+  ffmpeg -loglevel error -y -i skin_%02d.png -vf tile=6x1 anim_simple_skin_sheet.png
+  pelt render --mesh $A/FBX/spider.fbx --size 480x360 -o anim_spider.png
+  for F in anim_bcn_sheet anim_simple_skin_sheet anim_spider; do collect $F.png $F.png; done
+}
 
 # ---- Running them.
 
 all="default bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny whirl
      bunny_wet bunny_rain word_in_water wind_square turntable curl groom_torus groom_bunny groom_maps
-     fins_torus fins_bunny inter_shadow lod shadows"
+     fins_torus fins_bunny inter_shadow lod shadows animation"
 needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow lod shadows "
 groups="${DOCS_IMAGES:-$all}"
 
@@ -304,6 +315,11 @@ for g in $groups; do
   if ! declare -F "img_$g" >/dev/null; then
     echo "docs-images: unknown picture group '$g' (known: $(tr -s ' \n' ' ' <<<"$all"))" >&2
     exit 2
+  fi
+  if [ "$g" = animation ] && [ ! -f /usr/share/assimp/models/X/BCN_Epileptic.X ]; then
+    echo "  skip $g: needs Debian's assimp-testmodels (scripts/setup.sh --tests installs it)"
+    skipped+=("$g")
+    continue
   fi
   if [ "$have_cgal" = 0 ] && [[ "$needs_cgal" == *" $g "* ]]; then
     echo "  skip $g: needs Debian's libcgal-demo mesh archive $CGAL_ARCHIVE (scripts/setup.sh --tests installs it)"

@@ -34,6 +34,7 @@ pelt_mesh *pelt__mesh_alloc(size_t vertex_count, size_t triangle_count)
     if (!m) return NULL;
     m->vertex_count = vertex_count;
     m->triangle_count = triangle_count;
+    m->up[1] = 1.0f;
     m->positions = pelt__calloc(vertex_count, 3 * sizeof(float));
     m->normals = pelt__calloc(vertex_count, 3 * sizeof(float));
     m->uvs = pelt__calloc(vertex_count, 2 * sizeof(float));
@@ -81,6 +82,11 @@ pelt_mesh_stats pelt_mesh_get_stats(const pelt_mesh *mesh)
 {
     pelt_mesh_stats none = {0};
     return mesh ? mesh->stats : none;
+}
+
+void pelt_mesh_up(const pelt_mesh *mesh, float up[3])
+{
+    for (int k = 0; k < 3; k++) up[k] = mesh ? mesh->up[k] : (k == 1 ? 1.0f : 0.0f);
 }
 
 void pelt_mesh_bounds(const pelt_mesh *mesh, float min[3], float max[3])

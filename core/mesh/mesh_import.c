@@ -11,6 +11,7 @@
 
 #include <assimp/cimport.h>
 #include <assimp/postprocess.h>
+#include <assimp/metadata.h>
 #include <assimp/scene.h>
 
 #include <errno.h>
@@ -443,6 +444,26 @@ static pelt_status visit(merge_state *s, const struct aiNode *node, const struct
     return PELT_OK;
 }
 
+/* FBX says which axis is up (UpAxis 0, 1, 2 and UpAxisSign +-1); assimp
+ * leaves the coordinates as they are. Other formats: +Y. */
+static void file_up_axis(const struct aiScene *scene, float up[3])
+{
+    up[0] = up[2] = 0.0f, up[1] = 1.0f;
+    const struct aiMetadata *m = scene->mMetaData;
+    int axis = -1, sign = 1;
+    for (unsigned i = 0; m && m->mKeys && m->mValues && i < m->mNumProperties; i++) {
+        const struct aiMetadataEntry *e = &m->mValues[i];
+        if (e->mType != AI_INT32 || !e->mData) continue;
+        int value;
+        memcpy(&value, e->mData, sizeof value);
+        if (!strcmp(m->mKeys[i].data, "UpAxis")) axis = value;
+        if (!strcmp(m->mKeys[i].data, "UpAxisSign")) sign = value < 0 ? -1 : 1;
+    }
+    if (axis < 0 || axis > 2) return;
+    up[0] = up[1] = up[2] = 0.0f;
+    up[axis] = (float)sign;
+}
+
 static bool has_skeleton(const struct aiScene *scene)
 {
     if (scene->mNumAnimations > 0 && scene->mAnimations) return true;
@@ -636,6 +657,7 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
             pelt__fail(err, st, "%s: %s", path, detail);
         }
     }
+    if (st == PELT_OK) file_up_axis(scene, (*out)->up);
     if (st == PELT_OK && skeleton) {
         st = remap ? build_skeleton(&s, *out, remap) : pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
         pelt__skeleton *k = st == PELT_OK ? (*out)->skeleton : NULL;

@@ -26,6 +26,7 @@ struct pelt_mesh {
     float bounds_min[3], bounds_max[3];
     pelt_mesh_stats stats;
     struct pelt__skeleton *skeleton; /* NULL, or the bones and animations (skeleton.h) */
+    float up[3];      /* the file's up axis (FBX metadata), else +Y */
 };
 
 /* Area of triangle t in world space. */

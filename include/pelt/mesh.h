@@ -108,6 +108,10 @@ const float *pelt_mesh_tangents(const pelt_mesh *mesh);
 
 /* Axis-aligned bounds of the positions. */
 void pelt_mesh_bounds(const pelt_mesh *mesh, float min[3], float max[3]);
+/* The mesh's up axis as its file declares it (FBX's UpAxis metadata), a
+ * unit axis; +Y when the file says nothing (glTF, X, OBJ...). The scene
+ * key mesh.up turns it to +Y or overrides it. */
+void pelt_mesh_up(const pelt_mesh *mesh, float up[3]);
 
 /* Length of the bounds' diagonal: the mesh's size, which the fur's default
  * length and tiling and the atlas's default density scale with. */

@@ -38,6 +38,10 @@ typedef enum pelt_scene_shape {
     PELT_SHAPE_FILE       /* pelt_mesh_load(mesh.file) */
 } pelt_scene_shape;
 
+typedef enum pelt_scene_up {
+    PELT_UP_FILE = 0, PELT_UP_POS_Y, PELT_UP_NEG_Y, PELT_UP_POS_X, PELT_UP_NEG_X, PELT_UP_POS_Z, PELT_UP_NEG_Z
+} pelt_scene_up;
+
 typedef struct pelt_scene_mesh {
     pelt_scene_shape shape;         /* default TORUS */
     char file[PELT_SCENE_PATH_MAX]; /* shape FILE: path, resolved against the
@@ -59,6 +63,10 @@ typedef struct pelt_scene_mesh {
        (default 1). Applied before the animation (pelt_scene_model_at). */
     float rotation[3];
     float scale;
+    /* Which of the mesh's axes is up, turned to +Y before the placement
+       above: the file's own (FBX metadata, else +Y; the default) or one
+       of the axes (pelt_scene_up). */
+    pelt_scene_up up;
 } pelt_scene_mesh;
 
 typedef struct pelt_scene_texture {

@@ -96,6 +96,10 @@ expect_fail length_map_corrupt "corrupt.png" $r --set fur.length_map="$out/corru
 expect_fail shadow_map_too_small "shadows.map_size: expected an integer from 16 to 4096" $r --set shadows.map_size=8
 expect_fail shadow_slices_too_many "shadows.slices" $r --set shadows.slices=9
 expect_fail ground_size_negative "ground.size" $r --set ground.size=-1
+expect_fail animation_missing "no animation 'walk': the mesh has 0 'bend'" $r --mesh "$data/skin/tube.gltf" --animation walk
+expect_fail animation_on_static "no animation '0': the mesh has no animations" $r --animation 0
+expect_fail skin_weights_zero "vertex 5 of mesh 'tube' has bone weights summing to 0" $r --mesh "$data/skin/tube_bad_weights.gltf"
+expect_fail skin_key_nan "rotation key 1 is not a finite rotation" $r --mesh "$data/skin/tube_bad_key.gltf"
 expect_fail vertex_colors_none "no vertex colours" $r --set fur.vertex_colors=hair
 
 expect_fail unknown_flag "--bogus" $r --bogus
