@@ -213,6 +213,40 @@ static void camera_forces_and_rain_can_be_changed(void)
     pelt_scene_free(&s);
 }
 
+/* animation.name finds the tube's "bend" and plays it (test_skeleton and
+ * test_skin_render check the poses); mesh.up turns +Z to +Y; a missing
+ * animation is refused by name. */
+static void animation_and_up_axis(void)
+{
+    pelt_scene s = small_scene();
+    s.mesh.shape = PELT_SHAPE_FILE;
+    strcpy(s.mesh.file, PELT_TEST_DATA "/skin/tube.gltf");
+    strcpy(s.animation.name, "bend");
+    s.mesh.up = PELT_UP_POS_Z;
+    pelt_error err = {0};
+    pelt_scene_instance_desc d = {.cache_dir = "", .settle_seconds = -1.0f};
+    pelt_scene_instance *inst = make(&s, &d, &err);
+    CHECK(inst != NULL);
+    if (inst) {
+        pelt_view v = pelt_scene_instance_view(inst);
+        /* +Z of the mesh is +Y of the world. */
+        CHECK_NEAR(v.model[8], 0.0, 1e-6);
+        CHECK_NEAR(v.model[9], 1.0, 1e-6);
+        CHECK_NEAR(v.model[10], 0.0, 1e-6);
+        pelt_scene_instance_advance(inst, 1.0f); /* upper bent by 90 degrees */
+        const pelt_mesh *m = pelt_scene_instance_mesh(inst);
+        CHECK(pelt_mesh_skin_info(m).animations == 1);
+        pelt_scene_instance_destroy(inst);
+    }
+    strcpy(s.animation.name, "walk");
+    inst = (pelt_scene_instance *)1;
+    CHECK(pelt_scene_instantiate(&s, &d, &inst, &err) == PELT_ERR_INVALID_ARGUMENT);
+    CHECK(inst == NULL);
+    CHECK(strstr(err.message, "animation.name") && strstr(err.message, "tube.gltf") &&
+          strstr(err.message, "no animation 'walk'"));
+    pelt_scene_free(&s);
+}
+
 int main(void)
 {
     RUN(default_scene_makes_the_table1_torus);
@@ -223,5 +257,6 @@ int main(void)
     RUN(hooks_see_allocations_and_warnings);
     RUN(drop_at_pixel_wets_where_the_torus_is_seen);
     RUN(camera_forces_and_rain_can_be_changed);
+    RUN(animation_and_up_axis);
     return check_summary();
 }
