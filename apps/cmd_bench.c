@@ -76,6 +76,19 @@ static void report(const char *title, const stats st[PARTS])
            100.0 * (st[PART_STEP].median + st[PART_UPLOAD].median) / st[PART_FRAME].median);
 }
 
+/* Draws one frame with `dd` and returns its milliseconds (glFinish). */
+static double timed_draw(cli_session *s, const pelt_draw_desc *dd)
+{
+    pelt_draw_desc saved = s->draw;
+    s->draw = *dd;
+    double t0 = now_ms();
+    cli_session_draw(s);
+    glFinish();
+    double t = now_ms() - t0;
+    s->draw = saved;
+    return t;
+}
+
 /* --animation: the skinning of one frame on the CPU (pelt_mesh_pose, then
  * pelt_fur_set_pose hands it to the strands and the renderer), timed alone
  * and set against the frame; its upload is part of "upload" above. */
@@ -109,6 +122,23 @@ static int bench_skinning(cli_session *s, const pelt_scene *sc, unsigned frames,
         t[frames + i] = now_ms() - t0;
     }
     stats pose_st = summarize(t, frames), all = summarize(t + frames, frames);
+    /* The alternative: the shells blend the bones themselves, per vertex
+       and layer; both draws alternated, each from the same pose. */
+    double *d = calloc(frames, 2 * sizeof *d);
+    if (!d) {
+        free(pose);
+        free(t);
+        cli_error("bench", "out of memory");
+        return 1;
+    }
+    pelt_draw_desc in_vs = s->draw;
+    in_vs.skin_in_vertex_stage = true;
+    for (unsigned i = 0; i < frames; i++) {
+        d[i] = timed_draw(s, &s->draw);
+        d[frames + i] = timed_draw(s, &in_vs);
+    }
+    stats once = summarize(d, frames), per_layer = summarize(d + frames, frames);
+    free(d);
     pelt_skin_info sk = pelt_mesh_skin_info(mesh);
     printf("skinning '%s' on the CPU, %zu vertices (%zu skinned), %zu bones (median of %u):\n", info.name, n,
            sk.skinned_vertices, sk.bones, frames);
@@ -116,6 +146,12 @@ static int bench_skinning(cli_session *s, const pelt_scene *sc, unsigned frames,
     print_stats("pose + hand", all);
     printf("  skinning: %.2f%% of the frame (%.3f of %.3f ms), once a frame for skin, fins, shells and strands\n",
            100.0 * all.median / frame_ms, all.median, frame_ms);
+    printf("the draw, alternated (median of %u each):\n", frames);
+    print_stats("pose read", once);
+    print_stats("skinned in VS", per_layer);
+    printf("  skinning in the vertex stage, per vertex and layer: the draw takes %.3fx as long "
+           "(%+.3f ms, against %.3f ms for the pose on the CPU)\n",
+           per_layer.median / once.median, per_layer.median - once.median, all.median);
     free(pose);
     free(t);
     return 0;
@@ -225,19 +261,6 @@ static int bench_brush(cli_session *s)
         printf("  %.0f vertices touched per stroke on average\n", (double)touched_sum / STROKES);
     }
     return 0;
-}
-
-/* Draws one frame with `dd` and returns its milliseconds (glFinish). */
-static double timed_draw(cli_session *s, const pelt_draw_desc *dd)
-{
-    pelt_draw_desc saved = s->draw;
-    s->draw = *dd;
-    double t0 = now_ms();
-    cli_session_draw(s);
-    glFinish();
-    double t = now_ms() - t0;
-    s->draw = saved;
-    return t;
 }
 
 /* Variants of the same frame drawn alternately, so the machine's noise hits

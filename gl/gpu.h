@@ -55,6 +55,15 @@ typedef struct pelt__gpu_mesh {
     unsigned level_count;
     unsigned tips_version;
     unsigned pose_version;
+    /* A skinned mesh, skinned in the vertex stage (for measuring): */
+    bool skinned;
+    GLuint vao_skin;
+    GLuint vbo_bind;     /* bind-space position, normal, tangent; weights */
+    GLuint vbo_bones;    /* 4 bones a vertex, u16 */
+    GLuint bone_texture; /* PELT_UNIT_BONES */
+    unsigned bone_rows;
+    float *bone_staging; /* allocated once */
+    pelt_allocator alloc;
 } pelt__gpu_mesh;
 
 /* Uploads the mesh's attributes with the fur's uvs and strand tips. The
@@ -65,6 +74,9 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
 /* Rewrites the tip buffer when the strands moved and the changed range of
  * the groom buffer; returns bytes sent. */
 size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur);
+/* Skinning in the vertex stage: the bones' matrices of the last pose into
+ * their texture; returns bytes sent (0 for a mesh without a skeleton). */
+size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
 
 /* ---- fur textures (gl/gpu_fur.c) --------------------------------------- */

@@ -3,7 +3,12 @@
  * one VAO that every pass draws. The strand tips change every frame, so
  * they live in their own buffer, rewritten in place; so do position,
  * normal and tangent, rewritten when an animation poses the mesh
- * (pelt_fur_set_pose), laid out as the fur's pose is. */
+ * (pelt_fur_set_pose), laid out as the fur's pose is.
+ *
+ * A skinned mesh also gets a second VAO for skinning in the vertex stage
+ * (measured by pelt bench --animation against the pose made once on the
+ * CPU): the bind-space position, normal and tangent, 4 bones and weights
+ * a vertex, the other buffers shared. */
 #include "gl/gpu.h"
 
 #include "core/base/error.h"
@@ -19,13 +24,18 @@ typedef struct attribute {
     unsigned stride;
 } attribute;
 
-/* A buffer of `count` attributes interleaved, bound to their locations
- * in the bound VAO. */
-static pelt_status interleave(GLuint *buffer, const attribute *attrs, int count, size_t vertices, GLenum usage,
-                              const pelt_hooks *hooks, pelt_error *err)
+static unsigned floats_of(const attribute *attrs, int count)
 {
     unsigned floats = 0;
     for (int k = 0; k < count; k++) floats += attrs[k].size;
+    return floats;
+}
+
+/* A buffer of `count` attributes interleaved. */
+static pelt_status interleave(GLuint *buffer, const attribute *attrs, int count, size_t vertices, GLenum usage,
+                              const pelt_hooks *hooks, pelt_error *err)
+{
+    unsigned floats = floats_of(attrs, count);
     float *data = pelt__alloc_zero(&hooks->allocator, vertices, floats * sizeof(float));
     if (!data) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for vertex data");
     for (size_t i = 0; i < vertices; i++) {
@@ -39,6 +49,14 @@ static pelt_status interleave(GLuint *buffer, const attribute *attrs, int count,
     glBindBuffer(GL_ARRAY_BUFFER, *buffer);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(vertices * floats * sizeof(float)), data, usage);
     pelt__free(&hooks->allocator, data);
+    return PELT_OK;
+}
+
+/* Points the bound VAO's locations at an interleaved buffer. */
+static void point(GLuint buffer, const attribute *attrs, int count)
+{
+    unsigned floats = floats_of(attrs, count);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
     size_t offset = 0;
     for (int k = 0; k < count; k++) {
         glEnableVertexAttribArray(attrs[k].location);
@@ -46,6 +64,64 @@ static pelt_status interleave(GLuint *buffer, const attribute *attrs, int count,
                               (GLsizei)(floats * sizeof(float)), (const void *)offset);
         offset += attrs[k].size * sizeof(float);
     }
+}
+
+/* The attributes every VAO shares: uv, fur uv and comb; the tips; the
+ * groom (one 20-byte record per vertex, core/fur/groom.h: lean, length
+ * and density as floats, the hair colour as 4 normalised bytes); and
+ * the index buffer. */
+static void point_shared(const pelt__gpu_mesh *g, const attribute *attrs, int count, size_t groom_stride)
+{
+    point(g->vbo_static, attrs, count);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
+    glEnableVertexAttribArray(PELT_ATTR_TIP);
+    glVertexAttribPointer(PELT_ATTR_TIP, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_groom);
+    glEnableVertexAttribArray(PELT_ATTR_GROOM);
+    glVertexAttribPointer(PELT_ATTR_GROOM, 4, GL_FLOAT, GL_FALSE, (GLsizei)groom_stride, NULL);
+    glEnableVertexAttribArray(PELT_ATTR_HAIR_COLOR);
+    glVertexAttribPointer(PELT_ATTR_HAIR_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, (GLsizei)groom_stride,
+                          (const void *)(4 * sizeof(float)));
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
+}
+
+/* The second VAO of a skinned mesh (see the top of this file). */
+static pelt_status make_skin_vao(pelt__gpu_mesh *g, const pelt__gpu_skin *skin, const attribute *shared,
+                                 int shared_count, size_t groom_stride, const pelt_hooks *hooks, pelt_error *err)
+{
+    const attribute bind[] = {
+        {PELT_ATTR_POSITION, 3, skin->bind, 10},
+        {PELT_ATTR_NORMAL, 3, skin->bind + 3, 10},
+        {PELT_ATTR_TANGENT, 4, skin->bind + 6, 10},
+        {PELT_ATTR_WEIGHTS, 4, skin->weights, 4},
+    };
+    glGenVertexArrays(1, &g->vao_skin);
+    glBindVertexArray(g->vao_skin);
+    pelt_status st = interleave(&g->vbo_bind, bind, 4, g->vertex_count, GL_STATIC_DRAW, hooks, err);
+    if (st != PELT_OK) return st;
+    point(g->vbo_bind, bind, 4);
+    glGenBuffers(1, &g->vbo_bones);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_bones);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(g->vertex_count * 4 * sizeof(uint16_t)), skin->bones, GL_STATIC_DRAW);
+    glEnableVertexAttribArray(PELT_ATTR_BONES);
+    glVertexAttribIPointer(PELT_ATTR_BONES, 4, GL_UNSIGNED_SHORT, 4 * sizeof(uint16_t), NULL);
+    point_shared(g, shared, shared_count, groom_stride);
+    /* The bones' matrices: 3 rows a bone, PELT_TABLE_WIDTH texels a row. */
+    size_t texels = 3 * skin->bone_count, rows = (texels + PELT_TABLE_WIDTH - 1) / PELT_TABLE_WIDTH;
+    g->bone_rows = (unsigned)(rows ? rows : 1);
+    g->bone_staging = pelt__alloc_zero(&hooks->allocator, (size_t)g->bone_rows * PELT_TABLE_WIDTH, 4 * sizeof(float));
+    if (!g->bone_staging) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the bones");
+    g->alloc = hooks->allocator;
+    glGenTextures(1, &g->bone_texture);
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_BONES);
+    glBindTexture(GL_TEXTURE_2D, g->bone_texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, PELT_TABLE_WIDTH, (GLsizei)g->bone_rows, 0, GL_RGBA, GL_FLOAT, NULL);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
+    g->skinned = true;
     return PELT_OK;
 }
 
@@ -54,47 +130,36 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
 {
     const pelt_mesh_data m = pelt_mesh_get_data(mesh);
     const float *tangents = pelt_mesh_tangents(mesh);
-    /* Without a direction field, comb along the fur texture's u axis. */
     const attribute pose_attrs[] = {
         {PELT_ATTR_POSITION, 3, m.positions, 3},
         {PELT_ATTR_NORMAL, 3, m.normals, 3},
         {PELT_ATTR_TANGENT, 4, tangents, 4},
     };
+    /* Without a direction field, comb along the fur texture's u axis. */
     const attribute attrs[] = {
         {PELT_ATTR_UV, 2, m.uvs, 2},
         {PELT_ATTR_FUR_UV, 2, pelt__fur_gpu_uvs(fur), 2},
         {PELT_ATTR_COMB, 3, m.comb ? m.comb : tangents, m.comb ? 3 : 4},
     };
     enum { ATTRS = sizeof attrs / sizeof attrs[0] };
+    g->vertex_count = m.vertex_count;
+    g->triangle_count = m.triangle_count;
     glGenVertexArrays(1, &g->vao);
     glBindVertexArray(g->vao);
     pelt_status st = interleave(&g->vbo_pose, pose_attrs, 3, m.vertex_count, GL_DYNAMIC_DRAW, hooks, err);
+    if (st == PELT_OK) st = interleave(&g->vbo_static, attrs, ATTRS, m.vertex_count, GL_STATIC_DRAW, hooks, err);
     if (st != PELT_OK) return st;
     pelt__fur_gpu_pose(fur, &g->pose_version);
-    st = interleave(&g->vbo_static, attrs, ATTRS, m.vertex_count, GL_STATIC_DRAW, hooks, err);
-    if (st != PELT_OK) return st;
-    g->vertex_count = m.vertex_count;
-    g->triangle_count = m.triangle_count;
 
     glGenBuffers(1, &g->vbo_tips);
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * 3 * sizeof(float)),
                  pelt__fur_gpu_tips(fur, &g->tips_version), GL_DYNAMIC_DRAW);
-    glEnableVertexAttribArray(PELT_ATTR_TIP);
-    glVertexAttribPointer(PELT_ATTR_TIP, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), NULL);
-
-    /* The groom: one 20-byte record per vertex (core/fur/groom.h), lean,
-     * length and density as floats, the hair colour as 4 normalised bytes. */
     size_t stride;
     const void *groom = pelt__fur_gpu_groom(fur, &stride);
     glGenBuffers(1, &g->vbo_groom);
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo_groom);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * stride), groom, GL_DYNAMIC_DRAW);
-    glEnableVertexAttribArray(PELT_ATTR_GROOM);
-    glVertexAttribPointer(PELT_ATTR_GROOM, 4, GL_FLOAT, GL_FALSE, (GLsizei)stride, NULL);
-    glEnableVertexAttribArray(PELT_ATTR_HAIR_COLOR);
-    glVertexAttribPointer(PELT_ATTR_HAIR_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, (GLsizei)stride,
-                          (const void *)(4 * sizeof(float)));
     size_t all[2];
     pelt__fur_gpu_take_groom_dirty(fur, all); /* all of it went up just now */
 
@@ -116,8 +181,13 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
         g->level_triangles[k] = lod->levels[k].triangle_count;
         at += bytes;
     }
+    point(g->vbo_pose, pose_attrs, 3);
+    point_shared(g, attrs, ATTRS, stride);
+
+    pelt__gpu_skin skin;
+    if (pelt__fur_gpu_skin(fur, &skin)) st = make_skin_vao(g, &skin, attrs, ATTRS, stride, hooks, err);
     glBindVertexArray(0);
-    return PELT_OK;
+    return st;
 }
 
 size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
@@ -153,10 +223,29 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
     return bytes;
 }
 
+size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur)
+{
+    pelt__gpu_skin skin;
+    if (!g->skinned || !pelt__fur_gpu_skin(fur, &skin)) return 0;
+    /* Rows 0..2 of each column-major 4x4: x, y, z of the blend. */
+    for (size_t b = 0; b < skin.bone_count; b++)
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 4; c++) g->bone_staging[4 * (3 * b + (size_t)r) + (size_t)c] = skin.matrices[16 * b + 4 * c + r];
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_BONES);
+    glBindTexture(GL_TEXTURE_2D, g->bone_texture);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, PELT_TABLE_WIDTH, (GLsizei)g->bone_rows, GL_RGBA, GL_FLOAT,
+                    g->bone_staging);
+    glActiveTexture(GL_TEXTURE0);
+    return (size_t)g->bone_rows * PELT_TABLE_WIDTH * 4 * sizeof(float);
+}
+
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)
 {
-    GLuint buffers[5] = {g->vbo_static, g->vbo_pose, g->vbo_tips, g->vbo_groom, g->ebo};
-    glDeleteBuffers(5, buffers);
+    GLuint buffers[7] = {g->vbo_static, g->vbo_pose, g->vbo_tips, g->vbo_groom, g->ebo, g->vbo_bind, g->vbo_bones};
+    glDeleteBuffers(7, buffers);
     if (g->vao) glDeleteVertexArrays(1, &g->vao);
+    if (g->vao_skin) glDeleteVertexArrays(1, &g->vao_skin);
+    if (g->bone_texture) glDeleteTextures(1, &g->bone_texture);
+    if (g->bone_staging) pelt__free(&g->alloc, g->bone_staging);
     memset(g, 0, sizeof *g);
 }

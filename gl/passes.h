@@ -51,7 +51,8 @@ enum {
     PELT__SHELL_SHADOW_MAP = 1 << 6,    /* the light's shadow maps darken the direct light */
     PELT__SHELL_GENERIC = (1 << 7) - 1, /* everything, chosen per fragment */
     PELT__SHELL_LIGHT_PASS = 1 << 7,    /* drawn from the light into its opacity slices */
-    PELT__SHELL_VARIANTS = 1 << 8
+    PELT__SHELL_GPU_SKIN = 1 << 8,      /* skinned in the vertex stage (for measuring) */
+    PELT__SHELL_VARIANTS = 1 << 9
 };
 
 /* The fins use the features that concern them. */

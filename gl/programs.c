@@ -96,7 +96,7 @@ pelt_status pelt__gl_program_create(const char *what, const char *const *vertex_
         {"u_mask", PELT_UNIT_MASK},         {"u_fin_tex", PELT_UNIT_FIN},
         {"u_light_table", PELT_UNIT_LIGHT_TABLE}, {"u_fin_edges", PELT_UNIT_FIN_EDGES},
         {"u_fin_vertices", PELT_UNIT_FIN_VERTICES}, {"u_shadow_depth", PELT_UNIT_SHADOW_DEPTH},
-        {"u_shadow_opacity", PELT_UNIT_SHADOW_OPACITY}};
+        {"u_shadow_opacity", PELT_UNIT_SHADOW_OPACITY}, {"u_bones", PELT_UNIT_BONES}};
     for (size_t i = 0; i < sizeof blocks / sizeof blocks[0]; i++) {
         GLuint index = glGetUniformBlockIndex(*out, blocks[i].name);
         if (index != GL_INVALID_INDEX) glUniformBlockBinding(*out, index, blocks[i].binding);

@@ -26,6 +26,7 @@ extern const char pelt__shader_shadow_depth_vs[];
 extern const char pelt__shader_shadow_depth_fs[];
 extern const char pelt__shader_ground_vs[];
 extern const char pelt__shader_ground_fs[];
+extern const char pelt__shader_skin_blend[];
 
 /* Compiles and links a program. Each stage is a NULL-terminated list of
  * at most 12 source pieces, concatenated after the version header (GLSL

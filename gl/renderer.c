@@ -317,7 +317,18 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     }
     if (!draw->no_skin) pelt__skin_pass_draw(&r->skin, &frame);
     if (!draw->no_fins) pelt__fin_pass_draw(&r->fins, &frame);
-    if (!draw->no_shells) pelt__shell_pass_draw(&r->shells, &frame);
+    if (!draw->no_shells && draw->skin_in_vertex_stage && r->mesh.skinned) {
+        stats.upload_bytes += pelt__gpu_mesh_upload_bones(&r->mesh, r->fur);
+        glActiveTexture(GL_TEXTURE0 + PELT_UNIT_BONES);
+        glBindTexture(GL_TEXTURE_2D, r->mesh.bone_texture);
+        glActiveTexture(GL_TEXTURE0);
+        glBindVertexArray(r->mesh.vao_skin);
+        pelt__pass_frame skinned = frame;
+        skinned.shell_features |= PELT__SHELL_GPU_SKIN;
+        pelt__shell_pass_draw(&r->shells, &skinned);
+    } else if (!draw->no_shells) {
+        pelt__shell_pass_draw(&r->shells, &frame);
+    }
     pelt__gl_state_reset();
     r->stats = stats;
 }

@@ -1,5 +1,7 @@
 /* The renderer's read-only view of a pelt_fur (see fur_gpu.h). */
 #include "core/fur/fur_gpu.h"
+#include "core/mesh/mesh_internal.h"
+#include "core/mesh/skeleton.h"
 
 #include "core/fur/fur_internal.h"
 #include "core/fur/shading.h"
@@ -11,6 +13,18 @@ const uint8_t *pelt__fur_gpu_volume(const pelt_fur *f, unsigned *size, unsigned 
     *size = f->desc.look.texture_size;
     *slices = f->texture_slices;
     return f->texture;
+}
+
+bool pelt__fur_gpu_skin(const pelt_fur *f, pelt__gpu_skin *out)
+{
+    const pelt__skeleton *k = f->mesh->skeleton;
+    if (!k) return false;
+    out->bones = k->bones;
+    out->weights = k->weights;
+    out->bind = k->bind;
+    out->matrices = k->scratch_skin;
+    out->bone_count = k->bone_count;
+    return true;
 }
 
 const float *pelt__fur_gpu_pose(const pelt_fur *f, unsigned *version)

@@ -16,6 +16,20 @@
  * normal, tangent; NULL before the first pose. *version changes with it. */
 const float *pelt__fur_gpu_pose(const pelt_fur *fur, unsigned *version);
 
+/* A skinned mesh's skin, for skinning in the vertex stage (measured
+ * against the CPU pose by pelt bench --animation): per vertex 4 bones and
+ * weights and the bind-space position, normal, tangent (10 floats); the
+ * bones' matrices of the last pelt_mesh_pose (16 floats a bone). False
+ * for a mesh without a skeleton. */
+typedef struct pelt__gpu_skin {
+    const uint16_t *bones;
+    const float *weights;
+    const float *bind;
+    const float *matrices;
+    size_t bone_count;
+} pelt__gpu_skin;
+bool pelt__fur_gpu_skin(const pelt_fur *fur, pelt__gpu_skin *out);
+
 /* The mesh the fur was made for. */
 const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *fur);
 

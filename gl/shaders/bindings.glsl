@@ -16,6 +16,8 @@
 #define PELT_ATTR_COMB 6     // vec3, comb direction times its weight
 #define PELT_ATTR_GROOM 7    // vec4, groomed lean (u, v), length scale, density
 #define PELT_ATTR_HAIR_COLOR 8 // vec4 from 4 normalised bytes: hair colour, its weight
+#define PELT_ATTR_BONES 9    // uvec4: a skinned vertex's 4 bones (skinning in the vertex stage)
+#define PELT_ATTR_WEIGHTS 10 // vec4: their weights
 
 // Texture units (gl/gpu_fur.c owns the textures).
 #define PELT_UNIT_FUR 0   // sampler2DArray: the fur volume, one slice a layer
@@ -27,7 +29,8 @@
 #define PELT_UNIT_FIN_VERTICES 6 // sampler2D RGBA32F: this frame's fin vertices (core/fur/fur_gpu.h)
 #define PELT_UNIT_SHADOW_DEPTH 7 // sampler2D DEPTH_COMPONENT24: the skin's depth from the light (gl/shadow_pass.c)
 #define PELT_UNIT_SHADOW_OPACITY 8 // sampler2DArray RGBA16F: the fur's opacity slices, 4 a layer
-#define PELT_UNIT_COUNT 9 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
+#define PELT_UNIT_BONES 9 // sampler2D RGBA32F: the bones' matrices, 3 rows a bone (skinning in the vertex stage)
+#define PELT_UNIT_COUNT 10 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
 
 // Tables: data a pass fetches by index (the fins and their vertices), row
 // after row PELT_TABLE_WIDTH texels wide.

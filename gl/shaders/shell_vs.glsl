@@ -42,9 +42,14 @@ void main()
 {
     float layer = shell_instance(float(gl_InstanceID), u_shells, u_shells_next, u_layers, v_slices, v_alpha);
     float h = (1.0 + layer) / u_layers;
-    vec3 n = normalize(a_normal);
-    vec3 u = normalize(a_tangent.xyz);
-    vec3 v = cross(n, u) * a_tangent.w;
+    vec3 position = a_position, normal = a_normal;
+    vec4 tangent = a_tangent;
+#ifdef PELT_GPU_SKIN
+    skin_vertex(position, normal, tangent);
+#endif
+    vec3 n = normalize(normal);
+    vec3 u = normalize(tangent.xyz);
+    vec3 v = cross(n, u) * tangent.w;
     float rho = 0.0; // wetness straightens the curl; a dry frame reads no mask
 #ifdef PELT_WET
     rho = textureLod(u_mask, a_uv, 0.0).a;
@@ -58,7 +63,7 @@ void main()
                 + fur_curl(u, v, u_curl_frequency, K, rho, h)
                 + fur_comb(shear, L, 1.0, h);
     vec3 t = fur_tangent_combed(n, L, tip, u, v, shear, u_curl_frequency, K, rho, 1.0, h);
-    vec4 world = u_model * vec4(a_position + offset, 1.0);
+    vec4 world = u_model * vec4(position + offset, 1.0);
 #ifdef PELT_LIGHT_PASS
     // Drawn from the light into its opacity slices: no lighting.
     vec3 lc = shadow_coord(world.xyz);

@@ -48,6 +48,11 @@ typedef struct pelt_draw_desc {
     /* Skip the light's shadow maps this frame, as if they were off (for
        measuring; pelt_renderer_set_shadows turns them on). */
     bool no_shadows;
+    /* For measuring (pelt bench --animation): a skinned mesh's shells
+       blend its bones per vertex and layer in the vertex stage, from the
+       bind pose and the bones of the last pelt_mesh_pose, instead of
+       reading the pose made once on the CPU (pelt_fur_set_pose). */
+    bool skin_in_vertex_stage;
 } pelt_draw_desc;
 
 /* What the last pelt_renderer_draw did. */
@@ -85,7 +90,7 @@ typedef struct pelt_render_stats {
  * Used as found, never changed: framebuffer bindings, viewport, scissor,
  * stencil, clear values, colour write mask, polygon mode and offset,
  * glCullFace/glFrontFace (culling itself is off), multisampling, sRGB,
- * primitive restart, pixel pack state, texture units 9 and up. With the
+ * primitive restart, pixel pack state, texture units 10 and up. With the
  * light's shadows on, draw renders its maps into its own framebuffers
  * first and puts back the framebuffer bindings, viewport, scissor test and
  * colour mask it found (read with glGet).
@@ -93,7 +98,7 @@ typedef struct pelt_render_stats {
  * and left at GL's initial values afterwards:
  *   - program 0, vertex array 0, GL_ARRAY_BUFFER 0;
  *   - GL_UNIFORM_BUFFER 0, and 0 on uniform buffer binding points 0 and 1;
- *   - texture units 0 to 8 with texture 0 on GL_TEXTURE_2D and
+ *   - texture units 0 to 9 with texture 0 on GL_TEXTURE_2D and
  *     GL_TEXTURE_2D_ARRAY; GL_ACTIVE_TEXTURE GL_TEXTURE0;
  *   - GL_DEPTH_TEST off, glDepthFunc(GL_LESS), glDepthMask(GL_TRUE);
  *   - GL_BLEND off, glBlendFunc(GL_ONE, GL_ZERO), glBlendEquation(GL_FUNC_ADD);

@@ -15,8 +15,9 @@ static pelt_headless *gl;
 static bool skipped; /* a part needed a package that is not installed */
 
 /* Draws `mesh` with its fur, posed by animation 0 at `t` (t < 0: not
- * posed at all), into px; the camera looks at `target` from `distance`. */
-static bool draw(const pelt_mesh *mesh, float t, const float target[3], float distance, uint8_t *px)
+ * posed at all), into px; the camera looks at `target` from `distance`.
+ * `in_vs`: the shells skin the mesh in the vertex stage. */
+static bool draw_with(const pelt_mesh *mesh, float t, const float target[3], float distance, bool in_vs, uint8_t *px)
 {
     pelt_fur *fur = NULL;
     pelt_renderer *r = NULL;
@@ -42,7 +43,8 @@ static bool draw(const pelt_mesh *mesh, float t, const float target[3], float di
         pelt_headless_bind(gl);
         glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_renderer_draw(r, &v, NULL);
+        pelt_draw_desc dd = {.skin_in_vertex_stage = in_vs};
+        pelt_renderer_draw(r, &v, &dd);
         pelt_headless_read_rgba8(gl, px);
     }
     free(pose);
@@ -62,6 +64,11 @@ static void extent(const uint8_t *px, int *w, int *h)
             left = x < left ? x : left, right = x > right ? x : right;
         }
     *w = right - left + 1, *h = bottom - top + 1;
+}
+
+static bool draw(const pelt_mesh *mesh, float t, const float target[3], float distance, uint8_t *px)
+{
+    return draw_with(mesh, t, target, distance, false, px);
 }
 
 /* Pixels covered, and the share of them in the largest 4-connected piece. */
@@ -166,6 +173,30 @@ static void a_bent_tube_stays_one_piece(void)
     pelt_mesh_destroy(tube);
 }
 
+/* Skinning the shells in the vertex stage (what pelt bench --animation
+ * measures against the CPU pose) draws the same bent tube. */
+static void skinning_in_the_vertex_stage_draws_the_same(void)
+{
+    pelt_mesh *tube = NULL;
+    CHECK(pelt_mesh_load(PELT_TEST_DATA "/skin/tube.gltf", &tube, NULL) == PELT_OK);
+    uint8_t *a = malloc(NPX * 4), *b = malloc(NPX * 4), *c = malloc(NPX * 4);
+    const float target[3] = {-0.4f, 1.0f, 0.0f};
+    if (tube && a && b && c && draw_with(tube, 1.0f, target, 3.5f, false, a) &&
+        draw_with(tube, 1.0f, target, 3.5f, true, b) && draw_with(tube, -1.0f, target, 3.5f, false, c)) {
+        double mean, frac, straight_mean, straight_frac;
+        gl_test_compare(a, b, NPX, &mean, &frac);
+        gl_test_compare(a, c, NPX, &straight_mean, &straight_frac);
+        printf("  vertex stage against the CPU pose: mean %.3f, %.4f off; the straight tube: mean %.3f, %.4f off\n",
+               mean, frac, straight_mean, straight_frac);
+        CHECK(mean <= 2.0 && frac <= 0.02); /* the golden tolerance */
+        CHECK(straight_frac > 0.1);          /* and the measure sees the bend */
+    }
+    free(a);
+    free(b);
+    free(c);
+    pelt_mesh_destroy(tube);
+}
+
 /* assimp-testmodels' BCN_Epileptic.X: its head and legs are separate
  * skinned meshes placed by the skeleton. Drawn whole: one piece, taller
  * than wide (standing). */
@@ -203,6 +234,7 @@ int main(void)
     if (!gl) return CHECK_SKIP_CODE;
     RUN(the_bind_pose_draws_like_the_static_import);
     RUN(a_bent_tube_stays_one_piece);
+    RUN(skinning_in_the_vertex_stage_draws_the_same);
     RUN(the_bcn_figure_is_one_piece);
     pelt_headless_destroy(gl);
     if (skipped && !check_failures) return check_skip("assimp-testmodels is not installed");
