@@ -5,6 +5,7 @@
 #include <pelt/pelt.h>
 
 #include <stdint.h>
+#include <stdlib.h>
 #include <string.h>
 
 #ifndef PELT_FUZZ_NAME
@@ -23,6 +24,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (pelt_mesh_load_memory(data, size, name, &mesh, &err) == PELT_OK) {
         pelt_mesh_data d = pelt_mesh_get_data(mesh);
         if (d.vertex_count == 0 || d.triangle_count == 0) __builtin_trap(); /* never an empty mesh */
+        /* A skinned file's animations pose without fault at any time. */
+        pelt_skin_info skin = pelt_mesh_skin_info(mesh);
+        float *pose = skin.animations ? malloc(d.vertex_count * 10 * sizeof(float)) : NULL;
+        for (size_t a = 0; pose && a < skin.animations && a < 4; a++) {
+            static const float times[3] = {0.0f, 0.37f, -5.5f};
+            for (int t = 0; t < 3; t++)
+                if (pelt_mesh_pose(mesh, a, times[t], pose, pose + 3 * d.vertex_count, pose + 6 * d.vertex_count,
+                                   NULL) != PELT_OK)
+                    __builtin_trap();
+        }
+        free(pose);
         pelt_mesh_destroy(mesh);
     }
     return 0;
