@@ -161,7 +161,9 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     pelt_vec3 local = v3(m[0] * fwd.x + m[1] * fwd.y + m[2] * fwd.z, m[4] * fwd.x + m[5] * fwd.y + m[6] * fwd.z,
                          m[8] * fwd.x + m[9] * fwd.y + m[10] * fwd.z);
     local = v3_norm_or(local, v3(0.0f, 0.0f, -1.0f));
-    pelt__fin_frame_desc fd = {level, rows, {local.x, local.y, local.z}, f->draw->fins_unfaded};
+    /* Where the shells' back faces are culled and the skin is drawn, it hides the fins behind too. */
+    pelt__fin_frame_desc fd = {level, rows, {local.x, local.y, local.z}, f->draw->fins_unfaded,
+                               f->lod.cull && !f->draw->no_skin};
     size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices);
     if (count == 0) return;
     table_write(PELT_UNIT_FIN_EDGES, p->edges, GL_RGBA32UI, p->fins, count);

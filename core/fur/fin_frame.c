@@ -45,6 +45,12 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
             fn = pelt__fin_normal(v3_load(pose + 10 * a), v3_load(pose + 10 * b), v3_load(pose + 10 * a + 3),
                                   v3_load(pose + 10 * b + 3));
         }
+        if (d->hidden_back) {
+            size_t a = l->fins[i].a, b = l->fins[i].b;
+            const float *na = pose ? pose + 10 * a + 3 : m.normals + 3 * a;
+            const float *nb = pose ? pose + 10 * b + 3 : m.normals + 3 * b;
+            if (v3_dot(v3_load(na), view) > PELT__FIN_BACK && v3_dot(v3_load(nb), view) > PELT__FIN_BACK) continue;
+        }
         float fade = d->unfaded ? 1.0f : pelt__fin_fade(fn, view);
         if (fade < 0.05f) continue; /* the fragment stage's own cut: nothing to draw */
         uint32_t *t = fins + 4 * kept++;

@@ -80,9 +80,20 @@ typedef struct pelt__fin_frame_desc {
     unsigned rows;  /* quads up a fin, 1 .. PELT__FIN_HEIGHTS - 1 */
     float view_dir[3];
     bool unfaded;   /* every fin at full opacity (Lengyel Fig. 4e) */
+    /* A closed mesh whose skin hides its far side: fins whose two ends
+       face away from the viewer (their normals' component along view_dir
+       above PELT__FIN_BACK) are left out too. */
+    bool hidden_back;
 } pelt__fin_frame_desc;
 
-/* Writes the fins the view shows (faded below 0.05 left out) into `fins`
+/* How far past the silhouette a fin's ends may face away and still be
+ * drawn when the back is hidden: the cosine's bound, about 15 degrees past
+ * the silhouette, where a fin as tall as a quarter of the local radius
+ * stops reaching past the outline. */
+#define PELT__FIN_BACK 0.25f
+
+/* Writes the fins the view shows (faded below 0.05 left out, and those
+ * behind a closed mesh when hidden_back) into `fins`
  * (4 words each, room for the level's fin_count) and returns how many;
  * when any, writes all the level's fin vertices (fin_vertex_count of them)
  * into `vertices`. No allocation. */
