@@ -211,9 +211,9 @@ static void weigh(merge_state *s, size_t v, uint32_t bone, float w)
     b[at] = (uint16_t)bone;
 }
 
-/* The skeleton's part of one mesh instance under `node`: its bones weigh
- * its vertices (merged from `base` on); the vertices no bone weighs are a
- * rigid part of the node. */
+/* The skeleton's part of one mesh instance under `node`: a skinned mesh's
+ * bones weigh its vertices (merged from `base` on), every one of them; an
+ * unskinned mesh is a rigid part of its node. */
 static pelt_status weigh_mesh(merge_state *s, const struct aiMesh *mesh, const struct aiNode *node, size_t base)
 {
     if (!s->nodes) return PELT_OK;
@@ -244,8 +244,6 @@ static pelt_status weigh_mesh(merge_state *s, const struct aiMesh *mesh, const s
                 return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: bone '%s' gives vertex %u the weight %g", s->path,
                                   bone->mName.data, vw.mVertexId, (double)vw.mWeight);
             if (vw.mWeight > 0.0f) weigh(s, base + vw.mVertexId, b, vw.mWeight);
-            else if (s->vweights[PELT__BONES_PER_VERTEX * (base + vw.mVertexId)] == 0.0f)
-                s->vweights[PELT__BONES_PER_VERTEX * (base + vw.mVertexId) + 1] = -1.0f; /* listed, weightless */
         }
     }
     int32_t own = node_index(s, node);
@@ -254,7 +252,7 @@ static pelt_status weigh_mesh(merge_state *s, const struct aiMesh *mesh, const s
         if (ws[0] > 0.0f) continue;
         /* A skinned mesh's vertex that no bone weighs would stay behind
            while the rest of the mesh moves: the file is broken there. */
-        if (ws[1] < 0.0f || (mesh->mNumBones > 0 && mesh->mBones))
+        if (mesh->mNumBones > 0 && mesh->mBones)
             return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: vertex %u of mesh '%s' has bone weights summing to 0",
                               s->path, v, mesh->mName.data);
         if (own < 0) continue;
