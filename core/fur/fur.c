@@ -293,9 +293,12 @@ pelt_status pelt_fur_set_pose(pelt_fur *f, const float *positions, const float *
     const pelt_mesh_data m = pelt_mesh_get_data(f->mesh);
     if (!positions || !normals || !tangents)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_set_pose: positions, normals and tangents are needed");
-    for (size_t i = 0; i < 3 * m.vertex_count; i++)
-        if (!isfinite(positions[i]) || !isfinite(normals[i]))
-            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_set_pose: vertex %zu is not finite", i / 3);
+    for (size_t i = 0; i < m.vertex_count; i++) {
+        bool finite = true;
+        for (int k = 0; k < 3; k++) finite &= isfinite(positions[3 * i + k]) && isfinite(normals[3 * i + k]);
+        for (int k = 0; k < 4; k++) finite &= isfinite(tangents[4 * i + k]) != 0;
+        if (!finite) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_fur_set_pose: vertex %zu is not finite", i);
+    }
     if (!f->pose) {
         f->pose = pelt__alloc_zero(&f->desc.hooks.allocator, m.vertex_count, 10 * sizeof(float));
         if (!f->pose) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "pelt_fur_set_pose: out of memory");

@@ -42,7 +42,7 @@ pelt_status pelt_fur_set_transform(pelt_fur *fur, const float model[16], pelt_er
  * draws skin, fins and shells on the posed mesh (one upload a frame,
  * shared by all layers). The first call allocates room for the pose;
  * later ones allocate nothing. PELT_ERR_INVALID_ARGUMENT for a NULL
- * array or a non-finite position or normal. */
+ * array or a non-finite value. */
 pelt_status pelt_fur_set_pose(pelt_fur *fur, const float *positions, const float *normals, const float *tangents,
                               pelt_error *err);
 
