@@ -118,6 +118,15 @@ static bool build(view_app *a, const pelt_scene *scene, bool keep_groom, pelt_er
         pelt_scene_instance_destroy(inst);
         return false;
     }
+    /* The light's maps are made now, so O switches them without a stall. */
+    pelt_shadow_desc shadows = scene->shadows;
+    shadows.enabled = true;
+    if (pelt_renderer_set_shadows(renderer, &shadows, err) != PELT_OK) {
+        pelt_renderer_destroy(renderer);
+        pelt_scene_instance_destroy(inst);
+        return false;
+    }
+    pelt_renderer_set_ground(renderer, &scene->ground);
     if (keep_groom && a->inst) {
         pelt_fur *from = pelt_scene_instance_fur(a->inst), *to = pelt_scene_instance_fur(inst);
         size_t n = pelt_fur_vertex_count(from);
@@ -306,14 +315,14 @@ static void draw_hud(view_app *a)
                      "tool %s  radius %.3f   \x03[H] help\x01\n"
                      "wet %.1f%% of the surface\n"
                      "wind %s %.0f  gravity %s  rain %s  curl %s\n"
-                     "fins %s  inter-fur shadows %s",
+                     "fins %s  inter-fur shadows %s  light's shadows %s",
                      a->ms_smooth > 0.0 ? 1000.0 / a->ms_smooth : 0.0, a->ms_smooth, rs.triangles,
                      tris, rs.shell_instances, st->fins ? ", fins" : "", st->layers, view_tool_name(st->tool),
                      (double)st->radius, 100.0 * (double)a->wet_share,
                      st->wind_on ? "on" : "off", (double)st->wind_strength,
                      st->gravity_on ? "on" : "off", st->rain_on ? "on" : "off",
                      view_presets[st->preset][0] ? view_presets[st->preset] : "-",
-                     st->fins ? "on" : "off", st->shadows ? "on" : "off");
+                     st->fins ? "on" : "off", st->shadows ? "on" : "off", st->light_shadows ? "on" : "off");
     if (st->lod)
         n += snprintf(text + n, sizeof text - (size_t)n, "\n\x04level of detail: not built yet\x01");
     float scale = st->width >= 700 ? 1.5f : 1.0f;
@@ -510,7 +519,7 @@ int cmd_view(int argc, char **argv)
         const pelt_scene_draw *sd = &a->o.scene.draw;
         pelt_draw_desc draw = {.no_skin = !sd->skin, .no_shells = !sd->shells,
                                .no_fins = !a->st.fins, .fins_unfaded = sd->fins_unfaded,
-                               .no_inter_shadow = !a->st.shadows};
+                               .no_inter_shadow = !a->st.shadows, .no_shadows = !a->st.light_shadows};
         double t_draw = seconds_now();
         pelt_renderer_draw(a->renderer, &view, &draw);
         glFinish(); /* the draw's time apart from the swap's, for the summary */

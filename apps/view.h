@@ -142,6 +142,7 @@ typedef struct view_state {
     int preset;           /* index into view_presets */
     unsigned layers;
     bool fins, shadows;   /* the fin pass, Kenwright's inter-fur shadows */
+    bool light_shadows;   /* the light's shadow maps (docs/shadows.md) */
     bool lod;             /* not built yet: the HUD says so */
     bool help, hud;
     /* requests and messages */

@@ -38,6 +38,7 @@ const char *view_help_text(void)
            "  G  gravity on/off   R  rain on/off   T  towel (dry all)\n"
            "  C  curl preset      Up/Down  layers x2 / /2\n"
            "  F  fins on/off      S  inter-fur shadows on/off\n"
+           "  O  shadows from the light on/off (on a ground when ground.enabled)\n"
            "  L  level of detail (not built yet)\n"
            "  Backspace  reset    P  screenshot   Ctrl+S  save the groom\n"
            "  F5  reload the scene (also when its file changes)\n"
@@ -93,6 +94,7 @@ void view_input_init(view_state *st, pelt_scene_instance *inst, const pelt_scene
     st->layers = scene->fur.layers ? scene->fur.layers : 16;
     st->fins = scene->draw.fins;
     st->shadows = scene->fur.look.inter_shadow;
+    st->light_shadows = scene->shadows.enabled;
     st->hud = true;
 }
 
@@ -220,6 +222,10 @@ static void key(view_state *st, pelt_scene_instance *inst, int k, int mods)
         if (st->shadows && !pelt_fur_get_desc(pelt_scene_instance_fur(inst)).look.inter_shadow)
             st->requests |= VIEW_REQ_REBUILD;
         view_message(st, false, "inter-fur shadows %s", st->shadows ? "on" : "off");
+        break;
+    case GLFW_KEY_O:
+        st->light_shadows = !st->light_shadows;
+        view_message(st, false, "shadows from the light %s", st->light_shadows ? "on" : "off");
         break;
     case GLFW_KEY_BACKSPACE: st->requests |= VIEW_REQ_RESET; break;
     case GLFW_KEY_P: st->requests |= VIEW_REQ_SCREENSHOT; break;
