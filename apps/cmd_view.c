@@ -97,6 +97,8 @@ static pelt_scene build_scene(view_app *a)
     s.fur.layers = a->st.layers;
     snprintf(s.fur_preset, sizeof s.fur_preset, "%s", view_presets[a->st.preset]);
     if (a->st.shadows) s.fur.look.inter_shadow = true; /* drawn or not per frame */
+    if (!a->st.lod) s.fur.lod.mode = PELT_LOD_OFF;
+    else if (s.fur.lod.mode == PELT_LOD_OFF) s.fur.lod.mode = PELT_LOD_AUTO;
     if (a->mesh_file[0]) {
         s.mesh.shape = PELT_SHAPE_FILE;
         snprintf(s.mesh.file, sizeof s.mesh.file, "%s", a->mesh_file);
@@ -218,6 +220,7 @@ static void reset(view_app *a)
     a->mesh_file[0] = '\0';
     view_state keep = a->st;
     a->st.layers = a->o.scene.fur.layers ? a->o.scene.fur.layers : 16;
+    a->st.lod = a->o.scene.fur.lod.mode != PELT_LOD_OFF;
     a->st.preset = 0;
     for (int i = 0; view_presets[i]; i++)
         if (!strcmp(view_presets[i], a->o.scene.fur_preset)) a->st.preset = i;
@@ -324,7 +327,10 @@ static void draw_hud(view_app *a)
                      view_presets[st->preset][0] ? view_presets[st->preset] : "-",
                      st->fins ? "on" : "off", st->shadows ? "on" : "off", st->light_shadows ? "on" : "off");
     if (st->lod)
-        n += snprintf(text + n, sizeof text - (size_t)n, "\n\x04level of detail: not built yet\x01");
+        n += snprintf(text + n, sizeof text - (size_t)n, "\nlevel of detail: mesh level %u (%zu triangles), shell level %u",
+                      rs.mesh_level, rs.mesh_triangles, rs.shell_level);
+    else
+        n += snprintf(text + n, sizeof text - (size_t)n, "\nlevel of detail off");
     float scale = st->width >= 700 ? 1.5f : 1.0f;
     if (st->message[0] && st->message_seconds > 0.0f) {
         /* Wrapped to the window: about 6 pixels a character. */
@@ -451,6 +457,7 @@ int cmd_view(int argc, char **argv)
     }
     pelt_error perr = {0};
     a->st.layers = sc->fur.layers ? sc->fur.layers : 16;
+    a->st.lod = sc->fur.lod.mode != PELT_LOD_OFF;
     for (int i = 0; view_presets[i]; i++)
         if (!strcmp(view_presets[i], sc->fur_preset)) a->st.preset = i;
     pelt_scene s = build_scene(a);

@@ -143,7 +143,7 @@ typedef struct view_state {
     unsigned layers;
     bool fins, shadows;   /* the fin pass, Kenwright's inter-fur shadows */
     bool light_shadows;   /* the light's shadow maps (docs/shadows.md) */
-    bool lod;             /* not built yet: the HUD says so */
+    bool lod;             /* level of detail (fur.lod auto, or the scene's fixed levels) or off */
     bool help, hud;
     /* requests and messages */
     unsigned requests;

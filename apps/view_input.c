@@ -39,7 +39,7 @@ const char *view_help_text(void)
            "  C  curl preset      Up/Down  layers x2 / /2\n"
            "  F  fins on/off      S  inter-fur shadows on/off\n"
            "  O  shadows from the light on/off (on a ground when ground.enabled)\n"
-           "  L  level of detail (not built yet)\n"
+           "  L  level of detail on/off (docs/lod.md)\n"
            "  Backspace  reset    P  screenshot   Ctrl+S  save the groom\n"
            "  F5  reload the scene (also when its file changes)\n"
            "  Tab  HUD on/off     H  this help    Esc  quit";
@@ -95,6 +95,7 @@ void view_input_init(view_state *st, pelt_scene_instance *inst, const pelt_scene
     st->fins = scene->draw.fins;
     st->shadows = scene->fur.look.inter_shadow;
     st->light_shadows = scene->shadows.enabled;
+    st->lod = scene->fur.lod.mode != PELT_LOD_OFF;
     st->hud = true;
 }
 
@@ -146,13 +147,6 @@ static void stroke(view_state *st, pelt_scene_instance *inst, float dx, float dy
         b.amount = 0.004f * sqrtf(dx * dx + dy * dy) * (st->shift ? -1.0f : 1.0f);
         pelt_scene_instance_brush_at_pixel(inst, st->mx, st->my, &b, NULL);
     }
-}
-
-static void toggle_note(view_state *st, bool *flag, const char *what)
-{
-    *flag = !*flag;
-    if (*flag) view_message(st, false, "%s: not built yet (the renderer has no such pass)", what);
-    else view_message(st, false, "%s off", what);
 }
 
 static void key(view_state *st, pelt_scene_instance *inst, int k, int mods)
@@ -207,7 +201,12 @@ static void key(view_state *st, pelt_scene_instance *inst, int k, int mods)
         if (st->layers > 2) st->layers /= 2;
         st->requests |= VIEW_REQ_REBUILD;
         break;
-    case GLFW_KEY_L: toggle_note(st, &st->lod, "level of detail"); break;
+    case GLFW_KEY_L:
+        /* The levels are the fur's (fur.lod): made again, groom kept. */
+        st->lod = !st->lod;
+        st->requests |= VIEW_REQ_REBUILD;
+        view_message(st, false, "level of detail %s", st->lod ? "on" : "off");
+        break;
     case GLFW_KEY_F:
         st->fins = !st->fins;
         view_message(st, false, "fins %s", st->fins ? "on" : "off");

@@ -138,7 +138,7 @@ view --no-hud --script "$d/camera.txt" 2>/dev/null; check camera_runs $? ""
 check zoom_orbit_pan_move_the_view $? "a camera move left the picture as it was"
 
 # Keys: the towel dries a wet spot at once; screenshots go to -o; layers,
-# curl presets and level of detail (not built yet) say what they did.
+# curl presets and level of detail (on by default, L turns it off) say what they did.
 printf '0 key 1\n0 click %s %s\n0.2 key t\n0.3 screenshot %s\n0.3 key p\n0.4 key up\n0.5 key c\n0.6 key l\n0.7 exit\n' \
   $cx $cy "$d/towel.png" >"$d/keys.txt"
 err=$(view --no-hud -o "$d/key_shot_%d.png" --script "$d/keys.txt" 2>&1); check keys_run $? "$err"
@@ -146,7 +146,7 @@ res=$("$png_diff" "$d/dry.png" "$d/towel.png"); check towel_dries_all $? "$res"
 [ -s "$d/key_shot_0.png" ]; check screenshot_key_writes_the_output $? "no $d/key_shot_0.png"
 grep -q "32 layers" <<<"$err"; check layers_double $? "$err"
 grep -q "curl straight" <<<"$err"; check curl_preset_cycles $? "$err"
-grep -q "level of detail: not built yet" <<<"$err"; check lod_says_not_built $? "$err"
+grep -q "level of detail off" <<<"$err"; check lod_switches_off $? "$err"
 
 # F and S switch the fins and Kenwright's inter-fur shadows: the window
 # then equals render with --no-fins, and with --no-fins --inter-shadow.
@@ -162,6 +162,15 @@ view --no-hud --script "$d/passes.txt" 2>/dev/null; check passes_run $? ""
 check fins_and_shadows_change_the_picture $? "render's pictures with and without them are alike"
 res=$("$png_diff" "$d/render_no_fins.png" "$d/no_fins.png" --max-mean 0.3); check key_f_is_no_fins $? "$res"
 res=$("$png_diff" "$d/render_shadows.png" "$d/shadows.png" --max-mean 0.3); check key_s_is_inter_shadow $? "$res"
+
+# O switches the light's shadows on (off in the default scene): the window
+# then equals render with --shadows.
+printf '0.1 key o\n0.1 screenshot %s\n0.1 exit\n' "$d/light.png" >"$d/light.txt"
+view --no-hud --script "$d/light.txt" 2>/dev/null; check light_key_runs $? ""
+"$pelt" render -q --size $size --shadows -o "$d/render_light.png"
+! "$png_diff" "$d/render.png" "$d/render_light.png" --max-mean 0.3 >/dev/null
+check light_shadows_change_the_picture $? "render's pictures with and without them are alike"
+res=$("$png_diff" "$d/render_light.png" "$d/light.png" --max-mean 0.3); check key_o_is_shadows $? "$res"
 
 # The scene file changes on disk while the window is open: it reloads
 # (polled once a second) and the new background shows.
