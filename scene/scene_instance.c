@@ -21,6 +21,11 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Degrees to radians; the framed camera's distance beyond the tightest
+ * fit (pelt_camera_frame), so the outermost hair keeps off the edge. */
+#define PI_DEG (3.14159265358979f / 180.0f)
+#define FRAME_MARGIN 0.04f
+
 struct pelt_scene_instance {
     pelt_hooks hooks;
     pelt_scene scene;       /* a copy; owns its wind keys, never droplets */
@@ -274,27 +279,15 @@ static pelt_status apply_groom(pelt_scene_instance *inst, pelt_error *err)
     return PELT_OK;
 }
 
-/* A mesh file seen through the default camera is framed: the camera aims
- * at the middle of its bounds from a distance that fits it. */
-static void frame_camera(pelt_scene_instance *inst)
+/* How far the fur reaches from vertex i (mesh units): the strand's length
+ * (the fins' hair may be longer), sheared by the comb and the groom's lean,
+ * plus the curl's radius; grooming scales all of it. */
+static float fur_reach(const pelt_fur_desc *d, const pelt_groom_value *g)
 {
-    const pelt_scene *sc = &inst->scene;
-    inst->camera = sc->camera;
-    pelt_scene defaults;
-    pelt_scene_defaults(&defaults);
-    bool default_camera = !memcmp(&sc->camera, &defaults.camera, sizeof sc->camera);
-    pelt_scene_free(&defaults);
-    if (sc->mesh.shape != PELT_SHAPE_FILE || !default_camera) return;
-    float lo[3], hi[3];
-    pelt_mesh_bounds(inst->mesh, lo, hi);
-    float radius = 0.0f;
-    for (int k = 0; k < 3; k++) {
-        inst->camera.target[k] = 0.5f * (lo[k] + hi[k]);
-        radius += 0.25f * (hi[k] - lo[k]) * (hi[k] - lo[k]);
-    }
-    radius = sqrtf(radius);
-    inst->camera.distance =
-        0.8f * radius / sinf(inst->camera.fov_y * 0.5f * 3.14159265f / 180.0f);
+    float slant = tanf(clampf(d->comb.slant, 0.0f, 60.0f) * PI_DEG);
+    float lean = sqrtf(g->lean[0] * g->lean[0] + g->lean[1] * g->lean[1]);
+    float length = d->length * fmaxf(1.0f, d->fins.length);
+    return g->length * (length * (1.0f + slant + lean) + fabsf(d->look.curl_radius));
 }
 
 /* mesh.up: the rotation that takes the mesh's up axis to +Y. */
@@ -328,6 +321,46 @@ static void place_at(pelt_scene_instance *inst, float t)
             inst->view.model[4 * c + i] = placed[i] * inst->up_fix[4 * c] + placed[4 + i] * inst->up_fix[4 * c + 1] +
                                           placed[8 + i] * inst->up_fix[4 * c + 2] +
                                           placed[12 + i] * inst->up_fix[4 * c + 3];
+}
+
+/* A mesh file seen through the default camera is framed (pelt_camera_frame):
+ * the camera aims at the centre of the bounding sphere of the mesh and its
+ * fur as placed at time 0 (mesh.up, mesh.rotation, mesh.scale; posed when
+ * an animation plays), from a three-quarter view about +Y, at the distance
+ * that fits it in the picture. Any camera key keeps the scene's camera as
+ * it is. Out of memory keeps it too. */
+static void frame_camera(pelt_scene_instance *inst)
+{
+    const pelt_scene *sc = &inst->scene;
+    inst->camera = sc->camera;
+    pelt_scene defaults;
+    pelt_scene_defaults(&defaults);
+    bool default_camera = !memcmp(&sc->camera, &defaults.camera, sizeof sc->camera);
+    pelt_scene_free(&defaults);
+    if (sc->mesh.shape != PELT_SHAPE_FILE || !default_camera) return;
+    pelt_mesh_data md = pelt_mesh_get_data(inst->mesh);
+    size_t n = md.vertex_count;
+    float *pos = pelt__alloc_zero(&inst->hooks.allocator, n, 4 * sizeof(float));
+    if (!pos) return;
+    float *reach = pos + 3 * n;
+    float model[16];
+    place_at(inst, 0.0f);
+    memcpy(model, inst->view.model, sizeof model);
+    const float *at = md.positions;
+    if (inst->animated) {
+        float *p = inst->pose, *nrm = p + 3 * n, *tan = p + 6 * n;
+        if (pelt_mesh_pose(inst->mesh, inst->animation, 0.0f, p, nrm, tan, NULL) == PELT_OK) at = p;
+    }
+    float scale = sqrtf(model[0] * model[0] + model[1] * model[1] + model[2] * model[2]);
+    pelt_fur_desc fd = pelt_fur_get_desc(inst->fur);
+    for (size_t i = 0; i < n; i++) {
+        v3_store(pos + 3 * i, pelt__mat4_apply(model, v3_load(at + 3 * i), 1.0f));
+        pelt_groom_value g = pelt_fur_get_groom(inst->fur, i);
+        reach[i] = scale * fur_reach(&fd, &g);
+    }
+    float aspect = (float)sc->output.width / (float)sc->output.height;
+    pelt_camera_frame(&inst->camera, pos, reach, n, aspect, FRAME_MARGIN);
+    pelt__free(&inst->hooks.allocator, pos);
 }
 
 /* Places the mesh and steps the fur by dt under the forces of time t. */
@@ -485,13 +518,13 @@ static pelt_status instantiate(pelt_scene_instance *inst, const pelt_scene *sc,
     if (st == PELT_OK) st = apply_groom(inst, err);
     if (st != PELT_OK) return st;
 
+    up_rotation(sc, inst->mesh, inst->up_fix);
     frame_camera(inst);
     const pelt_scene_output *o = &sc->output;
     pelt_camera_to_view(&inst->camera, (float)o->width / (float)o->height, &inst->view);
     inst->view.light = sc->light;
     inst->view.width = o->width;
     inst->view.height = o->height;
-    up_rotation(sc, inst->mesh, inst->up_fix);
     place_at(inst, 0.0f);
     st = apply_strokes(inst, sc, err);
     if (st != PELT_OK) return st;

@@ -215,7 +215,7 @@ img_groom_bunny() {
     --set 'strokes=[{"tool":"color","pixel":[250,235],"radius":0.12,"color":[0.2,0.5,1],"strength":0.6}]'
   pelt render $B -o groom_bunny_l.png --set 'strokes=[{"tool":"comb","pixel":[250,235],"radius":0.12,"drag":[60,-20]}]'
   pelt render $B -o groom_bunny_paint.png --set 'strokes=[
-      {"tool":"density","pixel":[92,160],"radius":0.1,"amount":0},
+      {"tool":"density","pixel":[106,158],"radius":0.1,"amount":0},
       {"tool":"color","pixel":[235,70],"radius":0.2,"color":[0.95,0.95,0.92]},
       {"tool":"color","pixel":[270,200],"radius":0.25,"color":[0.06,0.05,0.04]}]'
   for F in h i k l paint; do collect groom_bunny_$F.png groom_bunny_$F.png; done

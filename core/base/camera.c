@@ -19,6 +19,125 @@ void pelt_camera_to_view(const pelt_camera *c, float aspect, pelt_view *v)
     pelt__mat4_identity(v->model);
 }
 
+/* ---- framing: pelt_camera_frame ---------------------------------------- */
+
+static float reach_of(const float *reach, size_t i) { return reach ? reach[i] : 0.0f; }
+
+/* The largest |p - c| + reach over the points, and the point reaching it. */
+static float sphere_radius(const float *pos, const float *reach, size_t count, pelt_vec3 c,
+                           size_t *far)
+{
+    float best = -1.0f;
+    for (size_t i = 0; i < count; i++) {
+        float d = v3_len(v3_sub(v3_load(pos + 3 * i), c)) + reach_of(reach, i);
+        if (d > best) best = d, *far = i;
+    }
+    return best;
+}
+
+/* A small bounding sphere of the grown points: the best of the bounding
+ * box's centre and Badoiu and Clarkson's iteration (step towards the
+ * farthest point by 1/(k+1)), which closes in on the smallest sphere. */
+static pelt_vec3 bounding_centre(const float *pos, const float *reach, size_t count)
+{
+    pelt_vec3 lo = v3_load(pos), hi = lo;
+    for (size_t i = 1; i < count; i++) {
+        pelt_vec3 p = v3_load(pos + 3 * i);
+        lo = v3(fminf(lo.x, p.x), fminf(lo.y, p.y), fminf(lo.z, p.z));
+        hi = v3(fmaxf(hi.x, p.x), fmaxf(hi.y, p.y), fmaxf(hi.z, p.z));
+    }
+    pelt_vec3 c = v3_scale(v3_add(lo, hi), 0.5f), best = c;
+    size_t far = 0;
+    float best_r = sphere_radius(pos, reach, count, c, &far);
+    for (int k = 1; k <= 64; k++) {
+        pelt_vec3 p = v3_load(pos + 3 * far);
+        c = v3_lerp(c, p, 1.0f / (float)(k + 1));
+        float r = sphere_radius(pos, reach, count, c, &far);
+        if (r < best_r) best_r = r, best = c;
+    }
+    return best;
+}
+
+/* Yaw (degrees, from +Z towards +X) of the long axis of the points'
+ * footprint on XZ, or NAN when the footprint is nearly round. */
+static float long_axis_yaw(const float *pos, size_t count, pelt_vec3 c)
+{
+    double xx = 0.0, xz = 0.0, zz = 0.0;
+    for (size_t i = 0; i < count; i++) {
+        double x = pos[3 * i] - c.x, z = pos[3 * i + 2] - c.z;
+        xx += x * x, xz += x * z, zz += z * z;
+    }
+    double tr = xx + zz, det = xx * zz - xz * xz;
+    double disc = sqrt(fmax(0.25 * tr * tr - det, 0.0));
+    double l1 = 0.5 * tr + disc, l2 = 0.5 * tr - disc;
+    /* Principal extents are the square roots of the variances. */
+    if (!(l1 > 0.0) || sqrt(fmax(l2, 0.0) / l1) > 0.85) return NAN;
+    double angle = 0.5 * atan2(2.0 * xz, xx - zz); /* of (x, z) from +X */
+    double ax = cos(angle), az = sin(angle);
+    return (float)(atan2(ax, az) * 180.0 / 3.14159265358979);
+}
+
+/* The three-quarter yaw (axis + 45 + k 90) nearest `yaw`. */
+static float three_quarter(float axis, float yaw)
+{
+    float best = yaw, best_d = INFINITY;
+    for (int k = 0; k < 4; k++) {
+        float y = axis + 45.0f + 90.0f * (float)k;
+        float d = fmodf(fabsf(y - yaw), 360.0f);
+        d = fminf(d, 360.0f - d);
+        if (d < best_d) best_d = d, best = y;
+    }
+    /* Kept within a turn of `yaw`'s own range. */
+    while (best - yaw > 180.0f) best -= 360.0f;
+    while (yaw - best > 180.0f) best += 360.0f;
+    return best;
+}
+
+bool pelt_camera_frame(pelt_camera *camera, const float *positions, const float *reach, size_t count,
+                       float aspect, float margin)
+{
+    if (!camera || !positions || count == 0 || !(aspect > 0.0f) || !isfinite(aspect) ||
+        !(margin >= 0.0f) || !isfinite(margin) || !(camera->fov_y > 0.0f && camera->fov_y < 180.0f) ||
+        !isfinite(camera->pitch) || !isfinite(camera->yaw))
+        return false;
+    for (size_t i = 0; i < count; i++) {
+        if (!isfinite(positions[3 * i]) || !isfinite(positions[3 * i + 1]) || !isfinite(positions[3 * i + 2]))
+            return false;
+        if (reach && !(reach[i] >= 0.0f && isfinite(reach[i]))) return false;
+    }
+    const float deg = 3.14159265358979f / 180.0f;
+    pelt_vec3 c = bounding_centre(positions, reach, count);
+    float axis = long_axis_yaw(positions, count, c);
+    float yaw = isnan(axis) ? camera->yaw : three_quarter(axis, camera->yaw);
+
+    /* The view basis of pelt_camera_to_view: the eye at c + dir * d looks
+     * along f = -dir with +Y up. */
+    float y = yaw * deg, p = camera->pitch * deg;
+    pelt_vec3 dir = v3(cosf(p) * sinf(y), sinf(p), cosf(p) * cosf(y));
+    pelt_vec3 f = v3_scale(dir, -1.0f);
+    pelt_vec3 right = v3_norm_or(v3_cross(f, v3(0.0f, 1.0f, 0.0f)), v3(1.0f, 0.0f, 0.0f));
+    pelt_vec3 up = v3_cross(right, f);
+    float ty = tanf(0.5f * camera->fov_y * deg), tx = aspect * ty;
+    float sy = sinf(atanf(ty)), sx = sinf(atanf(tx));
+    /* A sphere of radius r at lateral offset s and depth z = d + x.f is
+     * inside a half-angle a when z >= |s| / tan a + r / sin a; the near
+     * plane (0.02 d) must stay in front of it too. */
+    float d = 0.0f;
+    for (size_t i = 0; i < count; i++) {
+        pelt_vec3 x = v3_sub(v3_load(positions + 3 * i), c);
+        float r = reach_of(reach, i), depth = v3_dot(x, f);
+        float need_x = fabsf(v3_dot(x, right)) / tx + r / sx - depth;
+        float need_y = fabsf(v3_dot(x, up)) / ty + r / sy - depth;
+        float need_near = (r - depth) / 0.98f;
+        d = fmaxf(d, fmaxf(need_x, fmaxf(need_y, need_near)));
+    }
+    if (!(d > 0.0f) || !isfinite(d)) d = 1.0f; /* a single bare point */
+    camera->yaw = yaw;
+    camera->distance = d * (1.0f + margin);
+    v3_store(camera->target, c);
+    return true;
+}
+
 /* 4x4 inverse by cofactors; false when singular. */
 static bool invert(const float m[16], float out[16])
 {
