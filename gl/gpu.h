@@ -119,7 +119,7 @@ typedef struct pelt__fur_block {
     float specular[3], shininess;
     float fur_per_uv[2], shadow, curl_frequency;
     float curl_radius, clump_blend, clump_tightness, wet_darken;
-    float color_scale, slant, pad_[2];
+    float color_scale, slant, wet_gloss, wet_sharpness;
     float skin_color[3], tiling;
     float fin_length, inter_shadow, inter_shadow_step, shading_model;
 } pelt__fur_block;

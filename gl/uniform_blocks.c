@@ -37,6 +37,8 @@ OFFSET(pelt__fur_block, clump_tightness, 72);
 OFFSET(pelt__fur_block, wet_darken, 76);
 OFFSET(pelt__fur_block, color_scale, 80);
 OFFSET(pelt__fur_block, slant, 84);
+OFFSET(pelt__fur_block, wet_gloss, 88);
+OFFSET(pelt__fur_block, wet_sharpness, 92);
 OFFSET(pelt__fur_block, skin_color, 96);
 OFFSET(pelt__fur_block, tiling, 108);
 OFFSET(pelt__fur_block, fin_length, 112);
@@ -103,6 +105,8 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
     k.clump_blend = d.wet.clump_blend;
     k.clump_tightness = d.wet.clump_tightness;
     k.wet_darken = d.wet.darken;
+    k.wet_gloss = d.wet.gloss;
+    k.wet_sharpness = d.wet.gloss_sharpness;
     k.color_scale = d.look.color_scale;
     k.slant = tanf(d.comb.slant * 3.14159265f / 180.0f); /* Lengyel et al. §3 */
     memcpy(k.skin_color, d.look.skin_color, sizeof k.skin_color);

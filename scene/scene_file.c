@@ -52,6 +52,8 @@ void pelt_scene_defaults(pelt_scene *s)
     s->fur.wet.clump_blend = 0.5f;
     s->fur.wet.clump_tightness = 0.9f;
     s->fur.wet.darken = 0.35f;
+    s->fur.wet.gloss = 2.0f;
+    s->fur.wet.gloss_sharpness = 4.0f;
 
     s->texture.pattern = PELT_COLOR_PATTERN_NONE;
 
@@ -310,6 +312,8 @@ static const key_def scene_keys[] = {
     FLT("wetness.clump_blend", fur.wet.clump_blend, 0, 1, 0),
     FLT("wetness.clump_tightness", fur.wet.clump_tightness, 0, 1, 0),
     FLT("wetness.darken", fur.wet.darken, 0, 1, 0),
+    FLT("wetness.gloss", fur.wet.gloss, 1, 16, 0),
+    FLT("wetness.gloss_sharpness", fur.wet.gloss_sharpness, 1, 64, 0),
     PATH("wetness.mask_image", wetness.mask_image),
     FLT("wetness.mask_image_wetness", wetness.mask_image_wetness, -1, 1, 0),
 

@@ -48,6 +48,8 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->wet.clump_blend == 0.0f) d->wet.clump_blend = 0.5f;
     if (d->wet.clump_tightness == 0.0f) d->wet.clump_tightness = 0.9f;
     if (d->wet.darken == 0.0f) d->wet.darken = 0.35f;
+    if (d->wet.gloss == 0.0f) d->wet.gloss = 2.0f;
+    if (d->wet.gloss_sharpness == 0.0f) d->wet.gloss_sharpness = 4.0f;
     if (d->look.color_scale == 0.0f) d->look.color_scale = 1.0f;
     if (d->look.inter_shadow_offset == 0.0f) d->look.inter_shadow_offset = 4.0f;
     if (d->look.inter_shadow_darkness == 0.0f) d->look.inter_shadow_darkness = 0.8f;
@@ -93,6 +95,11 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         !(d->wet.darken >= 0.0f && d->wet.darken < 1.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "clump blend must be in [0,1], tightness in (0,1], wet darkening in [0,1)");
+    if (!(d->wet.gloss >= 1.0f && d->wet.gloss <= 16.0f) ||
+        !(d->wet.gloss_sharpness >= 1.0f && d->wet.gloss_sharpness <= 64.0f))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "wet gloss must be in [1, 16] and its sharpness in [1, 64], got %g and %g",
+                          (double)d->wet.gloss, (double)d->wet.gloss_sharpness);
     if (!(d->comb.slant >= 0.0f && d->comb.slant <= 60.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur slant must be 0..60 degrees, got %g",
                           (double)d->comb.slant);

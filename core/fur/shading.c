@@ -12,6 +12,13 @@ void pelt__kajiya_kay(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p, float *dif
     *specular = powf(fmaxf(0.0f, tl * te + sin_tl * sin_te), p);
 }
 
+void pelt__wet_shine(float rho, float p, float sharpness, float gloss, float *p_wet, float *gain)
+{
+    float r = fminf(fmaxf(rho, 0.0f), 1.0f);
+    *p_wet = p * (1.0f + (sharpness - 1.0f) * r);
+    *gain = 1.0f + (gloss - 1.0f) * r;
+}
+
 /* Silva et al. Eq. 6: darkens the lower part of the fur. */
 float pelt__shadow_factor(float k_shadow, float h) { return (k_shadow - 1.0f + h) / k_shadow; }
 

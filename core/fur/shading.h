@@ -15,6 +15,15 @@
 void pelt__kajiya_kay(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p, float *diffuse,
                       float *specular);
 
+/* Wet fur's highlight (Silva §4 points to Gupta and Magnenat-Thalmann 2007
+ * for wet hair; pelt's reading, docs/wetness.md): a film of water makes a
+ * hair a smoother, stronger mirror, so the Kajiya-Kay exponent p and the
+ * specular colour grow with the wetness rho in [0, 1] (clamped):
+ *   p' = p (1 + (sharpness - 1) rho),  gain = 1 + (gloss - 1) rho.
+ * gloss = sqrt(sharpness) keeps the light the lobe reflects about the same
+ * (the cone's width falls as 1 / sqrt(p)); pelt's defaults are 2 and 4. */
+void pelt__wet_shine(float rho, float p, float sharpness, float gloss, float *p_wet, float *gain);
+
 /* Silva et al. Eq. 6 shadow factor gamma = (K - 1 + h) / K, K >= 1. */
 float pelt__shadow_factor(float k_shadow, float h);
 

@@ -35,6 +35,8 @@ layout(std140) uniform pelt_fur_block {
     float u_wet_darken;
     float u_color_scale;     // colour texture repeats per uv unit
     float u_slant;           // tan of the comb angle (Lengyel et al. §3)
+    float u_wet_gloss;       // wet shine: specular gain of fully wet fur
+    float u_wet_sharpness;   // wet shine: exponent multiple of fully wet fur
     vec3 u_skin_color;       // bare skin where grooming thins the hair
     float u_tiling;          // fur tiles per world unit (the fins' texture scale)
     float u_fin_length;      // fin hair height, multiple of the strand length

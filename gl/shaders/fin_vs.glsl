@@ -11,6 +11,7 @@ uniform highp usampler2D u_fin_edges;  // PELT_UNIT_FIN_EDGES: ends, start and f
 uniform highp sampler2D u_fin_vertices; // PELT_UNIT_FIN_VERTICES: PELT_FIN_VERTEX_TEXELS each
 uniform int u_fin_count;               // fins in the table this frame
 uniform int u_fin_rows;                // quads up a fin this frame, 1..PELT_FIN_ROWS
+uniform sampler2D u_mask;              // PELT_UNIT_MASK: wet fins shine like wet shells
 
 out vec2 v_uv;
 out vec2 v_fin_uv;
@@ -55,6 +56,7 @@ void main()
     v_fade = uintBitsToFloat(e.w);
     v_uv = ex.xy;
     vec4 world = u_model * vec4(p, 1.0);
+    fur_wetness = textureLod(u_mask, ex.xy, 0.0).a;
     fur_light_terms(mat3(u_model) * t, mat3(u_model) * nd.xyz, world.xyz, h, v_light_mul, v_light_add);
     // Along the fin: the edge's world length at the shells' texture scale.
     vec3 root_a = fin_vertex(e.x, 0).xyz, root_b = fin_vertex(e.y, 0).xyz;

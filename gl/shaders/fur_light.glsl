@@ -5,6 +5,10 @@
 // uniform blocks, so it comes after blocks.glsl (and shadow_map.glsl).
 uniform sampler2D u_light_table; // PELT_UNIT_LIGHT_TABLE
 
+// The wetness under the hair being lit, for its shine (wet_shine): a
+// stage that reads the mask sets it before fur_light_terms; dry otherwise.
+float fur_wetness = 0.0;
+
 // As a factor and a term, colour = base * mul + add, so the shells and the
 // fins evaluate it per vertex (their lean fragment stage only fetches the
 // hair and multiplies; docs/lod.md says what that costs in the picture).
@@ -13,15 +17,16 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
     vec3 T = normalize(tangent);
     vec3 L = normalize(u_light_dir);
     vec3 E = normalize(world - u_eye);
+    vec2 shine = wet_shine(fur_wetness, u_shininess, u_wet_sharpness, u_wet_gloss);
     // A program may be built for one model (the passes' variants,
     // gl/shell_pass.c); else the fur's model is chosen at run time.
 #if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
     vec2 kk = lengyel_lookup(u_light_table, T, L, normalize(L - E));
 #elif defined(PELT_SHADING_KK) && !defined(PELT_SHADING_TABLE)
-    vec2 kk = kajiya_kay(T, L, E, u_shininess);
+    vec2 kk = kajiya_kay(T, L, E, shine.x);
 #else
     vec2 kk = u_shading_model > 0.5 ? lengyel_lookup(u_light_table, T, L, normalize(L - E))
-                                    : kajiya_kay(T, L, E, u_shininess);
+                                    : kajiya_kay(T, L, E, shine.x);
 #endif
     // Hair on the side of the body facing away from the light is in the
     // body's shadow: Kajiya-Kay alone would light it as brightly.
@@ -34,5 +39,5 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
     if (u_shadow_map.x > 0.5) gamma = mix(1.0, gamma, u_shadow_slab.w);
 #endif
     mul = gamma * (u_ambient + kk.x * facing * u_light_color);
-    add = gamma * u_specular * kk.y * facing * u_light_color;
+    add = gamma * u_specular * (shine.y * kk.y) * facing * u_light_color;
 }

@@ -9,6 +9,15 @@ vec2 kajiya_kay(vec3 T, vec3 L, vec3 E, float p)
     return vec2(sin_tl, pow(max(0.0, tl * te + sin_tl * sin_te), p));
 }
 
+// Wet fur's highlight: (exponent, specular gain) at wetness rho, the
+// exponent p sharpened and the gain raised towards their fully wet
+// multiples. Mirrors pelt__wet_shine (docs/wetness.md, Wet shine).
+vec2 wet_shine(float rho, float p, float sharpness, float gloss)
+{
+    float r = clamp(rho, 0.0, 1.0);
+    return vec2(p * (1.0 + (sharpness - 1.0) * r), 1.0 + (gloss - 1.0) * r);
+}
+
 float shadow_factor(float k_shadow, float h)
 {
     return (k_shadow - 1.0 + h) / k_shadow;

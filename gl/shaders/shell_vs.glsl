@@ -53,6 +53,7 @@ void main()
     float rho = 0.0; // wetness straightens the curl; a dry frame reads no mask
 #ifdef PELT_WET
     rho = textureLod(u_mask, a_uv, 0.0).a;
+    fur_wetness = rho; // wet fur shines (fur_light_terms)
 #endif
     float s = a_groom.z;
     float L = u_length * s;

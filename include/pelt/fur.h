@@ -73,6 +73,15 @@ typedef struct pelt_fur_wet {
     float clump_blend;       /* w of Silva Eq. 5 in [0,1], default 0.5 */
     float clump_tightness;   /* s in (0,1]: 1 = tips meet at the clump centre, default 0.9 */
     float darken;            /* brightness fully wet fur loses, [0,1), default 0.35 */
+    /* Wet fur shines (Silva §4 points to Gupta and Magnenat-Thalmann 2007:
+       water on a hair makes its surface a smooth film): the Kajiya-Kay
+       highlight grows sharper and stronger with the wetness rho, the
+       exponent by 1 + (gloss_sharpness - 1) rho and the specular colour by
+       1 + (gloss - 1) rho (docs/wetness.md, Wet shine). */
+    float gloss;             /* specular strength of fully wet fur, a multiple
+                                of look.specular in [1, 16], default 2 */
+    float gloss_sharpness;   /* Kajiya-Kay exponent of fully wet fur, a multiple
+                                of look.shininess in [1, 64], default 4 */
 } pelt_fur_wet;
 
 /* Combing (Lengyel et al. §3). */

@@ -74,6 +74,42 @@ static void kajiya_kay_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+static const char wet_shine_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, t, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
+    "  float rho = 1.4 * h - 0.2;\n" /* beyond [0, 1] at both ends: clamped */
+    "  vec2 ws = wet_shine(rho, 4.0 + 60.0 * s, 1.0 + 7.0 * fract(3.0 * s), 1.0 + 3.0 * h);\n"
+    "  vec3 E = normalize(tip - 0.5 * n);\n"
+    "  vec2 kk = kajiya_kay(t, n, E, ws.x);\n"
+    "  o = vec4(ws, ws.y * kk.y, 0.0);\n"
+    "}\n";
+
+/* Wet shine: the exponent and gain of wet fur, and the highlight they make. */
+static void wet_shine_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_shading, inputs_glsl, wet_shine_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, t, tip;
+            float h, s, p, gain, diff, spec;
+            cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
+            float f3 = 3.0f * s - floorf(3.0f * s);
+            pelt__wet_shine(1.4f * h - 0.2f, 4.0f + 60.0f * s, 1.0f + 7.0f * f3, 1.0f + 3.0f * h, &p, &gain);
+            pelt_vec3 e = v3_norm_or(v3_sub(tip, v3_scale(n, 0.5f)), v3(0, 0, 1));
+            pelt__kajiya_kay(t, n, e, p, &diff, &spec);
+            const float *g = out + 4 * (y * W + x);
+            /* The exponent reaches 512: compare it relative to its size. */
+            double err = fmax(fabs(g[0] - p) / fmax(1.0, p), fmax(fabs(g[1] - gain), fabs(g[2] - gain * spec)));
+            if (err > worst) worst = err;
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-4);
+}
+
 /* u_which comes in as a #define placed before this text. */
 static const char shape_main[] =
     "out vec4 o;\n"
@@ -410,6 +446,7 @@ int main(void)
     gl = gl_test_open(W, H, true);
     if (!gl) return check_skip("no OpenGL context");
     RUN(kajiya_kay_glsl_matches_c);
+    RUN(wet_shine_glsl_matches_c);
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);

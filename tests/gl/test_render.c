@@ -287,6 +287,39 @@ static void clumps_grow_thinner_toward_the_tips(void)
     CHECK(dry_r[3] > 0.9 * dry_r[0]);
 }
 
+static void wet_all_over(pelt_fur *fur, void *user)
+{
+    float rho = *(const float *)user;
+    pelt_droplet d = {{0.5f, 0.5f}, 0.75f, rho};
+    if (rho > 0.0f) pelt_fur_add_droplet(fur, &d, NULL);
+}
+
+/* Wet fur looks wet (docs/wetness.md, Wet shine): the square of combed fur
+ * evenly wet at rising wetness, the clumps held open (tightness ~0) so that
+ * only the shading changes. The highlight's peak (the brightest 0.2% of the
+ * fur) rises with the wetness while the fur as a whole (its median) darkens. */
+static void wet_fur_highlight_peak_rises_with_wetness(void)
+{
+    pelt_fur_desc d = {.wet.clump_tightness = 1e-6f, .look.specular = {0.3f, 0.3f, 0.3f},
+                       .comb.slant = 60.0f};
+    /* Seen from -X, the camera's rays meet the strands (combed 60 degrees
+     * along +X) near the cone of mirror directions of the light. */
+    const pelt_camera cam = {-90.0f, 25.0f, 2.6f, 45.0f, {0, 0, 0}};
+    const float wetness[] = {0.0f, 0.5f, 1.0f};
+    double peak[3], median[3];
+    for (int k = 0; k < 3; k++) {
+        float rho = wetness[k];
+        uint8_t *px = gl_test_render(gl, square, &d, &cam, NULL, wet_all_over, &rho);
+        CHECK(px != NULL);
+        peak[k] = px ? luma_percentile(px, 0, W, 0.998) : 0.0;
+        median[k] = px ? luma_percentile(px, 0, W, 0.5) : 0.0;
+        printf("  wetness %.1f: highlight peak %.1f, median %.1f\n", (double)rho, peak[k], median[k]);
+        free(px);
+    }
+    CHECK(peak[1] > peak[0] + 3.0 && peak[2] > peak[1] + 3.0);
+    CHECK(median[2] < median[0]);
+}
+
 /* Counts what the renderer's allocator hooks see. */
 typedef struct counting_allocator {
     size_t allocs, frees;
@@ -384,6 +417,8 @@ static void uniform_blocks_match_their_c_structs(void)
         {"u_wet_darken", offsetof(pelt__fur_block, wet_darken)},
         {"u_color_scale", offsetof(pelt__fur_block, color_scale)},
         {"u_slant", offsetof(pelt__fur_block, slant)},
+        {"u_wet_gloss", offsetof(pelt__fur_block, wet_gloss)},
+        {"u_wet_sharpness", offsetof(pelt__fur_block, wet_sharpness)},
     };
     for (size_t i = 0; i < sizeof members / sizeof members[0]; i++) {
         GLuint index = GL_INVALID_INDEX;
@@ -667,6 +702,7 @@ int main(void)
         RUN(wet_clumps_show_skin_and_leave_dry_fur_alone);
         RUN(dried_fur_matches_dry_render);
         RUN(clumps_grow_thinner_toward_the_tips);
+        RUN(wet_fur_highlight_peak_rises_with_wetness);
         RUN(renderer_allocates_through_its_hooks);
         RUN(program_errors_reach_the_logger);
         RUN(uniform_blocks_match_their_c_structs);

@@ -77,6 +77,8 @@ static void defaults_camera_light_forces(void)
     CHECK_NEAR(s.fur.wet.clump_blend, 0.5, 0);
     CHECK_NEAR(s.fur.wet.clump_tightness, 0.9, 1e-7);
     CHECK_NEAR(s.fur.wet.darken, 0.35, 1e-7);
+    CHECK_NEAR(s.fur.wet.gloss, 2, 0);
+    CHECK_NEAR(s.fur.wet.gloss_sharpness, 4, 0);
 }
 
 static void empty_object_gives_defaults(void)
@@ -195,6 +197,8 @@ static void full_scene_sets_every_field(void)
     CHECK_NEAR(s.fur.wet.clump_blend, 0.25, 0);
     CHECK_NEAR(s.fur.wet.clump_tightness, 0.75, 0);
     CHECK_NEAR(s.fur.wet.darken, 0.5, 0);
+    CHECK_NEAR(s.fur.wet.gloss, 3, 0);
+    CHECK_NEAR(s.fur.wet.gloss_sharpness, 6, 0);
     CHECK(strcmp(s.wetness.mask_image, SCENES "word.png") == 0);
     CHECK_NEAR(s.wetness.mask_image_wetness, 0.8, 1e-7);
 
@@ -267,6 +271,8 @@ static void each_bad_value_names_file_and_key(void)
         {"{\"strokes\": {\"tool\": \"comb\"}}", PELT_ERR_FORMAT, {"strokes", "an array"}},
         {"{\"fur\": {\"layers\": 8, \"layers\": 9}}", PELT_ERR_FORMAT, {"duplicate", "fur.layers"}},
         {"{\"camera\": {\"distance\": 1e999}}", PELT_ERR_FORMAT, {"camera.distance"}},
+        {"{\"wetness\": {\"gloss\": 0.5}}", PELT_ERR_FORMAT, {"wetness.gloss", "0.5", "[1, 16]"}},
+        {"{\"wetness\": {\"gloss_sharpness\": 65}}", PELT_ERR_FORMAT, {"wetness.gloss_sharpness", "65"}},
         {"{\"camera\": {\"distance\": 0}}", PELT_ERR_FORMAT, {"camera.distance", "positive"}},
         {"{\"camera\": {\"pitch\": 90}}", PELT_ERR_FORMAT, {"camera.pitch"}},
         {"{\"camera\": {\"target\": [0, 1]}}", PELT_ERR_FORMAT, {"camera.target", "an array of 2"}},
