@@ -23,6 +23,7 @@ _Static_assert(sizeof(pelt_vertex_colors_use) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_brush_tool) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_shading_model) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_lod_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_strand_curl_shape) == sizeof(int), "enum size");
 
 #define PI_F 3.14159265358979f
 
@@ -162,6 +163,7 @@ static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
 static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
 static const char *const lod_names[] = {"auto", "off", "fixed", NULL};
+static const char *const strand_curl_names[] = {"helix", "wave", NULL};
 /* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
  * The scene format names them as the issue does; the preset table spells two
  * of them differently, so both spellings are accepted (same index). */
@@ -206,6 +208,9 @@ static const key_def scene_keys[] = {
     FLT("fur.density", fur.look.density, 0, BIG, 0),
     FLT("fur.strand_radius", fur.look.strand_radius, 0, BIG, 0),
     FLT("fur.taper", fur.look.taper, 0, 1, 0),
+    FLT("fur.strand_curl", fur.look.strand_curl, 0, 64, 0),
+    FLT("fur.strand_curl_turns", fur.look.strand_curl_turns, 0, 32, F_LO_OPEN | F_ZERO_OK),
+    ENUM("fur.strand_curl_shape", fur.look.strand_curl_shape, strand_curl_names),
     FLT("fur.tiling", fur.look.tiling, 0, BIG, 0),
     VEC("fur.color", fur.look.color, 3, 0, 1, 0),
     VEC("fur.tip_color", fur.look.tip_color, 3, 0, 1, 0),

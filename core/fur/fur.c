@@ -26,6 +26,7 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->look.density == 0.0f) d->look.density = 3000.0f;
     if (d->look.strand_radius == 0.0f) d->look.strand_radius = 1.6f;
     if (d->look.taper == 0.0f) d->look.taper = 0.8f;
+    if (d->look.strand_curl_turns == 0.0f) d->look.strand_curl_turns = 2.0f;
     /* Tiles per world unit: five fur tiles across the bounding diagonal. */
     if (d->look.tiling == 0.0f) d->look.tiling = 5.0f / diag;
     if (d->look.color[0] == 0.0f && d->look.color[1] == 0.0f && d->look.color[2] == 0.0f) {
@@ -82,6 +83,13 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
                           (double)d->look.strand_radius);
     if (!(d->look.taper >= 0.0f && d->look.taper <= 1.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur taper must be in [0, 1], got %g", (double)d->look.taper);
+    if (!(d->look.strand_curl >= 0.0f && d->look.strand_curl <= 64.0f) ||
+        !(d->look.strand_curl_turns > 0.0f && d->look.strand_curl_turns <= 32.0f) ||
+        (unsigned)d->look.strand_curl_shape > PELT_STRAND_CURL_WAVE)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
+                          "fur strand curl must be 0..64 texels with 0..32 turns and a known shape, got "
+                          "%g texels, %g turns",
+                          (double)d->look.strand_curl, (double)d->look.strand_curl_turns);
     if (!(d->look.shadow >= 1.0f) || !isfinite(d->look.shadow))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur shadow K must be >= 1, got %g", (double)d->look.shadow);
     if (!(d->dynamics.mass > 0.0f) || !(d->dynamics.spring_k > 0.0f) || !(d->dynamics.damping >= 0.0f) || !isfinite(d->dynamics.mass) ||
@@ -197,7 +205,9 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     f->desc = d;
     f->mesh = mesh;
     f->texture_slices = d.layers + 1;
-    pelt__furtex_desc td = {d.look.texture_size, d.layers, d.seed, d.look.density, d.look.strand_radius, d.look.taper};
+    pelt__furtex_desc td = {d.look.texture_size, d.layers, d.seed, d.look.density, d.look.strand_radius,
+                            d.look.taper, d.look.strand_curl, d.look.strand_curl_turns,
+                            d.look.strand_curl_shape == PELT_STRAND_CURL_WAVE};
     size_t bytes = pelt__furtex_bytes(&td);
     f->texture = bytes ? pelt__alloc(a, bytes) : NULL;
     f->fur_uvs = pelt__alloc_zero(a, mesh->vertex_count, 2 * sizeof(float));

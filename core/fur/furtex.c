@@ -17,28 +17,23 @@ size_t pelt__furtex_bytes(const pelt__furtex_desc *d)
     return s * s * slices * 4;
 }
 
-typedef struct strand {
-    float x, y;        /* root, texels */
-    float lean_x, lean_y; /* texels of drift over the full height */
-    float length;      /* fraction of the full height, 0..1 */
-    float shade;       /* 0..1 */
-    float id;          /* 0..1, uniform: grooming's density keeps strands with id < density */
-} strand;
+typedef pelt__furtex_strand strand;
 
 enum { SUBSAMPLES = 4 };
 
 /* The strands of a tile, the same sequence for every slice and for the
- * fin texture: two seeded streams, one for the strand and one for its id
- * (drawn apart so the strands stay what they were before ids existed). */
+ * fin texture: seeded streams for the strand, its id and its curl phase
+ * (drawn apart so the strands stay what they were before ids and phases
+ * existed). */
 typedef struct strand_stream {
-    pelt__rng shape, id;
+    pelt__rng shape, id, phase;
     float size, radius;
 } strand_stream;
 
 static strand_stream strands_begin(const pelt__furtex_desc *d)
 {
     strand_stream s = {pelt__rng_seed(d->seed, 0x73747261ULL), pelt__rng_seed(d->seed, 0x69647321ULL),
-                       (float)d->size, d->strand_radius};
+                       pelt__rng_seed(d->seed, 0x63726c21ULL), (float)d->size, d->strand_radius};
     return s;
 }
 
@@ -60,7 +55,43 @@ static strand strands_next(strand_stream *s)
     st.length = pelt__rng_range(&s->shape, 0.6f, 1.0f);
     st.shade = pelt__rng_range(&s->shape, 0.65f, 1.0f);
     st.id = pelt__rng_float(&s->id);
+    st.phase = pelt__rng_float(&s->phase) * 6.2831853f;
     return st;
+}
+
+size_t pelt__furtex_strands(const pelt__furtex_desc *d, pelt__furtex_strand *out, size_t cap)
+{
+    size_t count = strand_count(d);
+    strand_stream stream = strands_begin(d);
+    for (size_t i = 0; i < count && i < cap && out; i++) out[i] = strands_next(&stream);
+    return count;
+}
+
+/* Lengyel §2.2, curly and wavy hair: the strand's own curl at height z. */
+void pelt__furtex_strand_center(const pelt__furtex_desc *d, const pelt__furtex_strand *s, float z,
+                                float out[2])
+{
+    out[0] = s->x + s->lean_x * z;
+    out[1] = s->y + s->lean_y * z;
+    if (d->curl_radius > 0.0f) {
+        float a = 6.2831853f * d->curl_turns * z + s->phase;
+        if (d->curl_wave) {
+            out[0] += d->curl_radius * sinf(a);
+        } else {
+            out[0] += d->curl_radius * cosf(a);
+            out[1] += d->curl_radius * sinf(a);
+        }
+    }
+}
+
+/* Sub-samples of the tall filter per slice: 4, or enough that a curled
+ * strand moves at most about a texel between two of them. */
+static int subsamples(const pelt__furtex_desc *d)
+{
+    if (!(d->curl_radius > 0.0f)) return SUBSAMPLES;
+    float arc = 6.2831853f * d->curl_radius * fabsf(d->curl_turns) / (float)d->layers;
+    float n = ceilf(arc / 0.75f);
+    return n < SUBSAMPLES ? SUBSAMPLES : n > 64.0f ? 64 : (int)n;
 }
 
 /* Adds a soft-edged disc of radius r at (cx, cy) to a w x h image, wrapping
@@ -114,6 +145,7 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
 
     pelt__rng rng = pelt__rng_seed(d->seed, 0x6675722dULL);
     size_t count = strand_count(d);
+    int samples = subsamples(d);
 
     /* Skin: opaque, dark roots with a little noise. */
     for (size_t i = 0; i < texels; i++) {
@@ -133,18 +165,19 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
         for (size_t s = 0; s < count; s++) {
             strand st = strands_next(&stream);
             if (z_lo >= st.length) continue;
-            for (int k = 0; k < SUBSAMPLES; k++) {
-                float z = z_lo + (z_hi - z_lo) * ((float)k + 0.5f) / SUBSAMPLES;
+            for (int k = 0; k < samples; k++) {
+                float z = z_lo + (z_hi - z_lo) * ((float)k + 0.5f) / (float)samples;
                 if (z > st.length) break;
                 float along = z / st.length;
                 float r = d->strand_radius * (1.0f - d->taper * along);
                 if (r < 0.15f) r = 0.15f;
-                float cx = st.x + st.lean_x * z, cy = st.y + st.lean_y * z;
+                float c[2];
+                pelt__furtex_strand_center(d, &st, z, c);
                 /* Thin discs still cover a fraction of a texel. */
                 float weight = r < 0.5f ? r * 2.0f : 1.0f;
                 /* Sub-samples of the tall filter each add a share. */
-                splat(slice, d->size, d->size, true, cx, cy, r, weight * (2.0f / SUBSAMPLES), st.shade,
-                      along, st.id);
+                splat(slice, d->size, d->size, true, c[0], c[1], r, weight * (2.0f / (float)samples),
+                      st.shade, along, st.id);
             }
         }
         premultiply(slice, texels);
@@ -179,13 +212,18 @@ void pelt__fintex_generate(const pelt__fintex_desc *f, uint8_t *rgba)
         strand st = strands_next(&stream);
         float ph = pelt__rng_float(&phase) * 6.2831853f;
         if (st.y >= slab) continue;
-        int steps = (int)ceilf(st.length * (float)h * 2.0f);
+        /* Half a texel up the strand, or finer where its curl sweeps it
+         * sideways faster than it climbs. */
+        float sweep = 6.2831853f * (d->curl_radius * fabsf(d->curl_turns) + f->curl * fabsf(f->curl_turns));
+        int steps = (int)ceilf(st.length * fmaxf((float)h, sweep) * 2.0f);
         for (int k = 0; k <= steps; k++) {
             float z = st.length * (float)k / (float)(steps > 0 ? steps : 1);
             float along = z / st.length;
             float r = d->strand_radius * (1.0f - d->taper * along);
             if (r < 0.15f) r = 0.15f;
-            float cx = st.x + st.lean_x * z + f->curl * sinf(f->curl_turns * 6.2831853f * z + ph);
+            float c[2];
+            pelt__furtex_strand_center(d, &st, z, c);
+            float cx = c[0] + f->curl * sinf(f->curl_turns * 6.2831853f * z + ph);
             float weight = r < 0.5f ? r * 2.0f : 1.0f;
             splat(rgba, w, h, false, cx, z * (float)h, r, weight * 0.5f, st.shade, along, st.id);
         }

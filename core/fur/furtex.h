@@ -14,7 +14,38 @@ typedef struct pelt__furtex_desc {
     float density;        /* strands per tile */
     float strand_radius;  /* texels at the root */
     float taper;          /* 0..1: radius at the tip = (1 - taper) * root radius */
+    /* Curly and wavy hair (Lengyel et al. §2.2): every strand winds with
+       its own phase psi, so neighbouring strands are out of step. At height
+       z (0..1 of the full height) its centre moves sideways by
+       curl_radius * (cos(2 pi curl_turns z + psi), sin(...)) (a helix), or
+       by curl_radius * sin(2 pi curl_turns z + psi) along u (a wave). */
+    float curl_radius;    /* texels, 0 = straight */
+    float curl_turns;     /* turns over the full height */
+    bool curl_wave;       /* a planar wave along u instead of a helix */
 } pelt__furtex_desc;
+
+/* One simulated strand of the tile, as the volume and the fin texture draw
+ * it: its root (texels), its lean (texels of drift over the full height),
+ * length (fraction of the full height), shade, id (grooming's density) and
+ * curl phase psi (radians). */
+typedef struct pelt__furtex_strand {
+    float x, y;
+    float lean_x, lean_y;
+    float length;
+    float shade;
+    float id;
+    float phase;
+} pelt__furtex_strand;
+
+/* The strands of the tile in the order they are drawn: up to `cap` into
+ * `out` (may be NULL); returns how many the tile holds. Deterministic for
+ * the seed; the same strands for every curl. */
+size_t pelt__furtex_strands(const pelt__furtex_desc *d, pelt__furtex_strand *out, size_t cap);
+
+/* The centre (texels, unwrapped) of strand s at height z in [0, 1] of the
+ * full height: root, lean and curl. */
+void pelt__furtex_strand_center(const pelt__furtex_desc *d, const pelt__furtex_strand *s, float z,
+                                float out[2]);
 
 /* Number of bytes of the volume: size * size * (layers + 1) * 4, or 0 when
  * that overflows. */

@@ -27,6 +27,13 @@ typedef enum pelt_shading_model {
     PELT_SHADING_LENGYEL_TABLE
 } pelt_shading_model;
 
+/* The shape of the strands simulated into the fur texture (Lengyel et
+ * al. 2001 §2.2), when they curl (look.strand_curl > 0). */
+typedef enum pelt_strand_curl_shape {
+    PELT_STRAND_CURL_HELIX = 0, /* a corkscrew round the strand's axis: curly hair */
+    PELT_STRAND_CURL_WAVE       /* a sine along the texture's u: wavy hair */
+} pelt_strand_curl_shape;
+
 /* How the fur looks: the synthesized hair volume (Lengyel et al. 2001
  * §2.2), its tiling, the colours and Kajiya-Kay shading (Silva et al. Eq. 6)
  * and curl (Silva Eq. 4). A zero field means its default. */
@@ -35,6 +42,13 @@ typedef struct pelt_fur_look {
     float density;           /* strands per texture tile, default 3000 */
     float strand_radius;     /* strand radius at the root in texels, default 1.6 */
     float taper;             /* 0 = cylinder, 1 = tip ends in a point, default 0.8 */
+    /* Curly and wavy hair in the texture itself (Lengyel et al. §2.2): every
+       simulated strand winds with its own phase, out of step with its
+       neighbours. Water does not undo it (Silva's curl below is the one
+       that wetness takes out). */
+    float strand_curl;       /* curl radius in texels, 0..64, default 0 (straight) */
+    float strand_curl_turns; /* turns over the full height, (0, 32], default 2 */
+    pelt_strand_curl_shape strand_curl_shape; /* default PELT_STRAND_CURL_HELIX */
     float tiling;            /* fur-texture tiles per world unit, default
                                 5 / the mesh's bounding-box diagonal */
     float color[3];          /* base hair colour (linear RGB), default (0.55, 0.34, 0.18) */

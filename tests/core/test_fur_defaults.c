@@ -62,6 +62,8 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK_REL(d.look.density, 3000.0f);
     CHECK_REL(d.look.strand_radius, 1.6f);
     CHECK_REL(d.look.taper, 0.8f);
+    CHECK(d.look.strand_curl == 0.0f && d.look.strand_curl_shape == PELT_STRAND_CURL_HELIX);
+    CHECK_REL(d.look.strand_curl_turns, 2.0f);
     CHECK_REL(d.look.tiling, 5.0f / diag);
     check_rgb(d.look.color, 0.55f, 0.34f, 0.18f);
     check_rgb(d.look.tip_color, 1.0f, 0.82f, 0.58f);

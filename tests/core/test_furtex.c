@@ -3,6 +3,7 @@
 
 #include "core/fur/furtex.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -116,6 +117,119 @@ static void furtex_rejects_sizes_that_overflow(void)
     CHECK(pelt__furtex_bytes(&huge) == 0);
 }
 
+/* Where strand st's footprint lies in slice `slice` (1..N): the centroid
+ * of the texels within 6 texels of `near` whose id is the strand's,
+ * weighted by coverage, unwrapped around `near`. False when none is found. */
+static bool footprint(const uint8_t *v, const pelt__furtex_desc *d, unsigned slice,
+                      const pelt__furtex_strand *st, const float near[2], float out[2])
+{
+    int s = (int)d->size;
+    const uint8_t *p = v + (size_t)slice * (size_t)s * (size_t)s * 4;
+    double sx = 0.0, sy = 0.0, sw = 0.0;
+    int cx = (int)floorf(near[0]), cy = (int)floorf(near[1]);
+    for (int y = cy - 6; y <= cy + 6; y++)
+        for (int x = cx - 6; x <= cx + 6; x++) {
+            const uint8_t *t = p + 4 * ((size_t)(((y % s) + s) % s) * (size_t)s + (size_t)(((x % s) + s) % s));
+            if (t[3] < 40) continue;
+            float id = (float)t[2] / (float)t[3];
+            if (fabsf(id - st->id) > 2.5f / 255.0f) continue;
+            sx += t[3] * (x + 0.5), sy += t[3] * (y + 0.5), sw += t[3];
+        }
+    if (sw <= 0.0) return false;
+    out[0] = (float)(sx / sw), out[1] = (float)(sy / sw);
+    return true;
+}
+
+/* Lengyel §2.2, curly hair: in a sparse texture each strand's footprint
+ * follows pelt__furtex_strand_center from slice to slice, circling its
+ * axis with the curl radius; straight strands only drift with their lean;
+ * and neighbouring strands are out of step (their curl offsets point
+ * every way at one height). */
+static void furtex_curly_strands_circle_out_of_step(void)
+{
+    pelt__furtex_desc curly = {128, 16, 3, 160.0f, 1.0f, 0.0f, 5.0f, 1.0f, false};
+    pelt__furtex_desc straight = curly;
+    straight.curl_radius = 0.0f;
+    uint8_t *vc = make(&curly), *vs = make(&straight);
+    pelt__furtex_strand st[64];
+    size_t n = pelt__furtex_strands(&curly, st, 64);
+    CHECK(vc && vs && n > 20 && n <= 64);
+    if (!vc || !vs || n > 64) {
+        free(vc), free(vs);
+        return;
+    }
+    double worst = 0.0, sweep_curly = 0.0, sweep_straight = 0.0, cx = 0.0, cy = 0.0;
+    size_t followed = 0, offsets = 0;
+    for (size_t i = 0; i < n; i++) {
+        float lo_c[2] = {0, 0}, lo_s[2] = {0, 0};
+        double span_c = 0.0, span_s = 0.0;
+        bool first = true;
+        for (unsigned slice = 2; slice <= 16; slice += 2) {
+            float z = ((float)slice - 0.5f) / 16.0f;
+            if (z > st[i].length - 0.05f) break;
+            float want[2], flat[2], got_c[2], got_s[2];
+            pelt__furtex_strand_center(&curly, &st[i], z, want);
+            pelt__furtex_strand_center(&straight, &st[i], z, flat);
+            if (!footprint(vc, &curly, slice, &st[i], want, got_c) ||
+                !footprint(vs, &straight, slice, &st[i], flat, got_s))
+                continue; /* hidden by a neighbour here */
+            worst = fmax(worst, hypot(got_c[0] - want[0], got_c[1] - want[1]));
+            if (first) memcpy(lo_c, got_c, sizeof lo_c), memcpy(lo_s, got_s, sizeof lo_s), first = false;
+            span_c = fmax(span_c, hypot(got_c[0] - lo_c[0], got_c[1] - lo_c[1]));
+            span_s = fmax(span_s, hypot(got_s[0] - lo_s[0], got_s[1] - lo_s[1]));
+            followed++;
+            if (slice == 8) { /* the curl's direction at one height */
+                double ox = got_c[0] - got_s[0], oy = got_c[1] - got_s[1], l = hypot(ox, oy);
+                if (l > 0.0) cx += ox / l, cy += oy / l, offsets++;
+            }
+        }
+        sweep_curly = fmax(sweep_curly, span_c);
+        sweep_straight = fmax(sweep_straight, span_s);
+    }
+    double resultant = offsets ? hypot(cx, cy) / (double)offsets : 1.0;
+    printf("  %zu strands, %zu footprints followed: worst distance from the curve %.2f texels; "
+           "widest sweep across the slices %.1f texels curly, %.1f straight; mean direction of "
+           "the curl offsets at one height %.2f (1 = all in step)\n",
+           n, followed, worst, sweep_curly, sweep_straight, resultant);
+    CHECK(followed > 4 * n);
+    CHECK(worst < 1.0);
+    CHECK(sweep_curly > 1.6 * 5.0);     /* nearly the circle's diameter */
+    CHECK(sweep_straight < 0.5 * 5.0);  /* the lean alone */
+    CHECK(offsets > n / 2 && resultant < 0.4);
+    free(vc), free(vs);
+}
+
+/* A wave moves strands along u only; the curl changes nothing else: the
+ * skin and a straight texture's strands stay as they were. */
+static void furtex_wave_moves_strands_along_u_only(void)
+{
+    pelt__furtex_desc wavy = {128, 16, 3, 160.0f, 1.0f, 0.0f, 5.0f, 1.0f, true};
+    pelt__furtex_strand st[64];
+    size_t n = pelt__furtex_strands(&wavy, st, 64);
+    CHECK(n > 0 && n <= 64);
+    double dv = 0.0, du = 0.0;
+    for (size_t i = 0; i < n && i < 64; i++)
+        for (int k = 0; k <= 10; k++) {
+            float z = (float)k / 10.0f, a[2];
+            pelt__furtex_strand_center(&wavy, &st[i], z, a);
+            du = fmax(du, fabs(a[0] - (st[i].x + st[i].lean_x * z)));
+            dv = fmax(dv, fabs(a[1] - (st[i].y + st[i].lean_y * z)));
+        }
+    CHECK_NEAR(du, 5.0, 0.05);
+    CHECK(dv == 0.0);
+    uint8_t *a = make(&wavy), *b = make(&base);
+    pelt__furtex_desc base_curled = base;
+    base_curled.curl_radius = 3.0f;
+    uint8_t *c = make(&base_curled);
+    CHECK(a && b && c);
+    if (b && c) {
+        size_t skin = (size_t)base.size * base.size * 4;
+        CHECK(memcmp(b, c, skin) == 0);                              /* the same skin */
+        CHECK(memcmp(b + skin, c + skin, pelt__furtex_bytes(&base) - skin) != 0); /* other hair */
+    }
+    free(a), free(b), free(c);
+}
+
 int main(void)
 {
     RUN(furtex_innermost_slice_is_opaque_skin);
@@ -124,5 +238,7 @@ int main(void)
     RUN(furtex_coverage_falls_towards_the_tips);
     RUN(furtex_density_thickness_and_taper_do_what_they_say);
     RUN(furtex_rejects_sizes_that_overflow);
+    RUN(furtex_curly_strands_circle_out_of_step);
+    RUN(furtex_wave_moves_strands_along_u_only);
     return check_summary();
 }

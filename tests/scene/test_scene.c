@@ -121,6 +121,9 @@ static void full_scene_sets_every_field(void)
     CHECK_NEAR(s.fur.look.density, 2000, 0);
     CHECK_NEAR(s.fur.look.strand_radius, 1.2, 1e-6);
     CHECK_NEAR(s.fur.look.taper, 0.5, 0);
+    CHECK_NEAR(s.fur.look.strand_curl, 3.5, 0);
+    CHECK_NEAR(s.fur.look.strand_curl_turns, 4, 0);
+    CHECK(s.fur.look.strand_curl_shape == PELT_STRAND_CURL_WAVE);
     CHECK_NEAR(s.fur.look.tiling, 4, 0);
     CHECK_NEAR(s.fur.look.color[0], 0.3, 1e-7);
     CHECK_NEAR(s.fur.look.tip_color[2], 0.4, 1e-7);
@@ -252,6 +255,10 @@ static void each_bad_value_names_file_and_key(void)
         {"{\"fur\": {\"seed\": -1}}", PELT_ERR_FORMAT, {"fur.seed"}},
         {"{\"fur\": {\"seed\": 4294967296}}", PELT_ERR_FORMAT, {"fur.seed"}},
         {"{\"fur\": {\"taper\": 1.5}}", PELT_ERR_FORMAT, {"fur.taper", "1.5"}},
+        {"{\"fur\": {\"strand_curl\": 65}}", PELT_ERR_FORMAT, {"fur.strand_curl", "65"}},
+        {"{\"fur\": {\"strand_curl_turns\": -1}}", PELT_ERR_FORMAT, {"fur.strand_curl_turns", "-1"}},
+        {"{\"fur\": {\"strand_curl_shape\": \"spiral\"}}", PELT_ERR_FORMAT,
+         {"fur.strand_curl_shape", "\"spiral\"", "helix"}},
         {"{\"fur\": {\"shadow\": 0.5}}", PELT_ERR_FORMAT, {"fur.shadow", "0.5"}},
         {"{\"fur\": {\"color\": [1, 0]}}", PELT_ERR_FORMAT, {"fur.color", "3 numbers"}},
         {"{\"fur\": {\"color\": [1, 0, 2]}}", PELT_ERR_FORMAT, {"fur.color[2]", "2"}},
