@@ -122,6 +122,7 @@ typedef struct pelt__fur_block {
     float color_scale, slant, wet_gloss, wet_sharpness;
     float skin_color[3], tiling;
     float fin_length, inter_shadow, inter_shadow_step, shading_model;
+    float ringlets[2], pad2_[2];
 } pelt__fur_block;
 
 /* The frame block's shadow fields (shaders/blocks.glsl). */

@@ -25,13 +25,19 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
     /* The shell levels of detail (Lengyel §2.4) follow the volume's slices. */
     unsigned lod_slices;
     const uint8_t *lod = pelt__fur_gpu_volume_lod(fur, &lod_slices);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)size, (GLsizei)size, (GLsizei)(slices + lod_slices),
+    /* Ringlets: one such set per amplitude level of the curl. */
+    unsigned levels = pelt__fur_gpu_ringlet_levels(fur), stride = slices + lod_slices;
+    size_t slice_bytes = (size_t)size * size * 4;
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)size, (GLsizei)size, (GLsizei)(levels * stride),
                  0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
-    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, 0, (GLsizei)size, (GLsizei)size, (GLsizei)slices, GL_RGBA,
-                    GL_UNSIGNED_BYTE, volume);
-    if (lod_slices)
-        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)slices, (GLsizei)size, (GLsizei)size,
-                        (GLsizei)lod_slices, GL_RGBA, GL_UNSIGNED_BYTE, lod);
+    for (unsigned k = 0; k < levels; k++) {
+        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)(k * stride), (GLsizei)size, (GLsizei)size,
+                        (GLsizei)slices, GL_RGBA, GL_UNSIGNED_BYTE, volume + (size_t)k * slices * slice_bytes);
+        if (lod_slices)
+            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)(k * stride + slices), (GLsizei)size,
+                            (GLsizei)size, (GLsizei)lod_slices, GL_RGBA, GL_UNSIGNED_BYTE,
+                            lod + (size_t)k * lod_slices * slice_bytes);
+    }
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);

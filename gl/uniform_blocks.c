@@ -42,7 +42,8 @@ OFFSET(pelt__fur_block, wet_sharpness, 92);
 OFFSET(pelt__fur_block, skin_color, 96);
 OFFSET(pelt__fur_block, tiling, 108);
 OFFSET(pelt__fur_block, fin_length, 112);
-_Static_assert(sizeof(pelt__fur_block) == 128, "std140 size of pelt_fur_block");
+OFFSET(pelt__fur_block, ringlets, 128);
+_Static_assert(sizeof(pelt__fur_block) == 144, "std140 size of pelt_fur_block");
 #undef OFFSET
 
 static GLuint make_buffer(size_t bytes)
@@ -101,7 +102,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
     pelt__fur_gpu_per_uv(fur, k.fur_per_uv);
     k.shadow = d.look.shadow;
     k.curl_frequency = d.look.curl_frequency;
-    k.curl_radius = d.look.curl_radius;
+    k.curl_radius = pelt__fur_gpu_vertex_curl_radius(fur); /* 0 with ringlets: the texture curls */
     k.clump_blend = d.wet.clump_blend;
     k.clump_tightness = d.wet.clump_tightness;
     k.wet_darken = d.wet.darken;
@@ -115,6 +116,11 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
     k.inter_shadow = d.look.inter_shadow ? d.look.inter_shadow_darkness : 0.0f;
     k.inter_shadow_step = d.look.inter_shadow_offset / (float)d.look.texture_size;
     k.shading_model = (float)d.look.shading;
+    unsigned size, slices, lod_slices;
+    pelt__fur_gpu_volume(fur, &size, &slices);
+    pelt__fur_gpu_volume_lod(fur, &lod_slices);
+    k.ringlets[0] = (float)pelt__fur_gpu_ringlet_levels(fur);
+    k.ringlets[1] = (float)(slices + lod_slices);
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

@@ -24,6 +24,7 @@ _Static_assert(sizeof(pelt_brush_tool) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_shading_model) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_lod_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_strand_curl_shape) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_curl_phase) == sizeof(int), "enum size");
 
 #define PI_F 3.14159265358979f
 
@@ -164,6 +165,7 @@ static const char *const tool_names[] = {"comb", "length", "color", "density", N
 static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
 static const char *const lod_names[] = {"auto", "off", "fixed", NULL};
 static const char *const strand_curl_names[] = {"helix", "wave", NULL};
+static const char *const curl_phase_names[] = {"ringlets", "coherent", NULL};
 /* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
  * The scene format names them as the issue does; the preset table spells two
  * of them differently, so both spellings are accepted (same index). */
@@ -219,6 +221,7 @@ static const key_def scene_keys[] = {
     FLT("fur.shadow", fur.look.shadow, 1, BIG, F_ZERO_OK),
     FLT("fur.curl_frequency", fur.look.curl_frequency, 0, BIG, 0),
     FLT("fur.curl_radius", fur.look.curl_radius, 0, BIG, 0),
+    ENUM("fur.curl_phase", fur.look.curl_phase, curl_phase_names),
     FLT("fur.slant", fur.comb.slant, 0, 60, 0),
     VEC("fur.skin_color", fur.look.skin_color, 3, 0, 1, 0),
     {"fur.inter_shadow", K_BOOL, OFF(fur.look.inter_shadow), 0, 0, 0, 0, 0, NULL},

@@ -189,9 +189,14 @@ img_curl() {
       --set fur.strand_radius=2.5 --set fur.length=0.3 --set fur.layers=48 --set fur.taper=0.3 \
       --gravity 0,0,0 --yaw 0 --pitch 12 --distance 2.2 --light 0.3,0.8,1 \
       --set light.color=[2.2,2.1,2] --set light.ambient=0.4 --size 480x360 -o curl_$NAME.png
+    pelt render --mesh square --set fur.preset=$NAME --set fur.curl_phase=coherent --set fur.density=500 \
+      --set fur.strand_radius=2.5 --set fur.length=0.3 --set fur.layers=48 --set fur.taper=0.3 \
+      --gravity 0,0,0 --yaw 0 --pitch 12 --distance 2.2 --light 0.3,0.8,1 \
+      --set light.color=[2.2,2.1,2] --set light.ambient=0.4 --size 480x360 -o curl_coherent_$NAME.png
   done
   for NAME in straight wavy few-large-curls many-small-curls; do
     collect curl_$NAME.png curl_$NAME.png
+    collect curl_coherent_$NAME.png curl_coherent_$NAME.png
   done
 }
 

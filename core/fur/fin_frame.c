@@ -77,7 +77,7 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
         pelt_vec3 comb = m.comb ? v3_load(m.comb + 3 * i) : v3_load(ti);
         float rho = wet ? rho_at(f->wetness, m.uvs[2 * i], m.uvs[2 * i + 1]) : 0.0f;
         float s = g->length * fd->fins.length;
-        float L = fd->length * s, K = fd->look.curl_radius * s;
+        float L = fd->length * s, K = pelt__fur_vertex_curl_radius(fd) * s;
         pelt_vec3 tip = v3_scale(v3_load(f->tips + 3 * i), s);
         pelt_vec3 shear = pelt__fur_groom_shear(comb, slant, u, v, g->lean);
         for (unsigned r = 0; r <= rows; r++) {

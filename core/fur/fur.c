@@ -63,6 +63,16 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->lod.mesh_edge_pixels == 0.0f) d->lod.mesh_edge_pixels = 8.0f;
 }
 
+bool pelt__fur_has_ringlets(const pelt_fur_desc *d)
+{
+    return d->look.curl_phase == PELT_CURL_RINGLETS && d->look.curl_radius > 0.0f;
+}
+
+float pelt__fur_vertex_curl_radius(const pelt_fur_desc *d)
+{
+    return pelt__fur_has_ringlets(d) ? 0.0f : d->look.curl_radius;
+}
+
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
 {
     if (d->layers < 1 || d->layers > 256)
@@ -115,6 +125,9 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour scale must be positive");
     if (!isfinite(d->look.curl_frequency) || !isfinite(d->look.curl_radius) || d->look.curl_radius < 0.0f)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
+    if ((unsigned)d->look.curl_phase > PELT_CURL_COHERENT)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl phase must be ringlets or coherent, got %d",
+                          (int)d->look.curl_phase);
     if (!(d->look.inter_shadow_offset > 0.0f && d->look.inter_shadow_offset <= 64.0f) ||
         !(d->look.inter_shadow_darkness > 0.0f && d->look.inter_shadow_darkness <= 1.0f) ||
         !(d->look.diffuse_power > 0.0f && d->look.diffuse_power <= 256.0f) ||
@@ -207,9 +220,18 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     f->texture_slices = d.layers + 1;
     pelt__furtex_desc td = {d.look.texture_size, d.layers, d.seed, d.look.density, d.look.strand_radius,
                             d.look.taper, d.look.strand_curl, d.look.strand_curl_turns,
-                            d.look.strand_curl_shape == PELT_STRAND_CURL_WAVE};
+                            d.look.strand_curl_shape == PELT_STRAND_CURL_WAVE, 0.0f, 0.0f};
+    /* Ringlets (docs/method.md): Silva's curl drawn strand by strand into
+     * the texture, K_alpha in texels (the texture tiles `tiling` times per
+     * world unit), at full, half and no amplitude for the shells to blend
+     * by wetness. */
+    f->ringlet_levels = pelt__fur_has_ringlets(&d) ? PELT__RINGLET_LEVELS : 1;
+    if (f->ringlet_levels > 1) {
+        td.ringlet_radius = d.look.curl_radius * d.look.tiling * (float)d.look.texture_size;
+        td.ringlet_omega = d.look.curl_frequency;
+    }
     size_t bytes = pelt__furtex_bytes(&td);
-    f->texture = bytes ? pelt__alloc(a, bytes) : NULL;
+    f->texture = bytes ? pelt__alloc_zero(a, f->ringlet_levels, bytes) : NULL;
     f->fur_uvs = pelt__alloc_zero(a, mesh->vertex_count, 2 * sizeof(float));
     pelt__strand_params sp = {d.length, d.dynamics.spring_k, d.dynamics.mass, d.dynamics.damping, d.seed};
     st = pelt__strands_create(mesh, &sp, &f->desc.hooks.allocator, &f->strands, err);
@@ -241,16 +263,27 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
         pelt_fur_destroy(f);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
     }
-    pelt__furtex_generate(&td, f->texture);
-    /* Lengyel §2.4: the coarser shell levels, composited from the volume. */
+    /* Level k of the ringlets holds the curl at 1 - k / (levels - 1) of
+     * its amplitude; without ringlets the one level is the volume. */
+    float full = td.ringlet_radius;
+    for (unsigned k = 0; k < f->ringlet_levels; k++) {
+        pelt__furtex_desc level = td;
+        if (f->ringlet_levels > 1) level.ringlet_radius = full * (1.0f - (float)k / (float)(f->ringlet_levels - 1));
+        pelt__furtex_generate(&level, f->texture + (size_t)k * bytes);
+    }
+    /* Lengyel §2.4: the coarser shell levels, composited from the volume,
+     * for each ringlet level. */
     if (d.lod.mode != PELT_LOD_OFF && pelt__lod_shell_extra_slices(d.layers) > 0) {
         f->lod_slice_count = (unsigned)pelt__lod_shell_extra_slices(d.layers);
-        f->lod_slices = pelt__alloc(a, (size_t)f->lod_slice_count * d.look.texture_size * d.look.texture_size * 4);
+        size_t lod_bytes = (size_t)f->lod_slice_count * d.look.texture_size * d.look.texture_size * 4;
+        f->lod_slices = pelt__alloc_zero(a, f->ringlet_levels, lod_bytes);
         if (!f->lod_slices) {
             pelt_fur_destroy(f);
             return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the shell levels of detail");
         }
-        pelt__lod_shell_composite(f->texture, d.look.texture_size, d.layers, f->lod_slices);
+        for (unsigned k = 0; k < f->ringlet_levels; k++)
+            pelt__lod_shell_composite(f->texture + (size_t)k * bytes, d.look.texture_size, d.layers,
+                                      f->lod_slices + (size_t)k * lod_bytes);
     }
     pelt__fintex_generate(&fd, f->fin_texture);
     f->fin_width = d.look.texture_size;

@@ -39,6 +39,10 @@ const uint8_t *pelt__fur_gpu_volume_lod(const pelt_fur *f, unsigned *slices)
     return f->lod_slices;
 }
 
+unsigned pelt__fur_gpu_ringlet_levels(const pelt_fur *f) { return f->ringlet_levels; }
+
+float pelt__fur_gpu_vertex_curl_radius(const pelt_fur *f) { return pelt__fur_vertex_curl_radius(&f->desc); }
+
 const float *pelt__fur_gpu_uvs(const pelt_fur *f) { return f->fur_uvs; }
 
 void pelt__fur_gpu_per_uv(const pelt_fur *f, float out[2])

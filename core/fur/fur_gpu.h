@@ -43,6 +43,17 @@ const uint8_t *pelt__fur_gpu_volume(const pelt_fur *fur, unsigned *size, unsigne
  * of detail off. */
 const uint8_t *pelt__fur_gpu_volume_lod(const pelt_fur *fur, unsigned *slices);
 
+/* Ringlets (docs/method.md): how many amplitude levels of the curl the
+ * texture holds, 1 without ringlets. With more, the volume and the lod
+ * slices above hold that many sets one after the other (level 0 the full
+ * curl, the last none), and the GPU array takes them level by level: level
+ * k's slice s (volume or lod) at k * (slices + lod slices) + s. */
+unsigned pelt__fur_gpu_ringlet_levels(const pelt_fur *fur);
+
+/* Silva's curl radius K_alpha for the shells' vertex stage: 0 when the
+ * texture holds the curl as ringlets. */
+float pelt__fur_gpu_vertex_curl_radius(const pelt_fur *fur);
+
 /* Fur-texture coordinates in tiles, 2 floats per mesh vertex; and the fur
  * tiles per uv unit along u and v (scales a uv-space clump displacement
  * into fur coordinates). */

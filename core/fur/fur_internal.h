@@ -16,8 +16,12 @@
 struct pelt_fur {
     pelt_fur_desc desc;      /* every default filled in */
     const pelt_mesh *mesh;
-    uint8_t *texture;        /* fur volume, see core/furtex.h */
+    uint8_t *texture;        /* fur volume, see core/furtex.h: ringlet_levels
+                                volumes of texture_slices slices, one after
+                                the other */
     unsigned texture_slices; /* layers + 1 */
+    unsigned ringlet_levels; /* PELT__RINGLET_LEVELS with ringlets, else 1;
+                                lod_slices holds as many sets */
     float *fur_uvs;          /* 2 per vertex: fur-texture coordinates in tiles */
     const float *tips;       /* 3 per vertex: tip offset p - p_root, mesh-local,
                                 owned by strands */
@@ -48,5 +52,17 @@ struct pelt_fur {
 
 /* Fills the zero fields of `d` with defaults for `mesh`. */
 void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh);
+
+/* Ringlets (docs/method.md): Silva's curl is drawn into the fur texture
+ * strand by strand at this many amplitudes (full, half, none) instead of
+ * moving the shells. */
+#define PELT__RINGLET_LEVELS 3u
+
+/* Whether d's curl is ringlets: a curl radius and PELT_CURL_RINGLETS. */
+bool pelt__fur_has_ringlets(const pelt_fur_desc *d);
+
+/* The curl radius the shells' vertex stage (and the fins' strands) move
+ * by: look.curl_radius, or 0 when the texture holds the curl as ringlets. */
+float pelt__fur_vertex_curl_radius(const pelt_fur_desc *d);
 
 #endif

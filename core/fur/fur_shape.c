@@ -17,8 +17,15 @@ pelt_vec3 pelt__fur_bend(pelt_vec3 n, float L0, pelt_vec3 tip, float h)
 /* Silva Eq. 4, phi(h) = (1 - rho) K h (cos(omega h) u + sin(omega h) v). */
 pelt_vec3 pelt__fur_curl(pelt_vec3 u, pelt_vec3 v, float omega, float K, float rho, float h)
 {
+    return pelt__fur_curl_phase(u, v, omega, K, rho, h, 0.0f);
+}
+
+/* Ringlets: Eq. 4 with the strand's own phase psi. */
+pelt_vec3 pelt__fur_curl_phase(pelt_vec3 u, pelt_vec3 v, float omega, float K, float rho, float h,
+                               float psi)
+{
     float alpha = (1.0f - rho) * K * h;
-    float c = cosf(omega * h), s = sinf(omega * h);
+    float c = cosf(omega * h + psi), s = sinf(omega * h + psi);
     return v3_add(v3_scale(u, alpha * c), v3_scale(v, alpha * s));
 }
 

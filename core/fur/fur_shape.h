@@ -24,6 +24,13 @@ pelt_vec3 pelt__fur_bend(pelt_vec3 n, float L0, pelt_vec3 tip, float h);
  * wetness in [0, 1] (wet fur loses its curl). */
 pelt_vec3 pelt__fur_curl(pelt_vec3 u, pelt_vec3 v, float omega, float K, float rho, float h);
 
+/* phi(h) of one strand with its own phase psi (ringlets, beyond Silva Eq.
+ * 4; docs/method.md, Ringlets): alpha(h) (cos(omega h + psi) u +
+ * sin(omega h + psi) v). pelt__fur_curl is psi = 0. The fur texture draws
+ * it strand by strand (core/fur/furtex.c) in the texture's axes. */
+pelt_vec3 pelt__fur_curl_phase(pelt_vec3 u, pelt_vec3 v, float omega, float K, float rho, float h,
+                               float psi);
+
 /* Shading tangent T(h): the unit derivative d/dh (beta + phi) of the whole
  * displaced curve, so highlights follow bends and curls (Silva Fig. 6);
  * n when that derivative vanishes. */

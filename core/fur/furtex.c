@@ -6,6 +6,7 @@
 #include "core/fur/furtex.h"
 
 #include "core/base/rng.h"
+#include "core/fur/fur_shape.h"
 
 #include <math.h>
 #include <string.h>
@@ -82,14 +83,23 @@ void pelt__furtex_strand_center(const pelt__furtex_desc *d, const pelt__furtex_s
             out[1] += d->curl_radius * sinf(a);
         }
     }
+    if (d->ringlet_radius > 0.0f) {
+        pelt_vec3 r = pelt__fur_curl_phase(v3(1.0f, 0.0f, 0.0f), v3(0.0f, 1.0f, 0.0f), d->ringlet_omega,
+                                           d->ringlet_radius, 0.0f, z, s->phase);
+        out[0] += r.x;
+        out[1] += r.y;
+    }
 }
 
 /* Sub-samples of the tall filter per slice: 4, or enough that a curled
  * strand moves at most about a texel between two of them. */
 static int subsamples(const pelt__furtex_desc *d)
 {
-    if (!(d->curl_radius > 0.0f)) return SUBSAMPLES;
-    float arc = 6.2831853f * d->curl_radius * fabsf(d->curl_turns) / (float)d->layers;
+    if (!(d->curl_radius > 0.0f) && !(d->ringlet_radius > 0.0f)) return SUBSAMPLES;
+    /* How fast the centre moves sideways per unit height, at most. */
+    float speed = 6.2831853f * fmaxf(d->curl_radius, 0.0f) * fabsf(d->curl_turns) +
+                  fmaxf(d->ringlet_radius, 0.0f) * (1.0f + fabsf(d->ringlet_omega));
+    float arc = speed / (float)d->layers;
     float n = ceilf(arc / 0.75f);
     return n < SUBSAMPLES ? SUBSAMPLES : n > 64.0f ? 64 : (int)n;
 }
@@ -214,7 +224,8 @@ void pelt__fintex_generate(const pelt__fintex_desc *f, uint8_t *rgba)
         if (st.y >= slab) continue;
         /* Half a texel up the strand, or finer where its curl sweeps it
          * sideways faster than it climbs. */
-        float sweep = 6.2831853f * (d->curl_radius * fabsf(d->curl_turns) + f->curl * fabsf(f->curl_turns));
+        float sweep = 6.2831853f * (d->curl_radius * fabsf(d->curl_turns) + f->curl * fabsf(f->curl_turns)) +
+                      d->ringlet_radius * (1.0f + fabsf(d->ringlet_omega));
         int steps = (int)ceilf(st.length * fmaxf((float)h, sweep) * 2.0f);
         for (int k = 0; k <= steps; k++) {
             float z = st.length * (float)k / (float)(steps > 0 ? steps : 1);

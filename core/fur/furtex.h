@@ -22,6 +22,12 @@ typedef struct pelt__furtex_desc {
     float curl_radius;    /* texels, 0 = straight */
     float curl_turns;     /* turns over the full height */
     bool curl_wave;       /* a planar wave along u instead of a helix */
+    /* Ringlets (Silva Eq. 4 strand by strand, docs/method.md): the strand
+       at height z also moves by pelt__fur_curl_phase in the texture's axes,
+       ringlet_radius z (cos(ringlet_omega z + psi), sin(...)) texels, with
+       the same phase psi. */
+    float ringlet_radius; /* texels at the full height, 0 = none */
+    float ringlet_omega;  /* radians over the full height */
 } pelt__furtex_desc;
 
 /* One simulated strand of the tile, as the volume and the fin texture draw
@@ -43,7 +49,7 @@ typedef struct pelt__furtex_strand {
 size_t pelt__furtex_strands(const pelt__furtex_desc *d, pelt__furtex_strand *out, size_t cap);
 
 /* The centre (texels, unwrapped) of strand s at height z in [0, 1] of the
- * full height: root, lean and curl. */
+ * full height: root, lean, curl and ringlet. */
 void pelt__furtex_strand_center(const pelt__furtex_desc *d, const pelt__furtex_strand *s, float z,
                                 float out[2]);
 

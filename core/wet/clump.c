@@ -5,6 +5,17 @@
 
 #include <math.h>
 
+void pelt__ringlet_levels(float rho, float levels, float stride, float out[3])
+{
+    out[0] = out[1] = out[2] = 0.0f;
+    if (!(levels > 1.0f)) return;
+    float t = fminf(fmaxf(rho, 0.0f), 1.0f) * (levels - 1.0f);
+    float k = fminf(floorf(t), levels - 2.0f);
+    out[0] = k * stride;
+    out[1] = (k + 1.0f) * stride;
+    out[2] = t - k;
+}
+
 float pelt__clump_profile(float h, float w, float n_layers)
 {
     if (!(n_layers > 1.0f)) return 1.0f;

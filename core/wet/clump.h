@@ -14,6 +14,15 @@ typedef enum pelt__clump_result {
     PELT__CLUMP_DISCARD = 2    /* another clump's texel, or q is dry */
 } pelt__clump_result;
 
+/* Ringlets (docs/method.md): the fur volume holds Silva's curl drawn
+ * strand by strand at `levels` amplitudes, from full (level 0) down to none
+ * (the last), each level `stride` slices after the one before. At wetness
+ * rho the curl is 1 - rho of full (Eq. 4's alpha), t = clamp(rho, 0, 1)
+ * (levels - 1): out = (slice offset of level floor(t), of the next level,
+ * the weight of the next), the last pair at t = levels - 1. levels <= 1
+ * gives (0, 0, 0). The shells' fragment stage blends the two levels. */
+void pelt__ringlet_levels(float rho, float levels, float stride, float out[3]);
+
 /* s * rho * f is clamped to [0, this] so the inverse mapping stays finite. */
 #define PELT__CLUMP_MAX_PULL 0.95f
 

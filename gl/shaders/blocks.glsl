@@ -43,4 +43,6 @@ layout(std140) uniform pelt_fur_block {
     float u_inter_shadow;    // Kenwright's shadow opacity, 0 = off
     float u_inter_shadow_step; // its step towards the light, fur tiles
     float u_shading_model;   // 0 Kajiya-Kay, 1 Lengyel's table
+    vec2 u_ringlets;         // ringlets: x: the curl's amplitude levels in the
+                             // fur volume (1 = none), y: slices between levels
 };

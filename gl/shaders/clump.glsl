@@ -8,6 +8,18 @@ const int CLUMP_DISPLACED = 1; // draw the hair rooted at q (d = q - p)
 const int CLUMP_DISCARD = 2;   // another clump's texel, or q is dry
 const float CLUMP_MAX_PULL = 0.95;
 
+// Ringlets (docs/method.md): the fur volume holds Silva's curl drawn strand
+// by strand at `levels` amplitudes, full to none, `stride` slices apart. At
+// wetness rho: (slice offset of the level below, of the one above, the
+// weight of the one above). Mirrors pelt__ringlet_levels.
+vec3 ringlet_levels(float rho, float levels, float stride)
+{
+    if (!(levels > 1.0)) return vec3(0.0);
+    float t = clamp(rho, 0.0, 1.0) * (levels - 1.0);
+    float k = min(floor(t), levels - 2.0);
+    return vec3(k * stride, (k + 1.0) * stride, t - k);
+}
+
 // Eq. 5 profile at h = (1+n)/N: (1-w) h' + w (1 + ln h / ln N) with
 // h' = (h - 1/N) / (1 - 1/N), clamped: 0 at the first layer, 1 at the tip.
 float clump_profile(float h, float w, float N)

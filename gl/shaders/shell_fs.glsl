@@ -26,6 +26,17 @@ layout(location = 1) out vec4 o_slices1;
 out vec4 o_color;
 #endif
 
+// The hair of this shell at fur_uv, `offset` slices along the volume (a
+// ringlet level), blended into the next shell level where it fades.
+vec4 shell_hair(vec2 fur_uv, float offset)
+{
+    vec4 hair = texture(u_fur, vec3(fur_uv, v_slices.x + offset));
+#ifdef PELT_LOD_BLEND
+    hair = mix(hair, texture(u_fur, vec3(fur_uv, v_slices.y + offset)), v_slices.z);
+#endif
+    return hair;
+}
+
 // The shell pass builds this shader in variants (gl/shell_pass.c): each
 // PELT_* feature below is compiled in only when the frame needs it, so the
 // dry, unshadowed common case pays for none of it. The generic program
@@ -45,10 +56,16 @@ void main()
     if (clump == CLUMP_DISPLACED) d = q - v_uv;
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
-    vec4 hair = texture(u_fur, vec3(fur_uv, v_slices.x));
-#ifdef PELT_LOD_BLEND
-    hair = mix(hair, texture(u_fur, vec3(fur_uv, v_slices.y)), v_slices.z);
+    vec4 hair;
+#ifdef PELT_WET
+    if (u_ringlets.x > 1.0 && rho > 0.0) {
+        // Ringlets: water takes the curl out, between the levels the
+        // volume holds it at (docs/method.md).
+        vec3 level = ringlet_levels(rho, u_ringlets.x, u_ringlets.y);
+        hair = mix(shell_hair(fur_uv, level.x), shell_hair(fur_uv, level.y), level.z);
+    } else
 #endif
+    hair = shell_hair(fur_uv, 0.0);
     hair *= v_alpha;
     hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
     if (!groom_keeps(hair.b, v_density)) discard;

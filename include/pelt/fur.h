@@ -34,6 +34,19 @@ typedef enum pelt_strand_curl_shape {
     PELT_STRAND_CURL_WAVE       /* a sine along the texture's u: wavy hair */
 } pelt_strand_curl_shape;
 
+/* Whose phase Silva's curl phi(h) (Eq. 4) turns with. */
+typedef enum pelt_curl_phase {
+    /* Ringlets (beyond Silva, docs/method.md): every strand of the fur
+       texture turns with its own phase, so neighbouring strands are out of
+       step. The curl is drawn into the texture strand by strand, at full,
+       half and no amplitude; the shells blend the two levels around
+       1 - wetness, so water still takes the curl out. Default. */
+    PELT_CURL_RINGLETS = 0,
+    /* Eq. 4 as printed: one phase for all, the shells move as a whole at
+       each vertex, so curls read as waves across a region. */
+    PELT_CURL_COHERENT
+} pelt_curl_phase;
+
 /* How the fur looks: the synthesized hair volume (Lengyel et al. 2001
  * §2.2), its tiling, the colours and Kajiya-Kay shading (Silva et al. Eq. 6)
  * and curl (Silva Eq. 4). A zero field means its default. */
@@ -61,6 +74,7 @@ typedef struct pelt_fur_look {
     float shadow;            /* K_shadow >= 1 of Silva Eq. 6, default 2 */
     float curl_frequency;    /* omega of Silva Eq. 4 (radians over the length), default 0 */
     float curl_radius;       /* K_alpha of Silva Eq. 4 in world units, default 0 */
+    pelt_curl_phase curl_phase; /* default PELT_CURL_RINGLETS */
     /* Kenwright's inter-fur shadows: where a shell has no hair but the hair
        a small step towards the light does, that hair's shadow darkens what
        lies below. Off by default. */

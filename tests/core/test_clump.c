@@ -195,6 +195,27 @@ static void clump_coverage_thins_toward_the_tips(void)
     free(m);
 }
 
+/* Ringlets (docs/method.md): three levels (full, half, no curl) 20 slices
+ * apart; the wetness picks the two around 1 - rho and the weight between. */
+static void ringlet_levels_follow_the_wetness(void)
+{
+    float o[3];
+    pelt__ringlet_levels(0.0f, 3.0f, 20.0f, o); /* dry: the full curl */
+    CHECK(o[0] == 0.0f && o[1] == 20.0f && o[2] == 0.0f);
+    pelt__ringlet_levels(0.25f, 3.0f, 20.0f, o); /* 3/4 of the curl: halfway to half */
+    CHECK(o[0] == 0.0f && o[1] == 20.0f);
+    CHECK_NEAR(o[2], 0.5, 1e-6);
+    pelt__ringlet_levels(0.75f, 3.0f, 20.0f, o); /* 1/4: between half and none */
+    CHECK(o[0] == 20.0f && o[1] == 40.0f);
+    CHECK_NEAR(o[2], 0.5, 1e-6);
+    pelt__ringlet_levels(1.0f, 3.0f, 20.0f, o); /* soaked: no curl */
+    CHECK(o[0] == 20.0f && o[1] == 40.0f && o[2] == 1.0f);
+    pelt__ringlet_levels(7.0f, 3.0f, 20.0f, o); /* clamped */
+    CHECK(o[1] == 40.0f && o[2] == 1.0f);
+    pelt__ringlet_levels(0.5f, 1.0f, 20.0f, o); /* one level: no ringlets */
+    CHECK(o[0] == 0.0f && o[1] == 0.0f && o[2] == 0.0f);
+}
+
 int main(void)
 {
     RUN(clump_profile_is_zero_at_first_layer_and_one_at_tip);
@@ -209,5 +230,6 @@ int main(void)
     RUN(clump_texel_of_another_clump_is_discarded);
     RUN(clump_root_in_dry_fur_is_discarded);
     RUN(clump_coverage_thins_toward_the_tips);
+    RUN(ringlet_levels_follow_the_wetness);
     return check_summary();
 }

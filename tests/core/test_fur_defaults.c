@@ -82,6 +82,7 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK_REL(d.look.shadow, 2.0f);
     CHECK(d.look.curl_frequency == 0.0f);
     CHECK(d.look.curl_radius == 0.0f);
+    CHECK(d.look.curl_phase == PELT_CURL_RINGLETS);
 
     CHECK_REL(d.dynamics.mass, 1.0f);
     CHECK_REL(d.dynamics.spring_k, 1.0f * 9.81f / (0.4f * d.length));

@@ -2,6 +2,7 @@
 #include "support/check.h"
 
 #include "core/fur/furtex.h"
+#include "core/fur/fur_shape.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -230,6 +231,91 @@ static void furtex_wave_moves_strands_along_u_only(void)
     free(a), free(b), free(c);
 }
 
+/* Vector correlation of the curl offsets of each strand and its nearest
+ * neighbour (toroidal distance), over the heights of `heights`:
+ * sum a.b / sqrt(sum |a|^2 sum |b|^2). 1 when every pair moves alike. */
+static double neighbour_correlation(const pelt__furtex_strand *st, size_t n, float size,
+                                    const float (*offset)[4][2])
+{
+    double ab = 0.0, aa = 0.0, bb = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        size_t best = i;
+        float best_d = INFINITY;
+        for (size_t j = 0; j < n; j++) {
+            if (j == i) continue;
+            float dx = fabsf(st[i].x - st[j].x), dy = fabsf(st[i].y - st[j].y);
+            dx = fminf(dx, size - dx), dy = fminf(dy, size - dy);
+            if (dx * dx + dy * dy < best_d) best_d = dx * dx + dy * dy, best = j;
+        }
+        for (int k = 0; k < 4; k++) {
+            const float *a = offset[i][k], *b = offset[best][k];
+            ab += a[0] * b[0] + a[1] * b[1];
+            aa += a[0] * a[0] + a[1] * a[1];
+            bb += b[0] * b[0] + b[1] * b[1];
+        }
+    }
+    return aa > 0.0 && bb > 0.0 ? ab / sqrt(aa * bb) : 0.0;
+}
+
+/* Ringlets (beyond Silva Eq. 4, docs/method.md): each strand's curl offset
+ * phi(h) at h = 0.25 .. 1, with K_alpha 12 texels and two turns. As
+ * printed, Eq. 4 moves the shells at a vertex, so every strand near it
+ * takes the same offset: neighbours correlate fully. With the strands'
+ * own phases the correlation of neighbours falls below 0.2; and a sparse
+ * texture drawn with ringlets holds each strand where its offset says. */
+static void ringlets_turn_neighbouring_strands_out_of_step(void)
+{
+    enum { MAX = 4000 };
+    const float K = 12.0f, omega = 12.566371f;
+    pelt__furtex_desc d = {256, 16, 5, 3000.0f, 1.6f, 0.8f, 0.0f, 2.0f, false, K, omega};
+    pelt__furtex_desc flat = d;
+    flat.ringlet_radius = 0.0f;
+    static pelt__furtex_strand st[MAX];
+    static float coherent[MAX][4][2], ringlet[MAX][4][2];
+    size_t n = pelt__furtex_strands(&d, st, MAX);
+    CHECK(n > 1000 && n <= MAX);
+    if (n > MAX) return;
+    for (size_t i = 0; i < n; i++)
+        for (int k = 0; k < 4; k++) {
+            float h = 0.25f * (float)(k + 1), a[2], b[2];
+            /* Eq. 4 as printed: the vertex's phi, the texture's axes as u, v. */
+            pelt_vec3 phi = pelt__fur_curl(v3(1, 0, 0), v3(0, 1, 0), omega, K, 0.0f, h);
+            coherent[i][k][0] = phi.x, coherent[i][k][1] = phi.y;
+            pelt__furtex_strand_center(&d, &st[i], h, a);
+            pelt__furtex_strand_center(&flat, &st[i], h, b);
+            ringlet[i][k][0] = a[0] - b[0], ringlet[i][k][1] = a[1] - b[1];
+        }
+    double c_coherent = neighbour_correlation(st, n, 256.0f, (const float (*)[4][2])coherent);
+    double c_ringlet = neighbour_correlation(st, n, 256.0f, (const float (*)[4][2])ringlet);
+    printf("  %zu strands: correlation of neighbours' curl offsets %.3f coherent (Eq. 4 as printed), "
+           "%.3f ringlets\n", n, c_coherent, c_ringlet);
+    CHECK(c_coherent > 0.999);
+    CHECK(fabs(c_ringlet) < 0.2);
+
+    /* What the texture draws: a sparse one with ringlets, footprints on
+     * their curves, and those of neighbouring strands apart. */
+    pelt__furtex_desc sparse = {128, 16, 3, 160.0f, 1.0f, 0.0f, 0.0f, 2.0f, false, 6.0f, omega};
+    uint8_t *v = make(&sparse);
+    pelt__furtex_strand sp[64];
+    size_t m = pelt__furtex_strands(&sparse, sp, 64);
+    CHECK(v && m > 20 && m <= 64);
+    double worst = 0.0;
+    size_t followed = 0;
+    for (size_t i = 0; v && i < m && i < 64; i++)
+        for (unsigned slice = 4; slice <= 16; slice += 4) {
+            float z = ((float)slice - 0.5f) / 16.0f, want[2], got[2];
+            if (z > sp[i].length - 0.05f) break;
+            pelt__furtex_strand_center(&sparse, &sp[i], z, want);
+            if (!footprint(v, &sparse, slice, &sp[i], want, got)) continue;
+            worst = fmax(worst, hypot(got[0] - want[0], got[1] - want[1]));
+            followed++;
+        }
+    printf("  sparse texture: %zu footprints within %.2f texels of their ringlet\n", followed, worst);
+    CHECK(followed > 2 * m);
+    CHECK(worst < 1.0);
+    free(v);
+}
+
 int main(void)
 {
     RUN(furtex_innermost_slice_is_opaque_skin);
@@ -240,5 +326,6 @@ int main(void)
     RUN(furtex_rejects_sizes_that_overflow);
     RUN(furtex_curly_strands_circle_out_of_step);
     RUN(furtex_wave_moves_strands_along_u_only);
+    RUN(ringlets_turn_neighbouring_strands_out_of_step);
     return check_summary();
 }

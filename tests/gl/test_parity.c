@@ -222,6 +222,32 @@ static void clump_glsl_matches_c(void)
     pelt__wetness_destroy(m);
 }
 
+static const char ringlet_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  float rho = c.x / 50.0 - 0.1;\n"
+    "  float levels = 1.0 + mod(c.y, 4.0);\n"
+    "  o = vec4(ringlet_levels(rho, levels, 17.0 + c.y), 0.0);\n"
+    "}\n";
+
+/* Ringlets: the two curl levels a wet fragment blends, and the weight. */
+static void ringlet_levels_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_clump, ringlet_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float r[3];
+            pelt__ringlet_levels((float)x / 50.0f - 0.1f, 1.0f + fmodf((float)y, 4.0f), 17.0f + (float)y, r);
+            const float *g = out + 4 * (y * W + x);
+            for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(g[k] - r[k]));
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-4);
+}
+
 static const char coverage_main[] =
     "out vec4 o;\n"
     "void main() {\n"
@@ -450,6 +476,7 @@ int main(void)
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
+    RUN(ringlet_levels_glsl_matches_c);
     RUN(groom_glsl_matches_c);
     RUN(inter_shadow_glsl_matches_c);
     RUN(shell_lod_glsl_matches_c);

@@ -320,6 +320,38 @@ static void wet_fur_highlight_peak_rises_with_wetness(void)
     CHECK(median[2] < median[0]);
 }
 
+/* Ringlets (docs/method.md): water takes the curl out. Square fur curled
+ * as ringlets, evenly wet with the clumps held open and wet shading off,
+ * renders soaked as the same fur without curl; half wet, between that and
+ * the dry ringlets. The shells only: the fins keep their texture whatever
+ * the water (as they do not clump either). */
+static void soaked_ringlets_render_as_straight_fur(void)
+{
+    const pelt_camera cam = {0.0f, 35.0f, 2.6f, 45.0f, {0, 0, 0}};
+    pelt_fur_desc curly = {.look.curl_frequency = 12.566371f, .look.curl_radius = 0.03f,
+                           .wet = {.clump_tightness = 1e-6f, .darken = 1e-6f, .gloss = 1.0f,
+                                   .gloss_sharpness = 1.0f}};
+    pelt_fur_desc straight = curly;
+    straight.look.curl_radius = 0.0f;
+    float dry = 0.0f, half = 0.5f, soaked = 1.0f;
+    pelt_draw_desc nf = {.no_fins = true};
+    uint8_t *c0 = gl_test_render(gl, square, &curly, &cam, &nf, wet_all_over, &dry);
+    uint8_t *c5 = gl_test_render(gl, square, &curly, &cam, &nf, wet_all_over, &half);
+    uint8_t *c1 = gl_test_render(gl, square, &curly, &cam, &nf, wet_all_over, &soaked);
+    uint8_t *s1 = gl_test_render(gl, square, &straight, &cam, &nf, wet_all_over, &soaked);
+    CHECK(c0 && c5 && c1 && s1);
+    if (c0 && c5 && c1 && s1) {
+        double d_dry = mean_diff_in(c0, s1, 0, W), d_half = mean_diff_in(c5, s1, 0, W);
+        double d_soaked = mean_diff_in(c1, s1, 0, W);
+        printf("  mean difference from straight fur: dry ringlets %.3f, half wet %.3f, soaked %.3f\n",
+               d_dry, d_half, d_soaked);
+        CHECK(d_dry > 3.0);
+        CHECK(d_half < 0.8 * d_dry && d_half > d_soaked);
+        CHECK(d_soaked < 0.3);
+    }
+    free(c0), free(c5), free(c1), free(s1);
+}
+
 /* Counts what the renderer's allocator hooks see. */
 typedef struct counting_allocator {
     size_t allocs, frees;
@@ -419,6 +451,7 @@ static void uniform_blocks_match_their_c_structs(void)
         {"u_slant", offsetof(pelt__fur_block, slant)},
         {"u_wet_gloss", offsetof(pelt__fur_block, wet_gloss)},
         {"u_wet_sharpness", offsetof(pelt__fur_block, wet_sharpness)},
+        {"u_ringlets", offsetof(pelt__fur_block, ringlets)},
     };
     for (size_t i = 0; i < sizeof members / sizeof members[0]; i++) {
         GLuint index = GL_INVALID_INDEX;
@@ -703,6 +736,7 @@ int main(void)
         RUN(dried_fur_matches_dry_render);
         RUN(clumps_grow_thinner_toward_the_tips);
         RUN(wet_fur_highlight_peak_rises_with_wetness);
+        RUN(soaked_ringlets_render_as_straight_fur);
         RUN(renderer_allocates_through_its_hooks);
         RUN(program_errors_reach_the_logger);
         RUN(uniform_blocks_match_their_c_structs);
