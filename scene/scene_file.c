@@ -320,6 +320,7 @@ static const key_def scene_keys[] = {
     FLT("wetness.clump_blend", fur.wet.clump_blend, 0, 1, 0),
     FLT("wetness.clump_tightness", fur.wet.clump_tightness, 0, 1, 0),
     FLT("wetness.darken", fur.wet.darken, 0, 1, 0),
+    FLT("wetness.clump_size", fur.wet.clump_size, 0, BIG, 0),
     FLT("wetness.gloss", fur.wet.gloss, 1, 16, 0),
     FLT("wetness.gloss_sharpness", fur.wet.gloss_sharpness, 1, 64, 0),
     PATH("wetness.mask_image", wetness.mask_image),

@@ -113,6 +113,9 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
         !(d->wet.darken >= 0.0f && d->wet.darken < 1.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "clump blend must be in [0,1], tightness in (0,1], wet darkening in [0,1)");
+    if (!(d->wet.clump_size >= 0.0f) || !isfinite(d->wet.clump_size))
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wet clump size must be >= 0, got %g",
+                          (double)d->wet.clump_size);
     if (!(d->wet.gloss >= 1.0f && d->wet.gloss <= 16.0f) ||
         !(d->wet.gloss_sharpness >= 1.0f && d->wet.gloss_sharpness <= 64.0f))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
@@ -241,6 +244,9 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     }
     f->tips = pelt__strands_tip_offsets(f->strands);
     st = pelt__wetness_create(d.wet.mask_size, d.wet.mask_size, &f->desc.hooks.allocator, &f->wetness, err);
+    if (st == PELT_OK && d.wet.clump_size > 0.0f)
+        st = pelt__clump_cells_create(mesh, f->wetness->width, f->wetness->height, d.wet.clump_size, d.seed,
+                                      &f->desc.hooks.allocator, &f->clump_cells, err);
     if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->desc.hooks.allocator, &f->surface, err);
     if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
     if (st == PELT_OK) st = pelt__rain_create(mesh, &f->desc.hooks.allocator, &f->rain, err);
@@ -318,6 +324,7 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__free(&a, f->color_texture);
     pelt__strands_destroy(f->strands);
     pelt__wetness_destroy(f->wetness);
+    pelt__clump_cells_destroy(f->clump_cells);
     pelt__surface_index_destroy(f->surface);
     pelt__bvh_destroy(f->bvh);
     pelt__rain_destroy(f->rain);
@@ -364,11 +371,33 @@ pelt_status pelt_fur_set_pose(pelt_fur *f, const float *positions, const float *
     return PELT_OK;
 }
 
+/* Natural clumps: water lands between water_begin and water_end, which
+ * clumps the cells it touched anew (core/wet/clump_cells.h). The mask's
+ * dirty rectangle is set aside meanwhile, so that what this call changed
+ * can be told apart, and is then grown back. */
+static void water_begin(pelt_fur *f, unsigned saved[4])
+{
+    memcpy(saved, f->wetness->dirty, 4 * sizeof saved[0]);
+    if (f->clump_cells) pelt__rect_clear(f->wetness->dirty);
+}
+
+static void water_end(pelt_fur *f, const unsigned saved[4])
+{
+    if (!f->clump_cells) return;
+    unsigned changed[4];
+    memcpy(changed, f->wetness->dirty, sizeof changed);
+    pelt__clump_cells_apply(f->clump_cells, f->wetness, changed);
+    pelt__rect_union(f->wetness->dirty, saved);
+}
+
 void pelt_fur_step(pelt_fur *f, float dt, const pelt_forces *forces)
 {
     if (!(dt > 0.0f)) return;
     pelt__strands_step(f->strands, dt, forces, f->time);
+    unsigned saved[4];
+    water_begin(f, saved);
     pelt__rain_step(f->rain, f->wetness, f->surface, f->bvh, dt);
+    water_end(f, saved);
     if (f->dry_rate > 0.0f) pelt__wetness_dry(f->wetness, f->dry_rate, dt);
     f->time += dt;
     f->tips_version++;
@@ -412,32 +441,51 @@ pelt_status pelt_fur_set_color_texture(pelt_fur *f, const uint8_t *rgba, unsigne
 
 pelt_status pelt_fur_add_droplet(pelt_fur *f, const pelt_droplet *d, pelt_error *err)
 {
-    return pelt__wetness_add_droplet(f->wetness, d, err);
+    unsigned saved[4];
+    water_begin(f, saved);
+    pelt_status st = pelt__wetness_add_droplet(f->wetness, d, err);
+    water_end(f, saved);
+    return st;
 }
 
 pelt_status pelt_fur_add_droplets(pelt_fur *f, const pelt_droplet *d, size_t count, pelt_error *err)
 {
-    return pelt__wetness_add_droplets(f->wetness, d, count, err);
+    unsigned saved[4];
+    water_begin(f, saved);
+    pelt_status st = pelt__wetness_add_droplets(f->wetness, d, count, err);
+    water_end(f, saved);
+    return st;
 }
 
 pelt_status pelt_fur_add_droplet_at(pelt_fur *f, size_t triangle, const float bary[3],
                                     float radius_world, float wetness, pelt_error *err)
 {
     /* By distance on the surface, across patch borders (issue 5). */
-    return pelt__droplet_surface(f->wetness, f->mesh, f->surface, triangle, bary, radius_world,
-                                 wetness, err);
+    unsigned saved[4];
+    water_begin(f, saved);
+    pelt_status st = pelt__droplet_surface(f->wetness, f->mesh, f->surface, triangle, bary, radius_world,
+                                           wetness, err);
+    water_end(f, saved);
+    return st;
 }
 
 bool pelt_fur_add_droplet_ray(pelt_fur *f, const float origin[3], const float direction[3],
                               float radius_world, float wetness)
 {
-    return pelt__droplet_ray(f->wetness, f->mesh, f->surface, f->bvh, origin, direction,
-                             radius_world, wetness);
+    unsigned saved[4];
+    water_begin(f, saved);
+    bool hit = pelt__droplet_ray(f->wetness, f->mesh, f->surface, f->bvh, origin, direction,
+                                 radius_world, wetness);
+    water_end(f, saved);
+    return hit;
 }
 
 void pelt_fur_add_random_droplets(pelt_fur *f, const pelt_rain *rain, unsigned count)
 {
+    unsigned saved[4];
+    water_begin(f, saved);
     pelt__rain_random_drops(f->rain, rain, count, f->wetness, f->surface);
+    water_end(f, saved);
 }
 
 void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain) { pelt__rain_set(f->rain, rain); }
@@ -462,7 +510,10 @@ pelt_status pelt_fur_paint_wetness(pelt_fur *f, const uint8_t *grey, unsigned w,
     if (!scaled) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a %ux%u image", w, h);
     float k = clampf(wetness, 0.0f, 1.0f);
     for (size_t i = 0; i < (size_t)w * h; i++) scaled[i] = (uint8_t)(grey[i] * k + 0.5f);
+    unsigned saved[4];
+    water_begin(f, saved);
     pelt_status st = pelt__wetness_paint_image(f->wetness, scaled, w, h, NULL, err);
+    water_end(f, saved);
     pelt__free(a, scaled);
     return st;
 }

@@ -9,6 +9,7 @@
 #include "core/fur/groom.h"
 #include "core/fur/lod.h"
 #include "core/fur/strand.h"
+#include "core/wet/clump_cells.h"
 #include "core/wet/mask.h"
 #include "core/wet/rain.h"
 #include "core/wet/surface_droplet.h"
@@ -33,6 +34,7 @@ struct pelt_fur {
     float time;              /* seconds stepped since creation or reset */
     float fur_per_uv[2];     /* fur tiles per uv unit along u and v */
     pelt__wetness *wetness;  /* the wetness mask over the uvs */
+    pelt__clump_cells *clump_cells; /* natural clumps (wet.clump_size > 0), else NULL */
     pelt__surface_index *surface; /* droplets by distance on the surface */
     pelt__bvh *bvh;          /* droplets by a ray */
     pelt__rain *rain;        /* rain and random drops (core/wet/rain.h) */

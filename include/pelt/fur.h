@@ -101,6 +101,12 @@ typedef struct pelt_fur_wet {
     float clump_blend;       /* w of Silva Eq. 5 in [0,1], default 0.5 */
     float clump_tightness;   /* s in (0,1]: 1 = tips meet at the clump centre, default 0.9 */
     float darken;            /* brightness fully wet fur loses, [0,1), default 0.35 */
+    /* Natural clumps (Bruderlin's clump size; docs/wetness.md): inside wet
+       areas clumps have this size, in world units, from cells fixed on the
+       surface, so a big droplet makes many small tufts and overlapping
+       droplets keep the same clumps. 0 (default) = one clump per droplet,
+       as Silva et al.'s Alg. 1. */
+    float clump_size;
     /* Wet fur shines (Silva §4 points to Gupta and Magnenat-Thalmann 2007:
        water on a hair makes its surface a smooth film): the Kajiya-Kay
        highlight grows sharper and stronger with the wetness rho, the

@@ -92,6 +92,7 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK_REL(d.wet.clump_blend, 0.5f);
     CHECK_REL(d.wet.clump_tightness, 0.9f);
     CHECK_REL(d.wet.darken, 0.35f);
+    CHECK(d.wet.clump_size == 0.0f);
     CHECK_REL(d.wet.gloss, 2.0f);
     CHECK_REL(d.wet.gloss_sharpness, 4.0f);
 

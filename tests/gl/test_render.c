@@ -352,6 +352,64 @@ static void soaked_ringlets_render_as_straight_fur(void)
     free(c0), free(c5), free(c1), free(s1);
 }
 
+/* Blobs of covered pixels (4-connected) of at least `min_px` pixels. */
+static size_t count_blobs(const uint8_t *px, size_t min_px)
+{
+    static int label[W * H], stack[W * H];
+    memset(label, 0, sizeof label);
+    size_t blobs = 0;
+    for (int s = 0; s < W * H; s++) {
+        if (label[s] || !gl_test_coverage(px + 4 * (size_t)s, 1)) continue;
+        size_t size = 0, top = 0;
+        label[s] = 1;
+        stack[top++] = s;
+        while (top) {
+            int i = stack[--top], x = i % W, y = i / W;
+            size++;
+            const int nb[4] = {x > 0 ? i - 1 : -1, x < W - 1 ? i + 1 : -1, y > 0 ? i - W : -1,
+                               y < H - 1 ? i + W : -1};
+            for (int k = 0; k < 4; k++)
+                if (nb[k] >= 0 && !label[nb[k]] && gl_test_coverage(px + 4 * (size_t)nb[k], 1)) {
+                    label[nb[k]] = 1;
+                    stack[top++] = nb[k];
+                }
+        }
+        if (size >= min_px) blobs++;
+    }
+    return blobs;
+}
+
+static void soak_square(pelt_fur *fur, void *user)
+{
+    (void)user;
+    pelt_droplet d = {{0.5f, 0.5f}, 0.75f, 1.0f};
+    pelt_fur_add_droplet(fur, &d, NULL);
+}
+
+/* Natural clumps (docs/wetness.md): the square soaked by one droplet and
+ * seen from above, its outer four shells alone: Silva's one clump per
+ * droplet draws one tuft; clumps of a size draw separate pointed tufts,
+ * about area / clump_size^2 of them, four times as many at half the size. */
+static void soaked_square_makes_tufts_by_clump_size(void)
+{
+    const pelt_camera top = {0.0f, 89.0f, 2.4f, 50.0f, {0, 0, 0}};
+    pelt_draw_desc tips = {.no_skin = true, .no_fins = true, .first_layer = 12, .layer_count = 4};
+    const float sizes[] = {0.0f, 0.5f, 0.25f};
+    size_t tufts[3];
+    for (int k = 0; k < 3; k++) {
+        pelt_fur_desc d = {.length = 0.12f, .wet = {.clump_tightness = 1.0f, .clump_size = sizes[k]}};
+        uint8_t *px = gl_test_render(gl, square, &d, &top, &tips, soak_square, NULL);
+        CHECK(px != NULL);
+        tufts[k] = px ? count_blobs(px, 3) : 0;
+        printf("  clump size %.2f: %zu tufts (area / size^2 = %.0f)\n", (double)sizes[k], tufts[k],
+               sizes[k] > 0.0f ? 4.0 / ((double)sizes[k] * sizes[k]) : 1.0);
+        free(px);
+    }
+    CHECK(tufts[0] == 1);
+    CHECK(tufts[1] >= 12 && tufts[1] <= 20);
+    CHECK(tufts[2] >= 3 * tufts[1]);
+}
+
 /* Counts what the renderer's allocator hooks see. */
 typedef struct counting_allocator {
     size_t allocs, frees;
@@ -737,6 +795,7 @@ int main(void)
         RUN(clumps_grow_thinner_toward_the_tips);
         RUN(wet_fur_highlight_peak_rises_with_wetness);
         RUN(soaked_ringlets_render_as_straight_fur);
+        RUN(soaked_square_makes_tufts_by_clump_size);
         RUN(renderer_allocates_through_its_hooks);
         RUN(program_errors_reach_the_logger);
         RUN(uniform_blocks_match_their_c_structs);

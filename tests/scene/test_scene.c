@@ -200,6 +200,7 @@ static void full_scene_sets_every_field(void)
     CHECK_NEAR(s.fur.wet.clump_blend, 0.25, 0);
     CHECK_NEAR(s.fur.wet.clump_tightness, 0.75, 0);
     CHECK_NEAR(s.fur.wet.darken, 0.5, 0);
+    CHECK_NEAR(s.fur.wet.clump_size, 0.04, 1e-8);
     CHECK_NEAR(s.fur.wet.gloss, 3, 0);
     CHECK_NEAR(s.fur.wet.gloss_sharpness, 6, 0);
     CHECK(strcmp(s.wetness.mask_image, SCENES "word.png") == 0);
@@ -279,6 +280,7 @@ static void each_bad_value_names_file_and_key(void)
         {"{\"fur\": {\"layers\": 8, \"layers\": 9}}", PELT_ERR_FORMAT, {"duplicate", "fur.layers"}},
         {"{\"camera\": {\"distance\": 1e999}}", PELT_ERR_FORMAT, {"camera.distance"}},
         {"{\"wetness\": {\"gloss\": 0.5}}", PELT_ERR_FORMAT, {"wetness.gloss", "0.5", "[1, 16]"}},
+        {"{\"wetness\": {\"clump_size\": -0.1}}", PELT_ERR_FORMAT, {"wetness.clump_size", "-0.1"}},
         {"{\"wetness\": {\"gloss_sharpness\": 65}}", PELT_ERR_FORMAT, {"wetness.gloss_sharpness", "65"}},
         {"{\"camera\": {\"distance\": 0}}", PELT_ERR_FORMAT, {"camera.distance", "positive"}},
         {"{\"camera\": {\"pitch\": 90}}", PELT_ERR_FORMAT, {"camera.pitch"}},
