@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Renders every picture under docs/images/ into OUTDIR with the commands the
 # docs give for it (docs/gallery.md, docs/gallery-dynamics.md, docs/gallery-grooming.md,
-# docs/gallery-fins.md, docs/atlas.md, docs/lod.md;
-# README.md only shows pictures of gallery.md), so that the result can be
+# docs/gallery-fins.md, docs/gallery-papers.md, docs/atlas.md, docs/lod.md;
+# README.md only shows pictures of the galleries), so that the result can be
 # compared with the committed pictures by scripts/docs-images-compare.sh.
 #
 #   scripts/docs-images.sh OUTDIR [PELT_BINARY]
@@ -17,7 +17,7 @@
 #                    default bunny_dry elephant bunny_combed elephant_combed
 #                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water
 #                    wind_square turntable curl groom_torus groom_bunny groom_maps
-#                    fins_torus fins_bunny inter_shadow lod shadows animation
+#                    fins_torus fins_bunny inter_shadow lod shadows animation papers
 #
 # Each command runs in its own fresh working directory (symlinks to the source
 # tree's top-level entries, an empty docs/images/) with its own empty
@@ -69,7 +69,8 @@ pelt() { "$PELT" "$@"; }
 have_cgal=0
 if [ -f "$CGAL_ARCHIVE" ]; then
   mkdir -p "$TMP/cgal"
-  tar xzf "$CGAL_ARCHIVE" -C "$TMP/cgal" data/meshes/bunny00.off data/meshes/elephant.off
+  tar xzf "$CGAL_ARCHIVE" -C "$TMP/cgal" data/meshes/bunny00.off data/meshes/elephant.off \
+    data/meshes/cow.off data/meshes/lion-head.off data/meshes/bear.off
   have_cgal=1
 fi
 M="$TMP/cgal/data/meshes"
@@ -302,12 +303,39 @@ img_animation() {
   for F in anim_bcn_sheet anim_simple_skin_sheet anim_spider; do collect $F.png $F.png; done
 }
 
+# docs/gallery-papers.md: the papers' figures (Silva Fig. 1, 11, 12, 13;
+# Lengyel Fig. 5); Silva Fig. 7 is the curl group's.
+img_papers() {
+  W="--drops 400 --set wetness.drops.radius=[0.02,0.04]"
+  pelt render --mesh $M/bunny00.off --size 480x360 -o papers_fig1a.png
+  pelt render --mesh $M/bunny00.off --size 480x360 --set fur.preset=many-small-curls --set fur.length=0.06 \
+    -o papers_fig1b.png
+  pelt render --mesh $M/cow.off --size 480x360 -o papers_fig1c.png
+  pelt render --mesh $M/cow.off --size 480x360 $W --set wetness.clump_size=0.02 -o papers_fig1d.png
+  pelt render --mesh $M/bunny00.off --size 480x360 $W --set wetness.clump_size=0.025 \
+    -o papers_fig11b.png --mask-out papers_fig11b_mask.png
+  pelt render --mesh $M/bunny00.off --size 480x360 $W -o papers_fig11b_alg1.png
+  L="--mesh $M/lion-head.off --size 480x360 --yaw 30 --pitch 12 --distance 2.1 --set fur.length=0.02"
+  pelt render $L -o papers_fig12a.png
+  pelt render $L --drops 300 --set wetness.drops.radius=[0.015,0.03] --set wetness.clump_size=0.015 \
+    -o papers_fig12b.png
+  pelt render --mesh $M/bunny00.off --size 480x360 --yaw 30 --pitch 25 --distance 0.55 \
+    --set camera.target=[0.05,0.05,0.1] --set fur.layers=32 $W --set wetness.clump_size=0.025 -o papers_fig13.png
+  B="--mesh $M/bear.off --size 480x360 --set fur.strand_curl=6 --set fur.strand_curl_turns=3 --set fur.layers=32"
+  pelt render $B -o papers_lengyel_fig5.png
+  pelt render $B --yaw 30 --pitch 20 --distance 1.0 --set camera.target=[0,0.3,0.2] -o papers_lengyel_fig5_closeup.png
+  for F in fig1a fig1b fig1c fig1d fig11b fig11b_mask fig11b_alg1 fig12a fig12b fig13 lengyel_fig5 \
+           lengyel_fig5_closeup; do
+    collect papers_$F.png papers_$F.png
+  done
+}
+
 # ---- Running them.
 
 all="default bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny whirl
      bunny_wet bunny_rain word_in_water wind_square turntable curl groom_torus groom_bunny groom_maps
-     fins_torus fins_bunny inter_shadow lod shadows animation"
-needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow lod shadows "
+     fins_torus fins_bunny inter_shadow lod shadows animation papers"
+needs_cgal=" bunny_dry elephant bunny_combed elephant_combed atlas_elephant atlas_bunny bunny_wet bunny_rain groom_bunny fins_bunny inter_shadow lod shadows papers "
 groups="${DOCS_IMAGES:-$all}"
 
 now() { date +%s.%N; }
