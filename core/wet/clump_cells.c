@@ -1,10 +1,10 @@
 /* Natural wet clumps: cells fixed on the surface (Bruderlin's clump size,
  * beyond Silva et al.'s one clump per droplet; docs/wetness.md). */
 #include "core/wet/clump_cells.h"
+#include "core/wet/texel_raster.h"
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
-#include "core/base/raster.h"
 #include "core/base/rng.h"
 #include "core/base/vec.h"
 #include "core/mesh/mesh_internal.h"
@@ -13,7 +13,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SUB PELT__RASTER_SUB
 #define NONE UINT32_MAX
 #define LLOYD_STEPS 3
 #define MAX_GRID_CELLS (1u << 22)
@@ -118,65 +117,29 @@ static uint32_t grid_nearest(const seed_grid *g, const float *seeds, const float
 
 /* ---- the texels a triangle covers ------------------------------------------ */
 
+/* The texels of one triangle (cover_triangle). */
+typedef struct triangle_on_texels {
+    pelt__clump_cells *c;
+    uint32_t t;
+    size_t covered;
+} triangle_on_texels;
+
+static void cover_texel(void *user, size_t px, size_t py, pelt_vec3 X)
+{
+    triangle_on_texels *d = user;
+    texel_point *tp = d->c->points + py * d->c->width + px;
+    if (tp->triangle == NONE) d->covered++;
+    *tp = (texel_point){X.x, X.y, X.z, d->t};
+}
+
 /* Rasterizes triangle t at texel centres with the top-left rule (as
  * pelt_atlas_check_uvs and the surface droplets) and records each texel's
  * surface point; returns how many texels it newly covered. */
 static size_t cover_triangle(pelt__clump_cells *c, size_t t)
 {
-    const pelt_mesh *mesh = c->mesh;
-    uint32_t vi[3];
-    int64_t x[3], y[3];
-    for (int k = 0; k < 3; k++) {
-        vi[k] = mesh->indices[3 * t + k];
-        x[k] = pelt__raster_fixed(mesh->uvs[(size_t)vi[k] * 2], c->width);
-        y[k] = pelt__raster_fixed(mesh->uvs[(size_t)vi[k] * 2 + 1], c->height);
-    }
-    int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
-    if (area == 0) return 0;
-    if (area < 0) {
-        int64_t tx = x[1], ty = y[1];
-        uint32_t tv = vi[1];
-        x[1] = x[2], y[1] = y[2], vi[1] = vi[2];
-        x[2] = tx, y[2] = ty, vi[2] = tv;
-        area = -area;
-    }
-    int64_t minx = x[0], maxx = x[0], miny = y[0], maxy = y[0];
-    for (int k = 1; k < 3; k++) {
-        minx = x[k] < minx ? x[k] : minx, maxx = x[k] > maxx ? x[k] : maxx;
-        miny = y[k] < miny ? y[k] : miny, maxy = y[k] > maxy ? y[k] : maxy;
-    }
-    int64_t px0 = minx - SUB / 2 < 0 ? 0 : (minx - SUB / 2 + SUB - 1) / SUB;
-    int64_t py0 = miny - SUB / 2 < 0 ? 0 : (miny - SUB / 2 + SUB - 1) / SUB;
-    int64_t px1 = maxx - SUB / 2 < 0 ? -1 : (maxx - SUB / 2) / SUB;
-    int64_t py1 = maxy - SUB / 2 < 0 ? -1 : (maxy - SUB / 2) / SUB;
-    if (px1 > (int64_t)c->width - 1) px1 = (int64_t)c->width - 1;
-    if (py1 > (int64_t)c->height - 1) py1 = (int64_t)c->height - 1;
-    bool tl[3];
-    for (int k = 0; k < 3; k++) tl[k] = pelt__raster_top_left(x[(k + 1) % 3] - x[k], y[(k + 1) % 3] - y[k]);
-    pelt_vec3 q[3];
-    for (int k = 0; k < 3; k++) q[k] = v3_load(mesh->positions + (size_t)vi[k] * 3);
-    double inv_area = 1.0 / (double)area;
-    size_t covered = 0;
-    for (int64_t py = py0; py <= py1; py++) {
-        int64_t sy = py * SUB + SUB / 2;
-        for (int64_t px = px0; px <= px1; px++) {
-            int64_t sx = px * SUB + SUB / 2;
-            int64_t e[3];
-            bool inside = true;
-            for (int k = 0; k < 3 && inside; k++) {
-                int j = (k + 1) % 3;
-                e[k] = (x[j] - x[k]) * (sy - y[k]) - (y[j] - y[k]) * (sx - x[k]);
-                inside = e[k] > 0 || (e[k] == 0 && tl[k]);
-            }
-            if (!inside) continue;
-            float w0 = (float)((double)e[1] * inv_area), w1 = (float)((double)e[2] * inv_area);
-            pelt_vec3 X = v3_add(v3_scale(q[0], w0), v3_add(v3_scale(q[1], w1), v3_scale(q[2], 1.0f - w0 - w1)));
-            texel_point *tp = c->points + (size_t)py * c->width + (size_t)px;
-            if (tp->triangle == NONE) covered++;
-            *tp = (texel_point){X.x, X.y, X.z, (uint32_t)t};
-        }
-    }
-    return covered;
+    triangle_on_texels d = {c, (uint32_t)t, 0};
+    pelt__raster_surface_points(c->mesh, t, c->width, c->height, cover_texel, &d);
+    return d.covered;
 }
 
 /* ---- building ------------------------------------------------------------ */

@@ -2,11 +2,11 @@
  * surface point lies within the droplet's world radius, per piece of the
  * atlas connected in uv. */
 #include "core/wet/surface_droplet.h"
+#include "core/wet/texel_raster.h"
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
 #include "core/mesh/mesh_internal.h"
-#include "core/base/raster.h"
 #include "core/base/vec.h"
 #include "core/base/weld.h"
 
@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SUB PELT__RASTER_SUB /* as pelt_atlas_check_uvs */
 #define NONE UINT32_MAX
 
 /* ---- building the index -------------------------------------------------- */
@@ -185,78 +184,36 @@ typedef struct changed_box {
     unsigned x0, y0, x1, y1; /* inclusive; empty when x0 > x1 */
 } changed_box;
 
+/* One droplet on the texels of one triangle (wet_triangle). */
+typedef struct droplet_on_texels {
+    pelt__wetness *m;
+    pelt_vec3 p;
+    float radius2, r, wd;
+    const float *c;
+    changed_box *box;
+} droplet_on_texels;
+
+static void wet_texel(void *user, size_t px, size_t py, pelt_vec3 X)
+{
+    droplet_on_texels *d = user;
+    pelt_vec3 dv = v3_sub(X, d->p);
+    if (v3_dot(dv, dv) > d->radius2) return;
+    if (!pelt__wetness_blend_texel(d->m->texels + (py * d->m->width + px) * 4, d->c, d->r, d->wd)) return;
+    changed_box *box = d->box;
+    if ((unsigned)px < box->x0) box->x0 = (unsigned)px;
+    if ((unsigned)px > box->x1) box->x1 = (unsigned)px;
+    if ((unsigned)py < box->y0) box->y0 = (unsigned)py;
+    if ((unsigned)py > box->y1) box->y1 = (unsigned)py;
+}
+
 /* Rasterizes triangle t's uv footprint at texel centres and applies the
  * droplet (c, r, wd) to each texel whose surface point is within the
  * world radius of p. */
 static void wet_triangle(pelt__wetness *m, const pelt_mesh *mesh, size_t t, pelt_vec3 p,
                          float radius2, const float c[2], float r, float wd, changed_box *box)
 {
-    uint32_t vi[3];
-    int64_t x[3], y[3];
-    for (int k = 0; k < 3; k++) {
-        vi[k] = mesh->indices[3 * t + k];
-        x[k] = pelt__raster_fixed(mesh->uvs[(size_t)vi[k] * 2], m->width);
-        y[k] = pelt__raster_fixed(mesh->uvs[(size_t)vi[k] * 2 + 1], m->height);
-    }
-    int64_t area = (x[1] - x[0]) * (y[2] - y[0]) - (x[2] - x[0]) * (y[1] - y[0]);
-    if (area == 0) return;
-    if (area < 0) { /* counter-clockwise order for the edge tests */
-        int64_t tx = x[1], ty = y[1];
-        uint32_t tv = vi[1];
-        x[1] = x[2], y[1] = y[2], vi[1] = vi[2];
-        x[2] = tx, y[2] = ty, vi[2] = tv;
-        area = -area;
-    }
-    int64_t minx = x[0], maxx = x[0], miny = y[0], maxy = y[0];
-    for (int k = 1; k < 3; k++) {
-        minx = x[k] < minx ? x[k] : minx;
-        maxx = x[k] > maxx ? x[k] : maxx;
-        miny = y[k] < miny ? y[k] : miny;
-        maxy = y[k] > maxy ? y[k] : maxy;
-    }
-    /* Texel (px, py) has its centre at (px*SUB + SUB/2, py*SUB + SUB/2). */
-    int64_t px0 = minx - SUB / 2 < 0 ? 0 : (minx - SUB / 2 + SUB - 1) / SUB;
-    int64_t py0 = miny - SUB / 2 < 0 ? 0 : (miny - SUB / 2 + SUB - 1) / SUB;
-    int64_t px1 = maxx - SUB / 2 < 0 ? -1 : (maxx - SUB / 2) / SUB;
-    int64_t py1 = maxy - SUB / 2 < 0 ? -1 : (maxy - SUB / 2) / SUB;
-    if (px1 > (int64_t)m->width - 1) px1 = (int64_t)m->width - 1;
-    if (py1 > (int64_t)m->height - 1) py1 = (int64_t)m->height - 1;
-    if (px0 > px1 || py0 > py1) return;
-    bool tl[3];
-    for (int k = 0; k < 3; k++) tl[k] = pelt__raster_top_left(x[(k + 1) % 3] - x[k], y[(k + 1) % 3] - y[k]);
-    pelt_vec3 q[3];
-    for (int k = 0; k < 3; k++) q[k] = v3_load(mesh->positions + (size_t)vi[k] * 3);
-    double inv_area = 1.0 / (double)area;
-    for (int64_t py = py0; py <= py1; py++) {
-        int64_t sy = py * SUB + SUB / 2;
-        float *row = m->texels + (size_t)py * m->width * 4;
-        bool row_changed = false;
-        for (int64_t px = px0; px <= px1; px++) {
-            int64_t sx = px * SUB + SUB / 2;
-            int64_t e[3];
-            bool inside = true;
-            for (int k = 0; k < 3 && inside; k++) {
-                int j = (k + 1) % 3;
-                e[k] = (x[j] - x[k]) * (sy - y[k]) - (y[j] - y[k]) * (sx - x[k]);
-                inside = e[k] > 0 || (e[k] == 0 && tl[k]);
-            }
-            if (!inside) continue;
-            /* Edge k is opposite vertex (k + 2) % 3: its weight. */
-            float w0 = (float)((double)e[1] * inv_area), w1 = (float)((double)e[2] * inv_area);
-            float w2 = 1.0f - w0 - w1;
-            pelt_vec3 X = v3_add(v3_scale(q[0], w0), v3_add(v3_scale(q[1], w1), v3_scale(q[2], w2)));
-            pelt_vec3 d = v3_sub(X, p);
-            if (v3_dot(d, d) > radius2) continue;
-            if (!pelt__wetness_blend_texel(row + (size_t)px * 4, c, r, wd)) continue;
-            row_changed = true;
-            if ((unsigned)px < box->x0) box->x0 = (unsigned)px;
-            if ((unsigned)px > box->x1) box->x1 = (unsigned)px;
-        }
-        if (row_changed) {
-            if ((unsigned)py < box->y0) box->y0 = (unsigned)py;
-            if ((unsigned)py > box->y1) box->y1 = (unsigned)py;
-        }
-    }
+    droplet_on_texels d = {m, p, radius2, r, wd, c, box};
+    pelt__raster_surface_points(mesh, t, m->width, m->height, wet_texel, &d);
 }
 
 /* r grows to hold the inclusive box b (a mask rectangle, core/wet/mask.h). */
