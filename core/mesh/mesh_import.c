@@ -119,18 +119,6 @@ static void mat_mul(struct aiMatrix4x4 *out, const struct aiMatrix4x4 *a, const 
     memcpy(&out->a1, r, sizeof r);
 }
 
-/* The node named `name` under `node` (depth-first), or NULL. */
-static const struct aiNode *find_node(const struct aiNode *node, const struct aiString *name, int depth)
-{
-    if (!node || depth > PELT__MAX_NODE_DEPTH) return NULL;
-    if (node->mName.length == name->length && !memcmp(node->mName.data, name->data, name->length)) return node;
-    for (unsigned k = 0; k < node->mNumChildren; k++) {
-        const struct aiNode *hit = find_node(node->mChildren[k], name, depth + 1);
-        if (hit) return hit;
-    }
-    return NULL;
-}
-
 /* A node's transform to the scene root: its own and its parents'. */
 static void node_global(const struct aiNode *node, struct aiMatrix4x4 *out)
 {
@@ -220,10 +208,7 @@ static pelt_status weigh_mesh(merge_state *s, const struct aiMesh *mesh, const s
     for (unsigned bi = 0; bi < mesh->mNumBones && mesh->mBones; bi++) {
         const struct aiBone *bone = mesh->mBones[bi];
         if (!bone) continue;
-        int32_t n = node_named(s, &bone->mName);
-        if (n < 0)
-            return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: bone '%s' of mesh '%s' names no node", s->path,
-                              bone->mName.data, mesh->mName.data);
+        int32_t n = node_named(s, &bone->mName); /* skin_matrices refused a bone naming no node */
         float offset[16];
         to_column_major(&bone->mOffsetMatrix, offset);
         for (int k = 0; k < 16; k++)
@@ -236,10 +221,7 @@ static pelt_status weigh_mesh(merge_state *s, const struct aiMesh *mesh, const s
         s->real_bones++;
         s->bone_real[b] = 1;
         for (unsigned w = 0; w < bone->mNumWeights; w++) {
-            const struct aiVertexWeight vw = bone->mWeights[w];
-            if (vw.mVertexId >= mesh->mNumVertices)
-                return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: bone '%s' weighs vertex %u of %u", s->path,
-                                  bone->mName.data, vw.mVertexId, mesh->mNumVertices);
+            const struct aiVertexWeight vw = bone->mWeights[w]; /* in range: skin_matrices checked */
             if (!isfinite(vw.mWeight) || vw.mWeight < 0.0f)
                 return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: bone '%s' gives vertex %u the weight %g", s->path,
                                   bone->mName.data, vw.mVertexId, (double)vw.mWeight);
@@ -279,12 +261,12 @@ static pelt_status skin_matrices(merge_state *s, const struct aiMesh *mesh, floa
     for (unsigned b = 0; b < mesh->mNumBones; b++) {
         const struct aiBone *bone = mesh->mBones[b];
         if (!bone) continue;
-        const struct aiNode *node = find_node(s->scene->mRootNode, &bone->mName, 0);
-        if (!node)
+        int32_t n = node_named(s, &bone->mName);
+        if (n < 0)
             return pelt__fail(s->err, PELT_ERR_FORMAT, "%s: bone '%s' of mesh '%s' names no node", s->path,
                               bone->mName.data, mesh->mName.data);
         struct aiMatrix4x4 g, m;
-        node_global(node, &g);
+        node_global(s->nodes[n], &g);
         mat_mul(&m, &g, &bone->mOffsetMatrix);
         const float *x = &m.a1;
         for (unsigned w = 0; w < bone->mNumWeights; w++) {

@@ -95,17 +95,33 @@ bool pelt__matrix_trs(const float m[16], float t[3], float q[4], float s[3])
 
 /* ---- keys -------------------------------------------------------------- */
 
-/* The key before t (keys sorted by time, n >= 2, k[0].time <= t < k[n-1].time). */
-#define FIND_KEY(k, n, t, out)                                                                     \
-    do {                                                                                           \
-        uint32_t lo_ = 0, hi_ = (n) - 1;                                                           \
-        while (hi_ - lo_ > 1) {                                                                    \
-            uint32_t mid_ = (lo_ + hi_) / 2;                                                       \
-            if ((k)[mid_].time <= (t)) lo_ = mid_;                                                 \
-            else hi_ = mid_;                                                                       \
-        }                                                                                          \
-        (out) = lo_;                                                                               \
-    } while (0)
+/* Where t falls among n >= 1 keys sorted by time (each `stride` bytes
+ * long, its time first): key *i and the way *f towards key *i + 1. Before
+ * the first key and from the last on, *f = 0 holds that key. */
+static void key_span(const void *keys, size_t stride, uint32_t n, float t, uint32_t *i, float *f)
+{
+    const char *k = keys;
+#define KEY_TIME(j) (*(const float *)(k + (size_t)(j) * stride))
+    *f = 0.0f;
+    if (n == 1 || t <= KEY_TIME(0)) {
+        *i = 0;
+        return;
+    }
+    if (t >= KEY_TIME(n - 1)) {
+        *i = n - 1;
+        return;
+    }
+    uint32_t lo = 0, hi = n - 1; /* KEY_TIME(lo) <= t < KEY_TIME(hi) */
+    while (hi - lo > 1) {
+        uint32_t mid = (lo + hi) / 2;
+        if (KEY_TIME(mid) <= t) lo = mid;
+        else hi = mid;
+    }
+    float span = KEY_TIME(lo + 1) - KEY_TIME(lo);
+    *i = lo;
+    *f = span > 0.0f ? (t - KEY_TIME(lo)) / span : 0.0f;
+#undef KEY_TIME
+}
 
 void pelt__sample_vec(const pelt__vec_key *k, uint32_t n, float t, const float rest[3], float out[3])
 {
@@ -113,17 +129,13 @@ void pelt__sample_vec(const pelt__vec_key *k, uint32_t n, float t, const float r
         memcpy(out, rest, 3 * sizeof *out);
         return;
     }
-    if (n == 1 || t <= k[0].time) {
-        memcpy(out, k[0].v, 3 * sizeof *out);
-        return;
-    }
-    if (t >= k[n - 1].time) {
-        memcpy(out, k[n - 1].v, 3 * sizeof *out);
-        return;
-    }
     uint32_t i;
-    FIND_KEY(k, n, t, i);
-    float span = k[i + 1].time - k[i].time, f = span > 0.0f ? (t - k[i].time) / span : 0.0f;
+    float f;
+    key_span(k, sizeof *k, n, t, &i, &f);
+    if (f == 0.0f) {
+        memcpy(out, k[i].v, 3 * sizeof *out);
+        return;
+    }
     for (int c = 0; c < 3; c++) out[c] = k[i].v[c] + (k[i + 1].v[c] - k[i].v[c]) * f;
 }
 
@@ -156,17 +168,13 @@ void pelt__sample_quat(const pelt__quat_key *k, uint32_t n, float t, const float
         memcpy(out, rest, 4 * sizeof *out);
         return;
     }
-    if (n == 1 || t <= k[0].time) {
-        memcpy(out, k[0].q, 4 * sizeof *out);
-        return;
-    }
-    if (t >= k[n - 1].time) {
-        memcpy(out, k[n - 1].q, 4 * sizeof *out);
-        return;
-    }
     uint32_t i;
-    FIND_KEY(k, n, t, i);
-    float span = k[i + 1].time - k[i].time, f = span > 0.0f ? (t - k[i].time) / span : 0.0f;
+    float f;
+    key_span(k, sizeof *k, n, t, &i, &f);
+    if (f == 0.0f) {
+        memcpy(out, k[i].q, 4 * sizeof *out);
+        return;
+    }
     slerp(k[i].q, k[i + 1].q, f, out);
 }
 
