@@ -26,8 +26,8 @@ struct pelt_renderer {
     pelt_shadow_desc shadow_desc; /* resolved (core/fur/shadow_map.h) */
     pelt_ground_desc ground_desc;
     const pelt_mesh *source; /* the mesh as given: its positions place the ground */
-    float ground_model[16]; /* the model the ground's height was found for */
-    float ground_y;         /* the mesh's lowest world y under it */
+    float ground_row[3];    /* the model's y row the lowest point was found for */
+    float ground_low;       /* min over the vertices of that row times them */
     bool ground_valid;
     size_t pending_upload; /* bytes uploaded since the last draw */
     pelt_render_stats stats;
@@ -243,26 +243,29 @@ static bool shadow_frame(const pelt_renderer *r, const pelt_view *v, const pelt_
 }
 
 /* The ground's disc: under the bounding sphere's centre, at the mesh's
- * lowest world height (found again when the model matrix changes). */
+ * lowest world height. That height depends on the model's y row alone, so
+ * the vertices are scanned again only when it turns: not for a turntable
+ * about +Y or a bounce (its translation is added after). */
 static void ground_disc(pelt_renderer *r, const pelt_view *v, float disc[4])
 {
-    if (!r->ground_valid || memcmp(r->ground_model, v->model, sizeof r->ground_model)) {
+    const float *m = v->model;
+    const float row[3] = {m[1], m[5], m[9]};
+    if (!r->ground_valid || memcmp(r->ground_row, row, sizeof row)) {
         const pelt_mesh_data md = pelt_mesh_get_data(r->source);
         float lowest = INFINITY;
         for (size_t i = 0; i < md.vertex_count; i++) {
-            float p[3];
-            transform_point(v->model, md.positions + 3 * i, p);
-            lowest = fminf(lowest, p[1]);
+            const float *p = md.positions + 3 * i;
+            lowest = fminf(lowest, row[0] * p[0] + row[1] * p[1] + row[2] * p[2]);
         }
-        memcpy(r->ground_model, v->model, sizeof r->ground_model);
-        r->ground_y = isfinite(lowest) ? lowest : 0.0f;
+        memcpy(r->ground_row, row, sizeof row);
+        r->ground_low = isfinite(lowest) ? lowest : 0.0f;
         r->ground_valid = true;
     }
     const pelt__lod_chain *c = pelt__fur_gpu_lod(r->fur);
     float center[3];
     transform_point(v->model, c->center, center);
     disc[0] = center[0];
-    disc[1] = r->ground_y;
+    disc[1] = r->ground_low + m[13];
     disc[2] = center[2];
     disc[3] = r->ground_desc.size * c->radius * model_scale(v->model);
 }
