@@ -37,27 +37,11 @@ static GLuint table_create(GLenum unit, GLenum internal, size_t texels)
  * the shells' variants (gl/shell_pass.c); PELT__FIN_FEATURES is generic. */
 static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
 {
-    static const struct { unsigned bit; const char *define; } defines[] = {
-        {PELT__SHELL_WET, "#define PELT_WET 1\n"},
-        {PELT__SHELL_COLOR_TEXTURE, "#define PELT_COLOR_TEXTURE 1\n"},
-        {PELT__SHELL_KAJIYA_KAY, "#define PELT_SHADING_KK 1\n"},
-        {PELT__SHELL_LIGHT_TABLE, "#define PELT_SHADING_TABLE 1\n"},
-        {PELT__SHELL_SHADOW_MAP, "#define PELT_SHADOW_MAP 1\n"},
-    };
-    const char *fs[9], *vs[11];
-    int n = 0;
-    for (size_t k = 0; k < sizeof defines / sizeof defines[0]; k++)
-        if (features & defines[k].bit) fs[n++] = defines[k].define;
-    memcpy(vs, fs, (size_t)n * sizeof *fs);
-    int m = n;
-    fs[n++] = pelt__shader_shading;
-    fs[n++] = pelt__shader_fin_fs;
-    fs[n] = NULL;
-    vs[m++] = pelt__shader_shading;
-    vs[m++] = pelt__shader_shadow_map;
-    vs[m++] = pelt__shader_fur_light;
-    vs[m++] = pelt__shader_fin_vs;
-    vs[m] = NULL;
+    char defines[PELT__FEATURE_DEFINES_MAX];
+    pelt__shell_feature_defines(features & PELT__FIN_FEATURES, defines);
+    const char *vs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_fur_light,
+                        pelt__shader_fin_vs, NULL};
+    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_fin_fs, NULL};
     pelt_status st = pelt__gl_program_create("fin", vs, fs, &p->hooks, &p->variants[features], err);
     if (st != PELT_OK) {
         p->failed[features] = true;

@@ -55,6 +55,10 @@ enum {
     PELT__SHELL_VARIANTS = 1 << 9
 };
 
+/* The #define lines of `features` (PELT_WET, ...), for a program's sources. */
+#define PELT__FEATURE_DEFINES_MAX 448
+void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFINES_MAX]);
+
 /* The fins use the features that concern them. */
 #define PELT__FIN_FEATURES                                                                                \
     (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE |    \

@@ -13,14 +13,20 @@ static const char *const feature_defines[] = {"PELT_WET", "PELT_INTER_SHADOW", "
                                               "PELT_COLOR_TEXTURE", "PELT_SHADING_KK", "PELT_SHADING_TABLE",
                                               "PELT_SHADOW_MAP", "PELT_LIGHT_PASS", "PELT_GPU_SKIN"};
 
+void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFINES_MAX])
+{
+    size_t at = 0;
+    out[0] = '\0';
+    for (unsigned k = 0; k < sizeof feature_defines / sizeof feature_defines[0]; k++)
+        if (features & (1u << k))
+            at += (size_t)snprintf(out + at, PELT__FEATURE_DEFINES_MAX - at, "#define %s 1\n", feature_defines[k]);
+}
+
 static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor, const pelt_hooks *hooks,
                          pelt_error *err)
 {
-    char defines[448] = "";
-    size_t at = 0;
-    for (unsigned k = 0; k < sizeof feature_defines / sizeof feature_defines[0]; k++)
-        if (features & (1u << k))
-            at += (size_t)snprintf(defines + at, sizeof defines - at, "#define %s 1\n", feature_defines[k]);
+    char defines[PELT__FEATURE_DEFINES_MAX];
+    pelt__shell_feature_defines(features, defines);
     const char *vs[] = {defines,          pelt__shader_shading,   pelt__shader_shadow_map,
                         pelt__shader_fur_light, pelt__shader_fur_shape, pelt__shader_clump,
                         pelt__shader_shell_lod, pelt__shader_skin_blend, pelt__shader_shell_vs, NULL};
