@@ -5,10 +5,9 @@ in vec2 v_uv;
 in vec2 v_fin_uv;
 in float v_density;
 in float v_fade;
-in vec3 v_root;
+in vec3 v_root; // lit
 in vec3 v_tip;
-in vec3 v_light_mul;
-in vec3 v_light_add;
+in float v_spec;
 
 uniform sampler2D u_fin_tex;   // PELT_UNIT_FIN
 uniform sampler2D u_color_tex; // PELT_UNIT_COLOR
@@ -31,5 +30,5 @@ void main()
 #ifdef PELT_WET
     base *= 1.0 - u_wet_darken * textureLod(u_mask, v_uv, 0.0).a;
 #endif
-    o_color = vec4(base * v_light_mul + v_light_add, a);
+    o_color = vec4(base + v_spec * (u_specular * u_light_color), a);
 }

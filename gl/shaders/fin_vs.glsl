@@ -17,10 +17,9 @@ out vec2 v_uv;
 out vec2 v_fin_uv;
 out float v_density;
 out float v_fade;
-out vec3 v_root;      // groomed root and tip colours
-out vec3 v_tip;
-out vec3 v_light_mul; // fur_light_terms, per vertex as on the shells
-out vec3 v_light_add;
+out vec3 v_root;      // groomed root and tip colours, lit per vertex as on
+out vec3 v_tip;       // the shells (fur_light_terms' mul folded in)
+out float v_spec;     // fur_light_terms' specular weight
 
 ivec2 table_at(int i)
 {
@@ -50,14 +49,15 @@ void main()
     vec4 nd = fin_vertex(vi, 2 * PELT_FIN_HEIGHTS);     // normal, density
     vec4 ex = fin_vertex(vi, 2 * PELT_FIN_HEIGHTS + 1); // uv, colour bytes two a float
     vec4 hair_color = vec4(floor(ex.z / 256.0), mod(ex.z, 256.0), floor(ex.w / 256.0), mod(ex.w, 256.0)) / 255.0;
-    v_root = groom_root_color(u_color, hair_color);
-    v_tip = groom_tip_color(u_color, u_tip_color, hair_color);
     v_density = nd.w;
     v_fade = uintBitsToFloat(e.w);
     v_uv = ex.xy;
     vec4 world = u_model * vec4(p, 1.0);
     fur_wetness = textureLod(u_mask, ex.xy, 0.0).a;
-    fur_light_terms(mat3(u_model) * t, mat3(u_model) * nd.xyz, world.xyz, h, v_light_mul, v_light_add);
+    vec3 light_mul;
+    fur_light_terms(mat3(u_model) * t, mat3(u_model) * nd.xyz, world.xyz, h, light_mul, v_spec);
+    v_root = groom_root_color(u_color, hair_color) * light_mul;
+    v_tip = groom_tip_color(u_color, u_tip_color, hair_color) * light_mul;
     // Along the fin: the edge's world length at the shells' texture scale.
     vec3 root_a = fin_vertex(e.x, 0).xyz, root_b = fin_vertex(e.y, 0).xyz;
     float edge = length(mat3(u_model) * (root_b - root_a)) * u_tiling;

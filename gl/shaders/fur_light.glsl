@@ -9,10 +9,12 @@ uniform sampler2D u_light_table; // PELT_UNIT_LIGHT_TABLE
 // stage that reads the mask sets it before fur_light_terms; dry otherwise.
 float fur_wetness = 0.0;
 
-// As a factor and a term, colour = base * mul + add, so the shells and the
-// fins evaluate it per vertex (their lean fragment stage only fetches the
-// hair and multiplies; docs/lod.md says what that costs in the picture).
-void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mul, out vec3 add)
+// As a factor and a weight, colour = base * mul + spec * u_specular *
+// u_light_color, so the shells and the fins evaluate it per vertex (their
+// lean fragment stage only fetches the hair and multiplies; docs/lod.md
+// says what that costs in the picture). The stages fold mul into the root
+// and tip colours they pass on: fewer varyings to interpolate.
+void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mul, out float spec)
 {
     vec3 T = normalize(tangent);
     vec3 L = normalize(u_light_dir);
@@ -39,5 +41,6 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
     if (u_shadow_map.x > 0.5) gamma = mix(1.0, gamma, u_shadow_slab.w);
 #endif
     mul = gamma * (u_ambient + kk.x * facing * u_light_color);
-    add = gamma * u_specular * (shine.y * kk.y) * facing * u_light_color;
+    spec = gamma * shine.y * kk.y * facing;
 }
+

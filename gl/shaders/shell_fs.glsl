@@ -1,12 +1,12 @@
 // Shell fragments: fur texture slice of this layer, lit by the terms the
-// vertex stage worked out (Kajiya-Kay, Silva et al. Eq. 6), alpha discard.
+// vertex stage worked out (Kajiya-Kay, Silva et al. Eq. 6) and folded into
+// the root and tip colours, alpha discard.
 in vec2 v_uv;
 in vec2 v_fur_uv;
 in float v_density;
-in vec3 v_root;
+in vec3 v_root; // lit
 in vec3 v_tip;
-in vec3 v_light_mul;
-in vec3 v_light_add;
+in float v_spec;
 in vec2 v_shadow_step;
 flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
@@ -110,6 +110,6 @@ void main()
     base *= texture(u_color_tex, (v_uv + d) * u_color_scale).rgb;
 #endif
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
-    o_color = vec4(base * v_light_mul + v_light_add, hair.a);
+    o_color = vec4(base + v_spec * (u_specular * u_light_color), hair.a);
 #endif
 }

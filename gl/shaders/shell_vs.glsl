@@ -26,10 +26,9 @@ out vec2 v_uv;
 out vec2 v_fur_uv;
 out float v_h;
 out float v_density;
-out vec3 v_root;        // the groomed root and tip colours
-out vec3 v_tip;
-out vec3 v_light_mul;   // fur_light_terms: colour = base * mul + add
-out vec3 v_light_add;
+out vec3 v_root;        // the groomed root and tip colours, lit: times
+out vec3 v_tip;         // fur_light_terms' mul
+out float v_spec;       // fur_light_terms' specular weight
 out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
 flat out float v_clump_profile; // Silva Eq. 5's f(h), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
@@ -65,19 +64,20 @@ void main()
                 + fur_comb(shear, L, 1.0, h);
     vec3 t = fur_tangent_combed(n, L, tip, u, v, shear, u_curl_frequency, K, rho, 1.0, h);
     vec4 world = u_model * vec4(position + offset, 1.0);
+    vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS
     // Drawn from the light into its opacity slices: no lighting.
     vec3 lc = shadow_coord(world.xyz);
     v_light_depth = lc.z;
     gl_Position = vec4(lc * 2.0 - 1.0, 1.0);
 #else
-    fur_light_terms(mat3(u_model) * t, mat3(u_model) * n, world.xyz, h, v_light_mul, v_light_add);
+    fur_light_terms(mat3(u_model) * t, mat3(u_model) * n, world.xyz, h, light_mul, v_spec);
     v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),
                                         normalize(mat3(u_model) * v), u_inter_shadow_step);
     gl_Position = u_view_proj * world;
 #endif
-    v_root = groom_root_color(u_color, a_hair_color);
-    v_tip = groom_tip_color(u_color, u_tip_color, a_hair_color);
+    v_root = groom_root_color(u_color, a_hair_color) * light_mul;
+    v_tip = groom_tip_color(u_color, u_tip_color, a_hair_color) * light_mul;
     v_uv = a_uv;
     v_fur_uv = a_fur_uv;
     v_h = h;
