@@ -402,9 +402,9 @@ int cmd_bench(int argc, char **argv)
     pelt_render_stats rs = pelt_renderer_get_stats(s.renderer);
     printf("shell draw calls per frame: %u (%u layers), %zu triangles submitted\n",
            rs.shell_draw_calls, rs.shell_instances, rs.triangles);
-    printf("level of detail: mesh level %u (%zu of %zu triangles), %zu fins drawn, "
+    printf("level of detail: mesh level %u (%zu of %zu triangles), %zu fins drawn (%u rows), "
            "shell level %u (blend %.2f), back faces %s\n",
-           rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.shell_level,
+           rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.fin_rows, rs.shell_level,
            (double)rs.shell_blend, rs.culled ? "culled" : "drawn");
     if (bench_variants(&s, frames, o.bench_floor)) rc = 1;
     if (rc == 0 && sc->animation.name[0]) rc = bench_skinning(&s, sc, frames, plain[PART_FRAME].median);

@@ -137,7 +137,6 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
 {
     unsigned level = f->lod.full_mesh ? 0 : f->lod.mesh_level;
     const pelt__lod_level *l = &p->lod->levels[level];
-    unsigned rows = f->lod.fin_rows ? f->lod.fin_rows : PELT_FIN_ROWS;
     /* The view direction in mesh space: the transpose of the model's
      * rotation (exact for rotations and uniform scale). */
     const float *m = f->view->model, *v = f->view->view;
@@ -146,9 +145,10 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
                          m[8] * fwd.x + m[9] * fwd.y + m[10] * fwd.z);
     local = v3_norm_or(local, v3(0.0f, 0.0f, -1.0f));
     /* Where the shells' back faces are culled and the skin is drawn, it hides the fins behind too. */
-    pelt__fin_frame_desc fd = {level, rows, {local.x, local.y, local.z}, f->draw->fins_unfaded,
-                               f->lod.cull && !f->draw->no_skin};
-    size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices);
+    pelt__fin_frame_desc fd = {level, PELT_FIN_ROWS, f->lod.fin_row_error, {local.x, local.y, local.z},
+                               f->draw->fins_unfaded, f->lod.cull && !f->draw->no_skin};
+    unsigned rows;
+    size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices, &rows);
     if (count == 0) return;
     table_write(PELT_UNIT_FIN_EDGES, p->edges, GL_RGBA32UI, p->fins, count);
     table_write(PELT_UNIT_FIN_VERTICES, p->vertex_table, GL_RGBA32F, p->vertices,
@@ -170,6 +170,7 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     glBindVertexArray(f->mesh->vao);
     f->stats->fin_draw_calls++;
     f->stats->fins += count;
+    f->stats->fin_rows = rows;
     f->stats->triangles += count * 2 * rows;
 }
 

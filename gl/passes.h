@@ -23,7 +23,8 @@ typedef struct pelt__frame_lod {
     unsigned mesh_level;  /* else this geometric level's triangles and fins */
     unsigned shell_level; /* Lengyel §2.4: ceil(N / 2^level) shells ... */
     float shell_blend;    /* ... blending this far towards the next level */
-    unsigned fin_rows;    /* quads up a fin, 1..PELT_FIN_ROWS (0: all) */
+    float fin_row_error;  /* the chord error a fin's rows may show, mesh units
+                             (0: always PELT_FIN_ROWS rows) */
     bool cull;            /* back-facing shells culled (closed meshes) */
     bool front_cw;        /* the mesh winds its outside faces clockwise */
 } pelt__frame_lod;

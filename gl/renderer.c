@@ -159,8 +159,9 @@ static pelt__frame_lod choose_lod(const pelt_renderer *r, const pelt_view *v, co
     l.mesh_level = pelt__lod_pick(c, ppu, fl.mesh_error_pixels, fl.mesh_edge_pixels);
     float fur_px = pelt_fur_get_desc(r->fur).length * ppu;
     if (!one_height) pelt__lod_shell_choice(r->layers, fur_px, fl.shell_pixels, &l.shell_level, &l.shell_blend);
-    /* A fin's strip follows the curved strand in a quad per 8 pixels. */
-    l.fin_rows = fur_px < 8.0f ? 1 : fur_px < 16.0f ? 2 : PELT_FIN_ROWS;
+    /* A fin's strip follows the bent and curled strand to within a pixel:
+     * on llvmpipe a fin costs its triangles as much as its pixels. */
+    l.fin_row_error = ppu > 0.0f && isfinite(ppu) ? 1.0f / ppu : 0.0f;
     return l;
 }
 

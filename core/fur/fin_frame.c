@@ -27,10 +27,61 @@ static void put(float *t, pelt_vec3 a, float w)
     t[0] = a.x, t[1] = a.y, t[2] = a.z, t[3] = w;
 }
 
-size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d, uint32_t *fins, float *vertices)
+/* A fin vertex's strand: what shell_vs.glsl works out before displacing. */
+typedef struct fin_strand {
+    pelt_vec3 p, n, u, v, tip, shear;
+    float L, K, omega, rho;
+} fin_strand;
+
+static fin_strand strand_at(const pelt_fur *f, const pelt_mesh_data *m, const float *tangents, bool wet, float slant,
+                            size_t i)
+{
+    const pelt_fur_desc *fd = &f->desc;
+    const pelt__groom_vertex *g = &f->groom.v[i];
+    const float *pv = f->pose ? f->pose + 10 * i : NULL; /* a posed mesh: its own frame */
+    const float *ti = pv ? pv + 6 : tangents + 4 * i;
+    fin_strand st;
+    st.p = v3_load(pv ? pv : m->positions + 3 * i);
+    st.n = v3_norm_or(v3_load(pv ? pv + 3 : m->normals + 3 * i), v3(0.0f, 1.0f, 0.0f));
+    st.u = v3_norm_or(v3_load(ti), v3(1.0f, 0.0f, 0.0f));
+    st.v = v3_scale(v3_cross(st.n, st.u), ti[3]);
+    pelt_vec3 comb = m->comb ? v3_load(m->comb + 3 * i) : v3_load(ti);
+    st.rho = wet ? rho_at(f->wetness, m->uvs[2 * i], m->uvs[2 * i + 1]) : 0.0f;
+    float s = g->length * fd->fins.length;
+    st.L = fd->length * s;
+    st.K = pelt__fur_vertex_curl_radius(fd) * s;
+    st.omega = fd->look.curl_frequency;
+    st.tip = v3_scale(v3_load(f->tips + 3 * i), s);
+    st.shear = pelt__fur_groom_shear(comb, slant, st.u, st.v, g->lean);
+    return st;
+}
+
+/* beta + phi + comb at h, as shell_vs.glsl. */
+static pelt_vec3 strand_offset(const fin_strand *st, float h)
+{
+    return v3_add(v3_add(pelt__fur_bend(st->n, st->L, st->tip, h), pelt__fur_curl(st->u, st->v, st->omega, st->K, st->rho, h)),
+                  pelt__fur_comb(st->shear, st->L, 1.0f, h));
+}
+
+/* How far the strand strays from its root-to-tip chord: the most of its
+ * points at h = 1/4, 1/2, 3/4. */
+static float strand_bow(const fin_strand *st)
+{
+    pelt_vec3 tip = strand_offset(st, 1.0f);
+    float tt = v3_dot(tip, tip), bow = 0.0f;
+    for (int k = 1; k < 4; k++) {
+        pelt_vec3 o = strand_offset(st, 0.25f * (float)k);
+        float t = tt > 0.0f ? fminf(fmaxf(v3_dot(o, tip) / tt, 0.0f), 1.0f) : 0.0f;
+        float d = v3_len(v3_sub(o, v3_scale(tip, t)));
+        bow = d > bow ? d : bow;
+    }
+    return bow;
+}
+
+size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d, uint32_t *fins, float *vertices,
+                               unsigned *rows)
 {
     const pelt__lod_level *l = &f->lod.levels[d->level < f->lod.count ? d->level : 0];
-    const pelt_fur_desc *fd = &f->desc;
     const pelt_mesh_data m = pelt_mesh_get_data(f->mesh);
     const float *tangents = pelt_mesh_tangents(f->mesh);
     const pelt_vec3 view = v3_load(d->view_dir);
@@ -60,36 +111,38 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
     }
     if (kept == 0) return 0;
 
-    /* The strands, as shell_vs.glsl displaces them, at h = r / rows. */
+    /* The strands, as shell_vs.glsl displaces them: the fewest rows that
+     * follow every strand's bow within row_error, then its points. */
     const bool wet = !pelt__rect_empty(f->wetness->wet);
-    const float slant = tanf(fd->comb.slant * 3.14159265f / 180.0f);
-    const unsigned rows = d->rows < 1 ? 1 : d->rows > PELT__FIN_HEIGHTS - 1 ? PELT__FIN_HEIGHTS - 1 : d->rows;
+    const float slant = tanf(f->desc.comb.slant * 3.14159265f / 180.0f);
+    unsigned most = d->rows < 1 ? 1 : d->rows > PELT__FIN_HEIGHTS - 1 ? PELT__FIN_HEIGHTS - 1 : d->rows;
+    unsigned n_rows = most;
+    if (d->row_error > 0.0f && most > 1) {
+        float bow = 0.0f;
+        for (size_t c = 0; c < l->fin_vertex_count; c++) {
+            fin_strand st = strand_at(f, &m, tangents, wet, slant, l->fin_vertices[c]);
+            float b = strand_bow(&st);
+            bow = b > bow ? b : bow;
+        }
+        /* A straight quad spanning 1/r of a bowed curve misses it by about
+         * bow / r^2 (a parabola's sagitta). */
+        n_rows = 1;
+        while (n_rows < most && bow > d->row_error * (float)(n_rows * n_rows)) n_rows++;
+    }
+    *rows = n_rows;
     for (size_t c = 0; c < l->fin_vertex_count; c++) {
         size_t i = l->fin_vertices[c];
         float *t = vertices + c * 4 * PELT__FIN_VERTEX_TEXELS;
         const pelt__groom_vertex *g = &f->groom.v[i];
-        const float *pv = pose ? pose + 10 * i : NULL;
-        const float *ti = pv ? pv + 6 : tangents + 4 * i;
-        pelt_vec3 p = v3_load(pv ? pv : m.positions + 3 * i);
-        pelt_vec3 n = v3_norm_or(v3_load(pv ? pv + 3 : m.normals + 3 * i), v3(0.0f, 1.0f, 0.0f));
-        pelt_vec3 u = v3_norm_or(v3_load(ti), v3(1.0f, 0.0f, 0.0f));
-        pelt_vec3 v = v3_scale(v3_cross(n, u), ti[3]);
-        pelt_vec3 comb = m.comb ? v3_load(m.comb + 3 * i) : v3_load(ti);
-        float rho = wet ? rho_at(f->wetness, m.uvs[2 * i], m.uvs[2 * i + 1]) : 0.0f;
-        float s = g->length * fd->fins.length;
-        float L = fd->length * s, K = pelt__fur_vertex_curl_radius(fd) * s;
-        pelt_vec3 tip = v3_scale(v3_load(f->tips + 3 * i), s);
-        pelt_vec3 shear = pelt__fur_groom_shear(comb, slant, u, v, g->lean);
-        for (unsigned r = 0; r <= rows; r++) {
-            float h = (float)r / (float)rows;
-            pelt_vec3 offset = v3_add(v3_add(pelt__fur_bend(n, L, tip, h),
-                                             pelt__fur_curl(u, v, fd->look.curl_frequency, K, rho, h)),
-                                      pelt__fur_comb(shear, L, 1.0f, h));
-            put(t + 8 * r, v3_add(p, offset), 1.0f);
-            put(t + 8 * r + 4, pelt__fur_tangent_combed(n, L, tip, u, v, shear, fd->look.curl_frequency, K, rho, 1.0f, h),
+        fin_strand st = strand_at(f, &m, tangents, wet, slant, i);
+        for (unsigned r = 0; r <= n_rows; r++) {
+            float h = (float)r / (float)n_rows;
+            put(t + 8 * r, v3_add(st.p, strand_offset(&st, h)), 1.0f);
+            put(t + 8 * r + 4,
+                pelt__fur_tangent_combed(st.n, st.L, st.tip, st.u, st.v, st.shear, st.omega, st.K, st.rho, 1.0f, h),
                 0.0f);
         }
-        put(t + 4 * 2 * PELT__FIN_HEIGHTS, n, g->density);
+        put(t + 4 * 2 * PELT__FIN_HEIGHTS, st.n, g->density);
         /* Two bytes a float, as exact integers (float bits could be NaN). */
         float *e = t + 4 * (2 * PELT__FIN_HEIGHTS + 1);
         e[0] = m.uvs[2 * i], e[1] = m.uvs[2 * i + 1];

@@ -88,7 +88,11 @@ const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *fur, size_t *count);
 #define PELT__FIN_VERTEX_TEXELS (2 * PELT__FIN_HEIGHTS + 2)
 typedef struct pelt__fin_frame_desc {
     unsigned level; /* the level of detail whose fins (lod.h) */
-    unsigned rows;  /* quads up a fin, 1 .. PELT__FIN_HEIGHTS - 1 */
+    unsigned rows;  /* quads up a fin at most, 1 .. PELT__FIN_HEIGHTS - 1 */
+    /* The chord error a fin may show, mesh units: the fewest rows (1, 2 or
+       `rows`) whose straight quads stay within it of every strand's curve
+       are used. 0: always `rows`. */
+    float row_error;
     float view_dir[3];
     bool unfaded;   /* every fin at full opacity (Lengyel Fig. 4e) */
     /* A closed mesh whose skin hides its far side: fins whose two ends
@@ -107,9 +111,10 @@ typedef struct pelt__fin_frame_desc {
  * behind a closed mesh when hidden_back) into `fins`
  * (4 words each, room for the level's fin_count) and returns how many;
  * when any, writes all the level's fin vertices (fin_vertex_count of them)
- * into `vertices`. No allocation. */
+ * into `vertices`, their strands at h = r / *rows for r = 0 .. *rows (the
+ * rows chosen, see row_error). No allocation. */
 size_t pelt__fur_gpu_fin_frame(const pelt_fur *fur, const pelt__fin_frame_desc *d, uint32_t *fins,
-                               float *vertices);
+                               float *vertices, unsigned *rows);
 
 /* The shell geometry levels (core/fur/lod.h), level 0 the full mesh in
  * vertex-cache order, each level with its fins. */

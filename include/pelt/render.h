@@ -66,6 +66,8 @@ typedef struct pelt_render_stats {
     unsigned ground_draw_calls; /* 1 when the ground was drawn */
     size_t fins;               /* fins (mesh edges) that draw submitted; the
                                   faded-out ones collapse in the vertex stage */
+    unsigned fin_rows;         /* quads up each fin: as few as follow the bent
+                                  and curled strands to within a pixel */
     size_t triangles;          /* triangles submitted by all passes, every shell
                                   layer counted */
     unsigned mesh_level;       /* the shells' and fins' geometric level of detail

@@ -189,8 +189,10 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
     float *verts = malloc(l->fin_vertex_count * 4 * PELT__FIN_VERTEX_TEXELS * sizeof *verts);
     const pelt_mesh_data d = pelt_mesh_get_data(m);
     pelt_vec3 view = v3_norm_or(v3(0.3f, -0.4f, -1.0f), v3(0, 0, -1));
-    pelt__fin_frame_desc fd = {0, 3, {view.x, view.y, view.z}, false};
-    size_t kept = fins && verts ? pelt__fur_gpu_fin_frame(fur, &fd, fins, verts) : 0;
+    pelt__fin_frame_desc fd = {0, 3, 0.0f, {view.x, view.y, view.z}, false};
+    unsigned rows = 0;
+    size_t kept = fins && verts ? pelt__fur_gpu_fin_frame(fur, &fd, fins, verts, &rows) : 0;
+    CHECK(kept == 0 || rows == 3); /* row_error 0: every row */
     size_t shown = 0, bad_fade = 0, bad_end = 0;
     for (size_t i = 0, k = 0; i < l->fin_count; i++) {
         pelt_vec3 n = pelt__fin_normal(v3_load(d.positions + 3 * l->fins[i].a), v3_load(d.positions + 3 * l->fins[i].b),
