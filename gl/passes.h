@@ -50,10 +50,11 @@ enum {
     PELT__SHELL_KAJIYA_KAY = 1 << 4,    /* the hair lighting models */
     PELT__SHELL_LIGHT_TABLE = 1 << 5,
     PELT__SHELL_SHADOW_MAP = 1 << 6,    /* the light's shadow maps darken the direct light */
-    PELT__SHELL_GENERIC = (1 << 7) - 1, /* everything, chosen per fragment */
-    PELT__SHELL_LIGHT_PASS = 1 << 7,    /* drawn from the light into its opacity slices */
-    PELT__SHELL_GPU_SKIN = 1 << 8,      /* skinned in the vertex stage (for measuring) */
-    PELT__SHELL_VARIANTS = 1 << 9
+    PELT__SHELL_RINGLETS = 1 << 7,      /* wet ringlets: two curl levels blended (with _WET) */
+    PELT__SHELL_GENERIC = (1 << 8) - 1, /* everything, chosen per fragment */
+    PELT__SHELL_LIGHT_PASS = 1 << 8,    /* drawn from the light into its opacity slices */
+    PELT__SHELL_GPU_SKIN = 1 << 9,      /* skinned in the vertex stage (for measuring) */
+    PELT__SHELL_VARIANTS = 1 << 10
 };
 
 /* The #define lines of `features` (PELT_WET, ...), for a program's sources. */

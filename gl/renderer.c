@@ -277,7 +277,10 @@ static unsigned shell_features(const pelt_renderer *r, const pelt__frame_lod *lo
     const pelt_fur_look look = pelt_fur_get_desc(r->fur).look;
     unsigned w, h, version;
     unsigned f = 0;
-    if (pelt__fur_gpu_any_wet(r->fur)) f |= PELT__SHELL_WET;
+    if (pelt__fur_gpu_any_wet(r->fur)) {
+        f |= PELT__SHELL_WET;
+        if (pelt__fur_gpu_ringlet_levels(r->fur) > 1) f |= PELT__SHELL_RINGLETS;
+    }
     if (look.inter_shadow && !draw->no_inter_shadow) f |= PELT__SHELL_INTER_SHADOW;
     if (lod->shell_blend > 0.0f) f |= PELT__SHELL_LOD_BLEND;
     if (pelt__fur_gpu_color(r->fur, &w, &h, &version)) f |= PELT__SHELL_COLOR_TEXTURE;
@@ -310,7 +313,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     stats.culled = frame.lod.cull && !draw->no_shells;
     /* Frame order (DESIGN.md): the light's maps, ground, skin, fins, shells. */
     if (shadows) {
-        light_pass.features = frame.shell_features & PELT__SHELL_WET;
+        light_pass.features = frame.shell_features & (PELT__SHELL_WET | PELT__SHELL_RINGLETS);
         pelt__shadow_pass_draw(&r->shadow, &r->shells, &frame, &light_pass);
         pelt__shadow_pass_bind(&r->shadow);
     }

@@ -11,7 +11,8 @@
 
 static const char *const feature_defines[] = {"PELT_WET", "PELT_INTER_SHADOW", "PELT_LOD_BLEND",
                                               "PELT_COLOR_TEXTURE", "PELT_SHADING_KK", "PELT_SHADING_TABLE",
-                                              "PELT_SHADOW_MAP", "PELT_LIGHT_PASS", "PELT_GPU_SKIN"};
+                                              "PELT_SHADOW_MAP", "PELT_RINGLETS", "PELT_LIGHT_PASS",
+                                              "PELT_GPU_SKIN"};
 
 void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFINES_MAX])
 {

@@ -49,12 +49,13 @@ int clump_lookup_texel(sampler2D mask, vec4 t, vec2 p, float f, float s, out vec
     q = p;
     if (!(t.a > 0.0)) return CLUMP_KEEP;
     vec2 o = p - t.xy;
-    if (length(o) > t.z) return CLUMP_DISCARD;
     float pull = clamp(s * t.a * f, 0.0, CLUMP_MAX_PULL);
-    q = t.xy + o * (1.0 / (1.0 - pull));
+    float g = 1.0 / (1.0 - pull);
     // The root must lie in this clump: strands from beyond its radius
-    // belong to a neighbour, so the clump narrows towards its tip.
-    if (length(q - t.xy) > t.z) return CLUMP_DISCARD;
+    // belong to a neighbour, so the clump narrows towards its tip. As
+    // g >= 1 this also drops p outside the clump (another clump's texel).
+    if (length(o) * g > t.z) return CLUMP_DISCARD;
+    q = t.xy + o * g;
     if (!(clump_texel(mask, q).a > 0.0)) return CLUMP_DISCARD;
     return CLUMP_DISPLACED;
 }

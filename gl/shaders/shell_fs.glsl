@@ -57,15 +57,15 @@ void main()
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
     vec4 hair;
-#ifdef PELT_WET
-    if (u_ringlets.x > 1.0 && rho > 0.0) {
-        // Ringlets: water takes the curl out, between the levels the
-        // volume holds it at (docs/method.md).
-        vec3 level = ringlet_levels(rho, u_ringlets.x, u_ringlets.y);
-        hair = mix(shell_hair(fur_uv, level.x), shell_hair(fur_uv, level.y), level.z);
-    } else
-#endif
+#ifdef PELT_RINGLETS
+    // Ringlets: water takes the curl out, between the levels the volume
+    // holds it at (docs/method.md). Dry hair reads the full-curl level with
+    // weight 1: no branch, which llvmpipe would pay for on both sides.
+    vec3 level = ringlet_levels(rho, u_ringlets.x, u_ringlets.y);
+    hair = mix(shell_hair(fur_uv, level.x), shell_hair(fur_uv, level.y), level.z);
+#else
     hair = shell_hair(fur_uv, 0.0);
+#endif
     hair *= v_alpha;
     hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
     if (!groom_keeps(hair.b, v_density)) discard;
