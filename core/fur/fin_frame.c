@@ -86,7 +86,9 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
     const float *tangents = pelt_mesh_tangents(f->mesh);
     const pelt_vec3 view = v3_load(d->view_dir);
 
-    /* The fins and their fade, max(0, 2|p| - 1) (pelt__fin_fade). */
+    /* The fins and their fade, max(0, 2|p| - 1) (pelt__fin_fade), fainter
+     * where they stand closer than the fin texture's slab. */
+    const float slab = f->desc.fins.density / (float)f->desc.look.texture_size;
     size_t kept = 0;
     const float *pose = f->pose; /* a posed mesh: its own positions, normals, tangents */
     for (size_t i = 0; i < l->fin_count; i++) {
@@ -103,6 +105,12 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
             if (v3_dot(v3_load(na), view) > PELT__FIN_BACK && v3_dot(v3_load(nb), view) > PELT__FIN_BACK) continue;
         }
         float fade = d->unfaded ? 1.0f : pelt__fin_fade(fn, view);
+        if (!d->unfaded) {
+            size_t a = l->fins[i].a, b = l->fins[i].b;
+            pelt_vec3 pa = v3_load(pose ? pose + 10 * a : m.positions + 3 * a);
+            pelt_vec3 pb = v3_load(pose ? pose + 10 * b : m.positions + 3 * b);
+            fade *= pelt__fin_spacing_opacity(v3_len(v3_sub(pb, pa)) * f->desc.look.tiling, slab);
+        }
         if (fade < 0.05f) continue; /* the fragment stage's own cut: nothing to draw */
         uint32_t *t = fins + 4 * kept++;
         t[0] = l->fin_ends[2 * i], t[1] = l->fin_ends[2 * i + 1];

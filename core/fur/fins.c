@@ -60,6 +60,12 @@ float pelt__fin_fade(pelt_vec3 fin_normal, pelt_vec3 view_dir)
     return fmaxf(0.0f, 2.0f * fabsf(v3_dot(fin_normal, view_dir)) - 1.0f);
 }
 
+float pelt__fin_spacing_opacity(float edge, float slab)
+{
+    if (!(slab > 0.0f) || !(edge < slab)) return 1.0f;
+    return edge > 0.0f ? edge / slab : 0.0f;
+}
+
 void pelt__fin_normals(const pelt__fin_edge *edges, size_t count, const float *positions, const float *normals,
                        float *out)
 {

@@ -32,6 +32,14 @@ pelt_vec3 pelt__fin_normal(pelt_vec3 pa, pelt_vec3 pb, pelt_vec3 na, pelt_vec3 n
  * the silhouette), 0 once the fin turns 60 degrees away from that. */
 float pelt__fin_fade(pelt_vec3 fin_normal, pelt_vec3 view_dir);
 
+/* A fin stands for the hair in a slab `slab` fur tiles wide (the fin
+ * texture's, pelt_fur_fins.density texels); fins closer together than that
+ * (an edge `edge` tiles long) overlap, so each is made fainter by their
+ * ratio: seen along the surface, the fins of a fine mesh then add up to
+ * about the opacity of a coarser one's (a level of detail, or the same
+ * creature modelled finer) instead of striping the silhouette. */
+float pelt__fin_spacing_opacity(float edge, float slab);
+
 /* The fin normal of every edge (pelt__fin_normal of its end points and
  * vertex normals), 3 floats per fin into `out`. */
 void pelt__fin_normals(const pelt__fin_edge *edges, size_t count, const float *positions, const float *normals,

@@ -173,6 +173,23 @@ static void lod_shell_composite_is_over(void)
  * (pelt__fin_fade) reaches 0.05, with that fade; each vertex's strand
  * starts at the vertex, rises along its normal at rest and is as long as
  * the fur; ends index the level's fin vertices. */
+/* Fins closer than their slab fade by the ratio; wider spacing keeps the
+ * texture's own opacity; degenerate input draws nothing odd. */
+static void lod_fins_closer_than_their_slab_fade(void)
+{
+    CHECK(pelt__fin_spacing_opacity(0.5f, 0.25f) == 1.0f);
+    CHECK(pelt__fin_spacing_opacity(0.25f, 0.25f) == 1.0f);
+    CHECK(fabsf(pelt__fin_spacing_opacity(0.1f, 0.25f) - 0.4f) < 1e-6f);
+    CHECK(pelt__fin_spacing_opacity(0.0f, 0.25f) == 0.0f);
+    CHECK(pelt__fin_spacing_opacity(0.1f, 0.0f) == 1.0f);
+    float last = 0.0f;
+    for (int k = 0; k <= 40; k++) {
+        float o = pelt__fin_spacing_opacity(0.01f * (float)k, 0.25f);
+        CHECK(o >= last && o <= 1.0f);
+        last = o;
+    }
+}
+
 static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
 {
     pelt_mesh *m = NULL;
@@ -197,7 +214,10 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
     for (size_t i = 0, k = 0; i < l->fin_count; i++) {
         pelt_vec3 n = pelt__fin_normal(v3_load(d.positions + 3 * l->fins[i].a), v3_load(d.positions + 3 * l->fins[i].b),
                                        v3_load(d.normals + 3 * l->fins[i].a), v3_load(d.normals + 3 * l->fins[i].b));
-        float fade = pelt__fin_fade(n, view);
+        float edge = v3_len(v3_sub(v3_load(d.positions + 3 * l->fins[i].b), v3_load(d.positions + 3 * l->fins[i].a)));
+        const pelt_fur_desc fdesc = pelt_fur_get_desc(fur);
+        float fade = pelt__fin_fade(n, view) *
+                     pelt__fin_spacing_opacity(edge * fdesc.look.tiling, fdesc.fins.density / (float)fdesc.look.texture_size);
         if (fade < 0.05f) continue;
         shown++;
         if (k < kept) {
@@ -233,6 +253,7 @@ int main(void)
     RUN(lod_shell_levels_halve_to_one_shell);
     RUN(lod_shell_choice_blends_without_a_jump);
     RUN(lod_shell_composite_is_over);
+    RUN(lod_fins_closer_than_their_slab_fade);
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);
     return check_summary();
 }

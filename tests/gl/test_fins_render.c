@@ -197,8 +197,50 @@ static void inter_fur_shadows_make_hairs_stand_out(void)
 
 static size_t chunked(size_t fins) { return (fins + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK * PELT_FIN_CHUNK; }
 
+/* Fins closer than the fin texture's slab are fainter by the ratio
+ * (pelt__fin_spacing_opacity): a sphere modelled with 16 times the
+ * triangles covers the band outside its shells' silhouette with its fins
+ * about as much as the coarse one, where fins of full opacity on every
+ * short edge would stripe it solid. */
+static void fins_add_up_alike_on_fine_and_coarse_meshes(void)
+{
+    pelt_mesh *coarse = NULL, *fine = NULL;
+    CHECK(pelt_mesh_sphere(1.0f, 24, 12, &coarse, NULL) == PELT_OK);
+    CHECK(pelt_mesh_sphere(1.0f, 96, 48, &fine, NULL) == PELT_OK);
+    /* A slab of 64 texels: 0.25 fur tiles, between the two spheres' edges
+     * (0.38 and 0.09 tiles long). */
+    const pelt_fur_desc d = {.length = 0.15f, .fins.density = 64.0f};
+    const pelt_camera cam = {0.0f, 0.0f, 3.4f, 40.0f, {0, 0, 0}};
+    const pelt_draw_desc shells = {.no_fins = true}, fins = {.no_shells = true};
+    uint8_t *a = coarse && fine ? gl_test_render(gl, coarse, &d, &cam, &shells, NULL, NULL) : NULL;
+    uint8_t *fc = a ? gl_test_render(gl, coarse, &d, &cam, &fins, NULL, NULL) : NULL;
+    uint8_t *ff = fc ? gl_test_render(gl, fine, &d, &cam, &fins, NULL, NULL) : NULL;
+    CHECK(a && fc && ff);
+    if (a && fc && ff) {
+        size_t band = 0, with_coarse = 0, with_fine = 0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                size_t i = (size_t)y * W + (size_t)x;
+                if (near_covered(a, x, y, 0) || !near_covered(a, x, y, 5)) continue;
+                band++;
+                with_coarse += covered(fc, i);
+                with_fine += covered(ff, i);
+            }
+        printf("  band of %zu px: the coarse sphere's fins cover %zu, the fine one's %zu\n", band, with_coarse,
+               with_fine);
+        CHECK(band > 300 && with_coarse * 5 >= band);
+        CHECK(with_fine * 4 <= with_coarse * 5 && with_fine * 5 >= with_coarse * 4);
+    }
+    free(a);
+    free(fc);
+    free(ff);
+    pelt_mesh_destroy(coarse);
+    pelt_mesh_destroy(fine);
+}
+
 /* (vi) One draw call for all fins whatever the mesh; GL's primitive count
- * is the fins' strips, fins x 2 x PELT_FIN_ROWS triangles. */
+ * is the fins' strips, fins x 2 x rows triangles (1..PELT_FIN_ROWS rows,
+ * as few as follow the strands). */
 static void all_fins_are_one_draw_call(void)
 {
     const pelt_mesh *meshes[] = {torus, square, sphere};
@@ -229,7 +271,8 @@ static void all_fins_are_one_draw_call(void)
          * nonzero alpha"), one draw. */
         CHECK(st.fin_draw_calls == 1 && st.fins > 0 && st.fins < edges + edges / 2 + 64);
         /* An instance is PELT_FIN_CHUNK strips; the last one's spares collapse. */
-        CHECK(prims == chunked(st.fins) * 2 * PELT_FIN_ROWS);
+        CHECK(st.fin_rows >= 1 && st.fin_rows <= PELT_FIN_ROWS);
+        CHECK(prims == chunked(st.fins) * 2 * st.fin_rows);
         /* Unfaded, every fin of the level drawn: still one draw. */
         glBeginQuery(GL_PRIMITIVES_GENERATED, q);
         pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .no_shells = true, .fins_unfaded = true});
@@ -238,7 +281,7 @@ static void all_fins_are_one_draw_call(void)
         pelt_render_stats all = pelt_renderer_get_stats(r);
         CHECK(all.fin_draw_calls == 1 && all.fins >= st.fins);
         CHECK(st.mesh_level > 0 || all.fins >= edges);
-        CHECK(prims == chunked(all.fins) * 2 * PELT_FIN_ROWS);
+        CHECK(prims == chunked(all.fins) * 2 * all.fin_rows);
         glDeleteQueries(1, &q);
         pelt_renderer_destroy(r);
         pelt_fur_destroy(fur);
@@ -257,6 +300,7 @@ int main(void)
     RUN(fins_stay_on_the_fur_in_a_gale);
     RUN(inter_fur_shadows_make_hairs_stand_out);
     RUN(all_fins_are_one_draw_call);
+    RUN(fins_add_up_alike_on_fine_and_coarse_meshes);
     pelt_mesh_destroy(torus);
     pelt_mesh_destroy(square);
     pelt_mesh_destroy(sphere);
