@@ -28,6 +28,21 @@ static bool near_covered(const uint8_t *b, int x, int y, int r)
     return false;
 }
 
+/* The band of pixels within 1..r px outside the covered pixels of `edge`;
+ * returns its size, and in *cover how many of them `img` covers. */
+static size_t band_cover(const uint8_t *edge, int r, const uint8_t *img, size_t *cover)
+{
+    size_t band = 0;
+    *cover = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            if (near_covered(edge, x, y, 0) || !near_covered(edge, x, y, r)) continue;
+            band++;
+            *cover += covered(img, (size_t)y * W + (size_t)x);
+        }
+    return band;
+}
+
 typedef struct motion {
     pelt_forces forces;
     float seconds;
@@ -53,15 +68,9 @@ static void fins_widen_the_silhouette(void)
     uint8_t *b = gl_test_render(gl, torus, &d, &torus_cam, NULL, NULL, NULL);
     CHECK(a && b);
     if (a && b) {
-        size_t band = 0, without = 0, with = 0;
-        for (int y = 0; y < H; y++)
-            for (int x = 0; x < W; x++) {
-                size_t i = (size_t)y * W + (size_t)x;
-                if (near_covered(a, x, y, 0) || !near_covered(a, x, y, 6)) continue;
-                band++;
-                without += covered(a, i);
-                with += covered(b, i);
-            }
+        size_t without, with;
+        size_t band = band_cover(a, 6, a, &without);
+        band_cover(a, 6, b, &with);
         printf("  band of %zu px outside the shells' silhouette: %zu fur px without fins, %zu with\n",
                band, without, with);
         CHECK(band > 500);
@@ -217,15 +226,9 @@ static void fins_add_up_alike_on_fine_and_coarse_meshes(void)
     uint8_t *ff = fc ? gl_test_render(gl, fine, &d, &cam, &fins, NULL, NULL) : NULL;
     CHECK(a && fc && ff);
     if (a && fc && ff) {
-        size_t band = 0, with_coarse = 0, with_fine = 0;
-        for (int y = 0; y < H; y++)
-            for (int x = 0; x < W; x++) {
-                size_t i = (size_t)y * W + (size_t)x;
-                if (near_covered(a, x, y, 0) || !near_covered(a, x, y, 5)) continue;
-                band++;
-                with_coarse += covered(fc, i);
-                with_fine += covered(ff, i);
-            }
+        size_t with_coarse, with_fine;
+        size_t band = band_cover(a, 5, fc, &with_coarse);
+        band_cover(a, 5, ff, &with_fine);
         printf("  band of %zu px: the coarse sphere's fins cover %zu, the fine one's %zu\n", band, with_coarse,
                with_fine);
         CHECK(band > 300 && with_coarse * 5 >= band);
