@@ -210,14 +210,14 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
     unsigned rows = 0;
     size_t kept = fins && verts ? pelt__fur_gpu_fin_frame(fur, &fd, fins, verts, &rows) : 0;
     CHECK(kept == 0 || rows == 3); /* row_error 0: every row */
+    const pelt_fur_desc fdesc = pelt_fur_get_desc(fur);
+    const float slab = fdesc.fins.density / (float)fdesc.look.texture_size;
     size_t shown = 0, bad_fade = 0, bad_end = 0;
     for (size_t i = 0, k = 0; i < l->fin_count; i++) {
         pelt_vec3 n = pelt__fin_normal(v3_load(d.positions + 3 * l->fins[i].a), v3_load(d.positions + 3 * l->fins[i].b),
                                        v3_load(d.normals + 3 * l->fins[i].a), v3_load(d.normals + 3 * l->fins[i].b));
         float edge = v3_len(v3_sub(v3_load(d.positions + 3 * l->fins[i].b), v3_load(d.positions + 3 * l->fins[i].a)));
-        const pelt_fur_desc fdesc = pelt_fur_get_desc(fur);
-        float fade = pelt__fin_fade(n, view) *
-                     pelt__fin_spacing_opacity(edge * fdesc.look.tiling, fdesc.fins.density / (float)fdesc.look.texture_size);
+        float fade = pelt__fin_fade(n, view) * pelt__fin_spacing_opacity(edge * fdesc.look.tiling, slab);
         if (fade < 0.05f) continue;
         shown++;
         if (k < kept) {
