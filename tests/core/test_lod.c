@@ -190,6 +190,48 @@ static void lod_fins_closer_than_their_slab_fade(void)
     }
 }
 
+/* The rows of a fin frame: as few as follow the strands within row_error.
+ * Straight strands at rest need one; a curled strand (bowed by about its
+ * curl radius) needs more the smaller the error, never more than asked. */
+static unsigned fin_rows_for(pelt_fur *fur, float row_error)
+{
+    const pelt__lod_level *l = &pelt__fur_gpu_lod(fur)->levels[0];
+    uint32_t *fins = malloc(l->fin_count * 4 * sizeof *fins);
+    float *verts = malloc(l->fin_vertex_count * 4 * PELT__FIN_VERTEX_TEXELS * sizeof *verts);
+    pelt__fin_frame_desc fd = {0, 3, row_error, {0.0f, 0.0f, -1.0f}, false};
+    unsigned rows = 0;
+    if (fins && verts && pelt__fur_gpu_fin_frame(fur, &fd, fins, verts, &rows) == 0) rows = 0;
+    free(fins);
+    free(verts);
+    return rows;
+}
+
+static void lod_fin_rows_follow_the_strands_bow(void)
+{
+    pelt_mesh *m = NULL;
+    pelt_fur *straight = NULL, *curly = NULL;
+    CHECK(pelt_mesh_sphere(1.0f, 16, 8, &m, NULL) == PELT_OK);
+    if (!m) return;
+    CHECK(pelt_fur_create(m, &(pelt_fur_desc){.look.texture_size = 16, .length = 0.1f}, &straight, NULL) == PELT_OK);
+    CHECK(pelt_fur_create(m,
+                          &(pelt_fur_desc){.look.texture_size = 16, .length = 0.1f, .look.curl_frequency = 6.2831853f,
+                                           .look.curl_radius = 0.02f, .look.curl_phase = PELT_CURL_COHERENT},
+                          &curly, NULL) == PELT_OK);
+    if (straight && curly) {
+        unsigned s_fine = fin_rows_for(straight, 1e-5f), s_coarse = fin_rows_for(straight, 1.0f);
+        unsigned c_fine = fin_rows_for(curly, 1e-4f), c_mid = fin_rows_for(curly, 0.006f);
+        unsigned c_coarse = fin_rows_for(curly, 1.0f), c_every = fin_rows_for(curly, 0.0f);
+        printf("  rows: straight %u, %u; curled %u, %u, %u (error 0: %u)\n", s_fine, s_coarse, c_fine, c_mid,
+               c_coarse, c_every);
+        CHECK(s_fine == 1 && s_coarse == 1);
+        CHECK(c_fine == 3 && c_coarse == 1 && c_every == 3);
+        CHECK(c_mid >= c_coarse && c_mid <= c_fine);
+    }
+    pelt_fur_destroy(straight);
+    pelt_fur_destroy(curly);
+    pelt_mesh_destroy(m);
+}
+
 static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
 {
     pelt_mesh *m = NULL;
@@ -255,5 +297,6 @@ int main(void)
     RUN(lod_shell_composite_is_over);
     RUN(lod_fins_closer_than_their_slab_fade);
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);
+    RUN(lod_fin_rows_follow_the_strands_bow);
     return check_summary();
 }
