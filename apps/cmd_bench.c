@@ -89,6 +89,26 @@ static double timed_draw(cli_session *s, const pelt_draw_desc *dd)
     return t;
 }
 
+/* The fragments one draw shades: the fragment shader's invocations where GL
+ * counts them (ARB_pipeline_statistics_query, core in 4.6; llvmpipe has
+ * it), else the samples that pass the depth test and are not discarded. */
+static double counted_draw(cli_session *s, const pelt_draw_desc *dd, bool invocations)
+{
+    GLenum target = invocations ? GL_FRAGMENT_SHADER_INVOCATIONS_ARB : GL_SAMPLES_PASSED;
+    GLuint q = 0;
+    glGenQueries(1, &q);
+    glBeginQuery(target, q);
+    pelt_draw_desc saved = s->draw;
+    s->draw = *dd;
+    cli_session_draw(s);
+    s->draw = saved;
+    glEndQuery(target);
+    GLuint64 n = 0;
+    glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
+    glDeleteQueries(1, &q);
+    return (double)n;
+}
+
 /* --animation: the skinning of one frame on the CPU (pelt_mesh_pose, then
  * pelt_fur_set_pose hands it to the strands and the renderer), timed alone
  * and set against the frame; its upload is part of "upload" above. */
@@ -263,13 +283,37 @@ static int bench_brush(cli_session *s)
     return 0;
 }
 
+/* Fragments and triangles per frame, split by pass from draws with and
+ * without fins and shells (the shells test depth against the skin alone,
+ * so the differences are each pass's own), and the time each fragment
+ * takes: the pass's share of the alternated medians over its fragments. */
+static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pelt_draw_desc *no_fins,
+                            const pelt_draw_desc *skin_only, double full_ms, double no_fins_ms, double skin_ms,
+                            double floor_ms)
+{
+    bool inv = epoxy_gl_version() >= 46 || epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query");
+    double skin = counted_draw(s, skin_only, inv);
+    double shells = counted_draw(s, no_fins, inv) - skin;
+    double fins = counted_draw(s, full, inv) - skin - shells;
+    pelt_render_stats rs = pelt_renderer_get_stats(s->renderer);
+    size_t shell_tris = (size_t)rs.shell_instances * rs.mesh_triangles;
+    size_t fin_tris = rs.fins * 2 * rs.fin_rows;
+    printf("  per frame (%s):\n", inv ? "fragment shader invocations" : "samples passed: fragments drawn");
+    printf("    shells  %10zu triangles %12.0f fragments  %6.2f ns a fragment", shell_tris, shells,
+           shells > 0.0 ? (no_fins_ms - skin_ms) * 1e6 / shells : 0.0);
+    if (floor_ms > 0.0 && shells > 0.0) printf(" (%.2f in the floor shader)", (floor_ms - skin_ms) * 1e6 / shells);
+    printf("\n    fins    %10zu triangles %12.0f fragments  %6.2f ns a fragment\n", fin_tris, fins,
+           fins > 0.0 ? (full_ms - no_fins_ms) * 1e6 / fins : 0.0);
+    printf("    skin    %10zu triangles %12.0f fragments\n", rs.triangles - shell_tris - fin_tris, skin);
+}
+
 /* Variants of the same frame drawn alternately, so the machine's noise hits
  * them alike: with and without fins (their share of the frame), with and
  * without the inter-fur shadows, the floor shader, and with the light's
  * shadows on: without them and the light pass alone. */
 static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
 {
-    enum { FULL, NO_FINS, NO_INTER, FLOOR, NO_LIGHT, LIGHT_ONLY, VARIANTS };
+    enum { FULL, NO_FINS, NO_INTER, FLOOR, NO_LIGHT, LIGHT_ONLY, SKIN_ONLY, VARIANTS };
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
     pelt_draw_desc v[VARIANTS];
@@ -285,8 +329,10 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     v[FLOOR].floor_shader = true;
     v[NO_LIGHT].no_shadows = true;
     v[LIGHT_ONLY].no_skin = v[LIGHT_ONLY].no_fins = v[LIGHT_ONLY].no_shells = true;
+    /* The skin alone: what the shells' and the floor's times stand on. */
+    v[SKIN_ONLY].no_fins = v[SKIN_ONLY].no_shells = true;
     bool light = cli_session_has_shadows(s);
-    bool run[VARIANTS] = {true, true, true, with_floor, light, light};
+    bool run[VARIANTS] = {true, true, true, with_floor, light, light, true};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -302,6 +348,9 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
         print_stats("no light sh.", st[NO_LIGHT]);
         print_stats("light pass", st[LIGHT_ONLY]);
     }
+    print_stats("skin alone", st[SKIN_ONLY]);
+    print_fragments(s, &v[FULL], &v[NO_FINS], &v[SKIN_ONLY], st[FULL].median, st[NO_FINS].median,
+                    st[SKIN_ONLY].median, with_floor ? st[FLOOR].median : 0.0);
     if (!s->draw.no_fins)
         printf("  fins: %.1f%% of the frame's draw\n", 100.0 * (1.0 - st[NO_FINS].median / st[FULL].median));
     if (with_floor)
