@@ -26,6 +26,7 @@ typedef struct pelt__frame_lod {
     float fin_row_error;  /* the chord error a fin's rows may show, mesh units
                              (0: always PELT_FIN_ROWS rows) */
     bool cull;            /* back-facing shells culled (closed meshes) */
+    bool cull_skin;       /* back-facing skin culled: a closed mesh hides it */
     bool front_cw;        /* the mesh winds its outside faces clockwise */
 } pelt__frame_lod;
 
@@ -66,13 +67,22 @@ void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFIN
     (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE |    \
      PELT__SHELL_SHADOW_MAP)
 
-/* Opaque skin with depth write: the mesh with the innermost fur slice. */
+/* The skin uses these: a branch it never takes still costs llvmpipe every
+ * fragment (docs/lod.md), so the shadow-map taps are compiled in only
+ * when the light's maps are on. */
+#define PELT__SKIN_FEATURES (PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_SHADOW_MAP)
+
+/* Opaque skin with depth write: the mesh with the innermost fur slice, in
+ * variants by the PELT__SKIN_FEATURES bits (the generic one, all of them,
+ * built at creation; the others on first use). */
 typedef struct pelt__skin_pass {
-    GLuint program;
+    GLuint variants[PELT__SKIN_FEATURES + 1];
+    bool failed[PELT__SKIN_FEATURES + 1];
+    pelt_hooks hooks;
 } pelt__skin_pass;
 
 pelt_status pelt__skin_pass_create(pelt__skin_pass *p, const pelt_hooks *hooks, pelt_error *err);
-void pelt__skin_pass_draw(const pelt__skin_pass *p, const pelt__pass_frame *f);
+void pelt__skin_pass_draw(pelt__skin_pass *p, const pelt__pass_frame *f);
 void pelt__skin_pass_destroy(pelt__skin_pass *p);
 
 /* All fins in one instanced draw (Lengyel et al. §2.3): the fins the view

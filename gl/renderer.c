@@ -137,6 +137,7 @@ static pelt__frame_lod choose_lod(const pelt_renderer *r, const pelt_view *v, co
     }
     bool closed = c->closed && c->winding != 0;
     l.cull = closed && (draw->cull_shells > 0 || (draw->cull_shells == 0 && !draw->no_fins));
+    l.cull_skin = closed;
     l.front_cw = c->winding < 0;
     bool one_height = draw->first_layer || draw->layer_count; /* inspecting layers: level 0 */
     unsigned shell_levels = pelt__lod_shell_levels(r->layers);

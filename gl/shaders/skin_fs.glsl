@@ -17,7 +17,11 @@ void main()
 {
     vec3 n = normalize(v_normal);
     float shade = texture(u_fur, vec3(v_fur_uv, 0.0)).r;
-    vec3 roots = groom_root_color(u_color, v_hair_color) * texture(u_color_tex, v_uv * u_color_scale).rgb * shade;
+    vec3 roots = groom_root_color(u_color, v_hair_color) * shade;
+    // Variants as the shells' (gl/skin_pass.c): only what the frame needs.
+#ifdef PELT_COLOR_TEXTURE
+    roots *= texture(u_color_tex, v_uv * u_color_scale).rgb;
+#endif
     vec3 base = mix(u_skin_color, roots, clamp(v_density, 0.0, 1.0));
     vec3 L = normalize(u_light_dir);
     float lambert = max(dot(n, L), 0.0);
@@ -25,10 +29,12 @@ void main()
     // shadow maps, the fur's real opacity instead (unless gamma is kept),
     // read with a bias that grows as the light grazes the skin.
     float gamma = shadow_factor(u_shadow, 0.0);
+#ifdef PELT_SHADOW_MAP
     if (u_shadow_map.x > 0.5 && lambert > 0.0) {
         float nl = max(lambert, 0.1);
         lambert *= shadow_transmittance(v_world, u_shadow_slab.z * (1.0 + min(sqrt(1.0 - nl * nl) / nl, 4.0)), 4);
         gamma = mix(1.0, gamma, u_shadow_slab.w);
     }
+#endif
     o_color = vec4(base * gamma * (u_ambient + lambert * u_light_color), 1.0);
 }
