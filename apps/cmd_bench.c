@@ -98,10 +98,7 @@ static double counted_draw(cli_session *s, const pelt_draw_desc *dd, bool invoca
     GLuint q = 0;
     glGenQueries(1, &q);
     glBeginQuery(target, q);
-    pelt_draw_desc saved = s->draw;
-    s->draw = *dd;
-    cli_session_draw(s);
-    s->draw = saved;
+    timed_draw(s, dd);
     glEndQuery(target);
     GLuint64 n = 0;
     glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
