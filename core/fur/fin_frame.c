@@ -105,13 +105,16 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
             if (v3_dot(v3_load(na), view) > PELT__FIN_BACK && v3_dot(v3_load(nb), view) > PELT__FIN_BACK) continue;
         }
         float fade = d->unfaded ? 1.0f : pelt__fin_fade(fn, view);
+        /* Cut on the view's fade alone: close fins are faint one by one
+         * but add up along a line of sight, so their spacing must not
+         * drop them (docs/gallery-fins.md, Fin spacing). */
+        if (fade < PELT__FIN_CUT) continue;
         if (!d->unfaded) {
             size_t a = l->fins[i].a, b = l->fins[i].b;
             pelt_vec3 pa = v3_load(pose ? pose + 10 * a : m.positions + 3 * a);
             pelt_vec3 pb = v3_load(pose ? pose + 10 * b : m.positions + 3 * b);
             fade *= pelt__fin_spacing_opacity(v3_len(v3_sub(pb, pa)) * f->desc.look.tiling, slab);
         }
-        if (fade < 0.05f) continue; /* the fragment stage's own cut: nothing to draw */
         uint32_t *t = fins + 4 * kept++;
         t[0] = l->fin_ends[2 * i], t[1] = l->fin_ends[2 * i + 1];
         memcpy(&t[2], &l->fins[i].start, sizeof t[2]);

@@ -107,7 +107,11 @@ typedef struct pelt__fin_frame_desc {
  * stops reaching past the outline. */
 #define PELT__FIN_BACK 0.25f
 
-/* Writes the fins the view shows (faded below 0.05 left out, and those
+/* A fin whose view fade, max(0, 2|p| - 1), is below this is left out; its
+ * spacing's opacity does not count (close fins add up). */
+#define PELT__FIN_CUT 0.05f
+
+/* Writes the fins the view shows (view fade below PELT__FIN_CUT left out, and those
  * behind a closed mesh when hidden_back) into `fins`
  * (4 words each, room for the level's fin_count) and returns how many;
  * when any, writes all the level's fin vertices (fin_vertex_count of them)

@@ -20,8 +20,8 @@ void main()
     vec4 hair = texture(u_fin_tex, v_fin_uv);
     hair.rgb /= max(hair.a, 1e-3); // premultiplied
     if (!groom_keeps(hair.b, v_density)) discard;
+    if (hair.a < 0.05) discard;
     float a = hair.a * v_fade;
-    if (a < 0.05) discard;
     vec3 base = mix(v_root, v_tip, hair.g) * hair.r;
     // Variants as the shells' (gl/fin_pass.c): only what the frame needs.
 #ifdef PELT_COLOR_TEXTURE

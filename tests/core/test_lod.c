@@ -259,8 +259,9 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
         pelt_vec3 n = pelt__fin_normal(v3_load(d.positions + 3 * l->fins[i].a), v3_load(d.positions + 3 * l->fins[i].b),
                                        v3_load(d.normals + 3 * l->fins[i].a), v3_load(d.normals + 3 * l->fins[i].b));
         float edge = v3_len(v3_sub(v3_load(d.positions + 3 * l->fins[i].b), v3_load(d.positions + 3 * l->fins[i].a)));
-        float fade = pelt__fin_fade(n, view) * pelt__fin_spacing_opacity(edge * fdesc.look.tiling, slab);
-        if (fade < 0.05f) continue;
+        float fade = pelt__fin_fade(n, view);
+        if (fade < PELT__FIN_CUT) continue; /* the view's fade alone decides */
+        fade *= pelt__fin_spacing_opacity(edge * fdesc.look.tiling, slab);
         shown++;
         if (k < kept) {
             float got;
