@@ -52,13 +52,7 @@ static double band_amount(const uint8_t *edge, int r, const uint8_t *img)
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             if (near_covered(edge, x, y, 0) || !near_covered(edge, x, y, r)) continue;
-            const uint8_t *px = img + 4 * ((size_t)y * W + (size_t)x);
-            int d = 0;
-            for (int k = 0; k < 3; k++) {
-                int e = abs((int)px[k] - (int)(gl_test_background[k] * 255.0f + 0.5f));
-                d = e > d ? e : d;
-            }
-            amount += d / 255.0;
+            amount += gl_test_off_background(img + 4 * ((size_t)y * W + (size_t)x)) / 255.0;
         }
     return amount;
 }

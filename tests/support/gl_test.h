@@ -68,19 +68,22 @@ static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, 
     return px;
 }
 
+/* An RGBA8 pixel's largest channel difference from the background, 0..255. */
+static inline int gl_test_off_background(const uint8_t *px)
+{
+    int d = 0;
+    for (int k = 0; k < 3; k++) {
+        int e = abs((int)px[k] - (int)(gl_test_background[k] * 255.0f + 0.5f));
+        if (e > d) d = e;
+    }
+    return d;
+}
+
 /* Pixels that differ from the background by more than a small margin. */
 static inline size_t gl_test_coverage(const uint8_t *px, size_t n)
 {
     size_t c = 0;
-    for (size_t i = 0; i < n; i++) {
-        int d = 0;
-        for (int k = 0; k < 3; k++) {
-            int b = (int)(gl_test_background[k] * 255.0f + 0.5f);
-            int e = abs((int)px[4 * i + k] - b);
-            if (e > d) d = e;
-        }
-        if (d > 6) c++;
-    }
+    for (size_t i = 0; i < n; i++) c += gl_test_off_background(px + 4 * i) > 6;
     return c;
 }
 
