@@ -4,14 +4,15 @@
 #   scripts/setup.sh --tests  also what the tests use: Debian's libcgal-demo meshes,
 #                             ffmpeg (video output), man-db (the manual page) and
 #                             dpkg-dev and file (the .deb: dpkg-deb, dpkg-shlibdeps),
-#                             xvfb and xauth (pelt view in a window, tests/cli/cli_view.sh)
+#                             xvfb and xauth (pelt view in a window, tests/cli/cli_view.sh),
+#                             python3 (scripts/subdivide-off.py, tests/cli/cli_lod_elephant.sh)
 set -euo pipefail
 
 packages=(build-essential cmake pkg-config
           libepoxy-dev libegl-dev libegl-mesa0 libgl1-mesa-dri libgbm1
           libglfw3-dev libassimp-dev libstb-dev libcjson-dev libmeshoptimizer-dev)
 if [ "${1:-}" = "--tests" ]; then
-  packages+=(libcgal-demo assimp-testmodels ffmpeg man-db dpkg-dev file xvfb xauth)
+  packages+=(libcgal-demo assimp-testmodels ffmpeg man-db dpkg-dev file xvfb xauth python3)
 fi
 
 missing=()
