@@ -310,7 +310,7 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
  * shadows on: without them and the light pass alone. */
 static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
 {
-    enum { FULL, NO_FINS, NO_INTER, FLOOR, NO_LIGHT, LIGHT_ONLY, SKIN_ONLY, VARIANTS };
+    enum { FULL, NO_FINS, NO_INTER, FLOOR, FLOOR_FINS, NO_LIGHT, LIGHT_ONLY, SKIN_ONLY, VARIANTS };
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
     pelt_draw_desc v[VARIANTS];
@@ -324,12 +324,16 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     v[FLOOR].no_fins = true;
     v[FLOOR].cull_shells = 1;
     v[FLOOR].floor_shader = true;
+    /* The same scene with only the shell shader swapped: the fins drawn as
+     * they are, so the ratio is the shell shader's alone. */
+    v[FLOOR_FINS].floor_shader = true;
     v[NO_LIGHT].no_shadows = true;
     v[LIGHT_ONLY].no_skin = v[LIGHT_ONLY].no_fins = v[LIGHT_ONLY].no_shells = true;
     /* The skin alone: what the shells' and the floor's times stand on. */
     v[SKIN_ONLY].no_fins = v[SKIN_ONLY].no_shells = true;
     bool light = cli_session_has_shadows(s);
-    bool run[VARIANTS] = {true, true, true, with_floor, light, light, true};
+    bool fins = !s->draw.no_fins;
+    bool run[VARIANTS] = {true, true, true, with_floor, with_floor && fins, light, light, true};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -341,6 +345,7 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     print_stats("no fins", st[NO_FINS]);
     print_stats("no inter-sh.", st[NO_INTER]);
     if (with_floor) print_stats("floor", st[FLOOR]);
+    if (run[FLOOR_FINS]) print_stats("floor + fins", st[FLOOR_FINS]);
     if (light) {
         print_stats("no light sh.", st[NO_LIGHT]);
         print_stats("light pass", st[LIGHT_ONLY]);
@@ -348,11 +353,15 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     print_stats("skin alone", st[SKIN_ONLY]);
     print_fragments(s, &v[FULL], &v[NO_FINS], &v[SKIN_ONLY], st[FULL].median, st[NO_FINS].median,
                     st[SKIN_ONLY].median, with_floor ? st[FLOOR].median : 0.0);
-    if (!s->draw.no_fins)
+    if (fins)
         printf("  fins: %.1f%% of the frame's draw\n", 100.0 * (1.0 - st[NO_FINS].median / st[FULL].median));
     if (with_floor)
         printf("  the frame takes %.2fx the floor (skin + the same shells with a one-fetch shader)\n",
                st[FULL].median / st[FLOOR].median);
+    if (run[FLOOR_FINS])
+        printf("  the frame takes %.2fx the floor with its fins (the same scene, only the shell shader "
+               "swapped)\n",
+               st[FULL].median / st[FLOOR_FINS].median);
     bool shadows = pelt_fur_get_desc(pelt_scene_instance_fur(s->instance)).look.inter_shadow;
     if (shadows)
         printf("  inter-fur shadows: the draw takes %.3fx as long with them\n", st[FULL].median / st[NO_INTER].median);

@@ -112,7 +112,7 @@ static const flag flags[] = {
     {"--brush", NULL, NULL, FLAG_BRUSH, NULL,
      "bench: time 200 comb strokes (radius 2% and 5% of the mesh diagonal) and their uploads"},
     {"--floor", NULL, NULL, FLAG_FLOOR, NULL,
-     "bench: also time the frame with a one-fetch shell shader, alternated (the floor)"},
+     "bench: also time the frame with a one-fetch shell shader, with and without the fins, alternated (the floor)"},
     {"--dolly", NULL, NULL, FLAG_DOLLY, NULL,
      "bench: time the frame as the camera backs away to 16x its distance (level of detail)"},
     {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
