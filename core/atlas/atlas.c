@@ -1,6 +1,5 @@
 /* Atlas build orchestration and public API: defaults, cache use, mode choice, output mesh (Lengyel §2.1, §3). */
 #include "core/atlas/atlas_internal.h"
-#include "core/mesh/mesh_internal.h"
 #include "core/mesh/skeleton.h"
 
 #include "core/atlas/atlas_cache.h"
@@ -193,7 +192,7 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
     memcpy(a->weights, wts, vc * sizeof(float));
     pelt_mesh_data d = {.positions = positions, .normals = normals, .uvs = ord_uvs,
                         .vertex_count = vc, .indices = ord_indices, .triangle_count = tc,
-                        .fur_uvs = ord_fur, .comb = comb, .colors = colors};
+                        .fur_uvs = ord_fur, .comb = comb, .colors = colors, .up = src.up};
     pelt_error merr = {0};
     pelt_mesh *m = NULL;
     pelt_status st = pelt_mesh_create(&d, &m, &merr);
@@ -208,7 +207,6 @@ static pelt_status make_output_mesh(pelt_atlas *a, const pelt_mesh *in, const fl
                           "pelt_atlas_create: validation kept %zu of %zu triangles of the output mesh",
                           out.triangle_count, tc);
     }
-    memcpy(m->up, in->up, sizeof m->up);
     st = pelt__mesh_copy_skeleton(m, in, a->source_vertex, err);
     if (st != PELT_OK) {
         pelt_mesh_destroy(m);

@@ -7,7 +7,6 @@
 #include "core/base/error.h"
 #include "core/base/vec.h"
 #include "core/fur/fur_internal.h"
-#include "core/mesh/mesh_internal.h"
 
 #include <math.h>
 
@@ -17,6 +16,8 @@ typedef struct stroke {
     pelt_vec3 center;
     float r2, strength;
     size_t touched, lo, hi;
+    pelt_mesh_data mesh;   /* the fur's mesh, read once a stroke */
+    const float *tangents; /* its tangent frames, 4 floats a vertex */
 } stroke;
 
 
@@ -27,15 +28,16 @@ static void apply(stroke *s, size_t i, float w)
 {
     pelt_fur *f = s->fur;
     const pelt_brush *b = s->brush;
-    const pelt_mesh *m = f->mesh;
+    const pelt_mesh_data *m = &s->mesh;
+    const float *tangents = s->tangents;
     pelt__groom_vertex *g = &f->groom.v[i];
     switch (b->tool) {
     case PELT_BRUSH_COMB: {
         /* The tangential part of the delta, in the tangent frame (u, v) the
          * shader leans along, per unit of this vertex's hair length. */
         pelt_vec3 n = v3_load(m->normals + 3 * i);
-        pelt_vec3 u = v3_load(m->tangents + 4 * i);
-        pelt_vec3 bt = v3_scale(v3_cross(n, u), m->tangents[4 * i + 3]);
+        pelt_vec3 u = v3_load(tangents + 4 * i);
+        pelt_vec3 bt = v3_scale(v3_cross(n, u), tangents[4 * i + 3]);
         pelt_vec3 d = v3_load(b->delta);
         d = v3_sub(d, v3_scale(n, v3_dot(d, n)));
         float k = w / (f->desc.length * fmaxf(g->length, 0.05f));
@@ -74,7 +76,7 @@ static void visit_triangle(size_t t, void *user)
 {
     stroke *s = user;
     pelt__groom *g = &s->fur->groom;
-    const pelt_mesh *m = s->fur->mesh;
+    const pelt_mesh_data *m = &s->mesh;
     for (int k = 0; k < 3; k++) {
         uint32_t i = m->indices[3 * t + (size_t)k];
         if (g->stamp[i] == g->stroke) continue;
@@ -122,7 +124,8 @@ pelt_status pelt_fur_brush(pelt_fur *f, const float center[3], const pelt_brush 
         g->stroke = 1;
     }
     stroke s = {f, b, v3_load(center), b->radius * b->radius,
-                b->strength > 0.0f ? b->strength : 1.0f, 0, (size_t)-1, 0};
+                b->strength > 0.0f ? b->strength : 1.0f, 0, (size_t)-1, 0,
+                pelt_mesh_get_data(f->mesh), pelt_mesh_tangents(f->mesh)};
     pelt__bvh_query_ball(f->bvh, center, b->radius, visit_triangle, &s);
     if (s.touched) pelt__groom_changed(g, s.lo, s.hi);
     if (touched) *touched = s.touched;

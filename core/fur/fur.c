@@ -5,7 +5,7 @@
 #include "core/base/hooks.h"
 #include "core/fur/fur_shape.h"
 #include "core/fur/furtex.h"
-#include "core/mesh/mesh_internal.h"
+#include "core/mesh/triangle_area.h"
 #include "core/base/vec.h"
 #include "core/wet/paint.h"
 #include "core/wet/picture.h"
@@ -159,7 +159,7 @@ static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
  * world length of one uv unit along u and along v, so hairs come out round
  * whatever the uv map's aspect (the torus's uv square is 2.5x longer
  * around the hole than around the tube). */
-static void compute_fur_uvs(const pelt_mesh *m, float tiling, float *out, float fur_per_uv[2])
+static void compute_fur_uvs(const pelt_mesh_data *m, float tiling, float *out, float fur_per_uv[2])
 {
     if (m->fur_uvs) {
         /* Patch coordinates from an atlas: within a patch fur uvs are a
@@ -220,6 +220,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     if (!f) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory");
     f->desc = d;
     f->mesh = mesh;
+    const pelt_mesh_data mesh_data = pelt_mesh_get_data(mesh);
     f->texture_slices = d.layers + 1;
     pelt__furtex_desc td = {d.look.texture_size, d.layers, d.seed, d.look.density, d.look.strand_radius,
                             d.look.taper, d.look.strand_curl, d.look.strand_curl_turns,
@@ -235,7 +236,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     }
     size_t bytes = pelt__furtex_bytes(&td);
     f->texture = bytes ? pelt__alloc_zero(a, f->ringlet_levels, bytes) : NULL;
-    f->fur_uvs = pelt__alloc_zero(a, mesh->vertex_count, 2 * sizeof(float));
+    f->fur_uvs = pelt__alloc_zero(a, mesh_data.vertex_count, 2 * sizeof(float));
     pelt__strand_params sp = {d.length, d.dynamics.spring_k, d.dynamics.mass, d.dynamics.damping, d.seed};
     st = pelt__strands_create(mesh, &sp, &f->desc.hooks.allocator, &f->strands, err);
     if (st != PELT_OK) {
@@ -250,7 +251,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->desc.hooks.allocator, &f->surface, err);
     if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
     if (st == PELT_OK) st = pelt__rain_create(mesh, &f->desc.hooks.allocator, &f->rain, err);
-    if (st == PELT_OK) st = pelt__groom_init(&f->groom, mesh->vertex_count, &f->desc.hooks.allocator, err);
+    if (st == PELT_OK) st = pelt__groom_init(&f->groom, mesh_data.vertex_count, &f->desc.hooks.allocator, err);
     /* Level 0 holds the fins of the full mesh; with level of detail off
      * there is nothing coarser to build. */
     if (st == PELT_OK)
@@ -294,7 +295,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     pelt__fintex_generate(&fd, f->fin_texture);
     f->fin_width = d.look.texture_size;
     f->fin_height = fd.height;
-    compute_fur_uvs(mesh, d.look.tiling, f->fur_uvs, f->fur_per_uv);
+    compute_fur_uvs(&mesh_data, d.look.tiling, f->fur_uvs, f->fur_per_uv);
     f->tips_version = 1;
     *out = f;
     return PELT_OK;

@@ -1,6 +1,5 @@
 /* The renderer's read-only view of a pelt_fur (see fur_gpu.h). */
 #include "core/fur/fur_gpu.h"
-#include "core/mesh/mesh_internal.h"
 #include "core/mesh/skeleton.h"
 
 #include "core/fur/fur_internal.h"
@@ -17,7 +16,7 @@ const uint8_t *pelt__fur_gpu_volume(const pelt_fur *f, unsigned *size, unsigned 
 
 bool pelt__fur_gpu_skin(const pelt_fur *f, pelt__gpu_skin *out)
 {
-    const pelt__skeleton *k = f->mesh->skeleton;
+    const pelt__skeleton *k = pelt__mesh_skeleton(f->mesh);
     if (!k) return false;
     out->bones = k->bones;
     out->weights = k->weights;

@@ -6,7 +6,6 @@
 #include "core/base/error.h"
 #include "core/base/hooks.h"
 #include "core/fur/fur_internal.h"
-#include "core/mesh/mesh_internal.h"
 
 #include <errno.h>
 #include <math.h>
@@ -42,7 +41,7 @@ static void put_f32(uint8_t *p, float f)
 pelt_status pelt_fur_save_groom(const pelt_fur *f, const char *path, pelt_error *err)
 {
     if (!f || !path) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "save groom: fur or path is NULL");
-    const pelt_mesh *m = f->mesh;
+    const pelt_mesh_data md = pelt_mesh_get_data(f->mesh), *m = &md;
     if (m->vertex_count > UINT32_MAX || m->triangle_count > UINT32_MAX)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s: mesh too large for a groom file", path);
     /* Write to a temporary name, then rename: a crash never leaves half a file. */
@@ -245,10 +244,10 @@ static uint32_t grid_find(const grid *g, const uint8_t *verts, const float p[3],
 
 /* The file vertex of every mesh vertex: in order when the file is this
  * mesh's, else through a hash grid of the file's positions. */
-static pelt_status match_vertices(const pelt_mesh *m, const uint8_t *verts, size_t nfile,
+static pelt_status match_vertices(const pelt_mesh_data *m, float diagonal, const uint8_t *verts, size_t nfile,
                                   const char *name, uint32_t *of, pelt_error *err)
 {
-    float tol = 1e-5f * pelt_mesh_diagonal(m);
+    float tol = 1e-5f * diagonal;
     if (!(tol > 0.0f)) tol = 1e-12f;
     bool in_order = nfile == m->vertex_count;
     for (size_t i = 0; i < m->vertex_count && in_order; i++) {
@@ -316,10 +315,10 @@ pelt_status pelt_fur_load_groom_memory(pelt_fur *f, const void *data, size_t siz
             if (!isfinite(get_f32(verts + i * VERTEX_BYTES + 4 * (size_t)k)))
                 return pelt__fail(err, PELT_ERR_FORMAT, "%s: vertex %zu: %s is not finite", name, i,
                                   vertex_properties[k] + 6 /* past "float " */);
-    const pelt_mesh *m = f->mesh;
+    const pelt_mesh_data md = pelt_mesh_get_data(f->mesh), *m = &md;
     uint32_t *of = pelt__calloc(m->vertex_count ? m->vertex_count : 1, sizeof *of);
     if (!of) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", name);
-    st = match_vertices(m, verts, h.vertices, name, of, err);
+    st = match_vertices(m, pelt_mesh_diagonal(f->mesh), verts, h.vertices, name, of, err);
     if (st == PELT_OK) {
         for (size_t i = 0; i < m->vertex_count; i++) {
             const uint8_t *r = verts + (size_t)of[i] * VERTEX_BYTES;

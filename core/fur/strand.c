@@ -6,7 +6,6 @@
 #include "core/base/error.h"
 #include "core/base/hooks.h"
 #include "core/base/noise.h"
-#include "core/mesh/mesh_internal.h"
 #include "core/base/vec.h"
 
 #include <math.h>
@@ -219,7 +218,8 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
 
     pelt__strands *s = pelt__alloc_zero(alloc, 1, sizeof *s);
     if (!s) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", fn);
-    size_t n = mesh->vertex_count;
+    const pelt_mesh_data md = pelt_mesh_get_data(mesh);
+    size_t n = md.vertex_count;
     if (alloc) s->alloc = *alloc;
     s->count = n;
     s->params = *p;
@@ -255,8 +255,8 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
     s->offsets = cursor; /* the remaining 3n floats */
 
     for (size_t i = 0; i < n; i++) {
-        pelt_vec3 r = v3_load(mesh->positions + 3 * i);
-        pelt_vec3 nrm = v3_norm_or(v3_load(mesh->normals + 3 * i), v3(0.0f, 1.0f, 0.0f));
+        pelt_vec3 r = v3_load(md.positions + 3 * i);
+        pelt_vec3 nrm = v3_norm_or(v3_load(md.normals + 3 * i), v3(0.0f, 1.0f, 0.0f));
         store_soa(s->root_local, i, r);
         store_soa(s->rest_local, i, v3_scale(nrm, s->params.length));
     }

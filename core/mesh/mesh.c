@@ -72,7 +72,7 @@ const float *pelt_mesh_colors(const pelt_mesh *mesh) { return mesh ? mesh->color
 pelt_mesh_data pelt_mesh_get_data(const pelt_mesh *m)
 {
     pelt_mesh_data d = {m->positions, m->normals, m->uvs, m->vertex_count, m->indices,
-                        m->triangle_count, m->directions, m->fur_uvs, m->comb, m->colors};
+                        m->triangle_count, m->directions, m->fur_uvs, m->comb, m->colors, m->up};
     return d;
 }
 
@@ -396,6 +396,8 @@ pelt_status pelt__mesh_create_remap(const pelt_mesh_data *data, pelt_mesh **out,
                 return pelt__fail(err, PELT_ERR_FORMAT, "vertex %zu has a uv beyond +-%g", i,
                                   (double)PELT__MAX_COORD);
     }
+    if (data->up && !(all_finite(data->up, 3) && v3_len(v3_load(data->up)) > 1e-6f))
+        return pelt__fail(err, PELT_ERR_FORMAT, "the up axis is zero or not finite");
     for (size_t t = 0; t < nt; t++) {
         for (int k = 0; k < 3; k++) {
             uint32_t v = data->indices[3 * t + k];
@@ -539,6 +541,7 @@ pelt_status pelt__mesh_create_remap(const pelt_mesh_data *data, pelt_mesh **out,
         free(remap);
 
     m->stats.dropped_degenerate = dropped;
+    if (data->up) v3_store(m->up, v3_norm_or(v3_load(data->up), v3(0.0f, 1.0f, 0.0f)));
     if (!data->uvs) {
         compute_bounds(m);
         fallback_uvs(m);

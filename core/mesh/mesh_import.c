@@ -628,7 +628,10 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
     uint32_t *remap = NULL;
     if (st == PELT_OK) {
         pelt_mesh_data data = {s.positions, s.normals, s.uvs, s.v_at, s.indices, s.t_at, s.directions};
+        float up[3];
+        file_up_axis(scene, up);
         data.colors = s.colors;
+        data.up = up;
         st = pelt__mesh_create_remap(&data, out, skeleton ? &remap : NULL, err);
         if (st != PELT_OK && err) {
             /* Name the file in front of pelt_mesh_create's detail. */
@@ -637,7 +640,6 @@ static pelt_status merge_scene(const struct aiScene *scene, const char *path, pe
             pelt__fail(err, st, "%s: %s", path, detail);
         }
     }
-    if (st == PELT_OK) file_up_axis(scene, (*out)->up);
     if (st == PELT_OK && skeleton) {
         st = remap ? build_skeleton(&s, *out, remap) : pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: out of memory", path);
         pelt__skeleton *k = st == PELT_OK ? (*out)->skeleton : NULL;

@@ -1,4 +1,5 @@
-/* Private layout of pelt_mesh, shared by core/ and gl/ (not installed). */
+/* Private layout of pelt_mesh: only core/mesh/ includes this (the layering
+ * check enforces it); everyone else reads a mesh through pelt/mesh.h. */
 #ifndef PELT_MESH_INTERNAL_H
 #define PELT_MESH_INTERNAL_H
 
@@ -28,25 +29,6 @@ struct pelt_mesh {
     struct pelt__skeleton *skeleton; /* NULL, or the bones and animations (skeleton.h) */
     float up[3];      /* the file's up axis (FBX metadata), else +Y */
 };
-
-/* Area of triangle t in world space. */
-static inline float pelt__triangle_area(const pelt_mesh *m, size_t t)
-{
-    const uint32_t *ix = m->indices + 3 * t;
-    pelt_vec3 p0 = v3_load(m->positions + 3 * ix[0]);
-    pelt_vec3 e1 = v3_sub(v3_load(m->positions + 3 * ix[1]), p0);
-    pelt_vec3 e2 = v3_sub(v3_load(m->positions + 3 * ix[2]), p0);
-    return 0.5f * v3_len(v3_cross(e1, e2));
-}
-
-/* Unsigned area of triangle t in a 2-float-per-vertex coordinate set
- * (uvs or fur_uvs). */
-static inline float pelt__triangle_area_2d(const pelt_mesh *m, const float *coords, size_t t)
-{
-    const uint32_t *ix = m->indices + 3 * t;
-    const float *a = coords + 2 * ix[0], *b = coords + 2 * ix[1], *c = coords + 2 * ix[2];
-    return 0.5f * fabsf((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
-}
 
 /* pelt_mesh_create that also hands over where each input vertex went:
  * remap[i] - 1 is its index in the mesh, 0 when it was dropped (free it). */

@@ -305,6 +305,8 @@ static void *dup(const void *p, size_t bytes, bool *ok)
     return q;
 }
 
+const pelt__skeleton *pelt__mesh_skeleton(const pelt_mesh *mesh) { return mesh ? mesh->skeleton : NULL; }
+
 pelt_status pelt__mesh_copy_skeleton(pelt_mesh *dst, const pelt_mesh *src, const uint32_t *source_vertex,
                                      pelt_error *err)
 {

@@ -96,6 +96,9 @@ void pelt__skeleton_skin(const pelt__skeleton *s, const float *skin, float *posi
  * matrix applied. False when a vertex's blended matrix is singular. */
 bool pelt__skeleton_bind(pelt__skeleton *s, const float *positions, const float *normals, const float *tangents);
 
+/* The mesh's skeleton, or NULL when it has none (a static mesh). */
+const pelt__skeleton *pelt__mesh_skeleton(const pelt_mesh *mesh);
+
 /* Gives `dst`, made from `src` by splitting its vertices (dst vertex o
  * comes from src vertex source_vertex[o], as the atlas does), a copy of
  * src's skeleton and animations; nothing when src has none. On failure

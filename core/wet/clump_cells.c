@@ -7,7 +7,7 @@
 #include "core/base/hooks.h"
 #include "core/base/rng.h"
 #include "core/base/vec.h"
-#include "core/mesh/mesh_internal.h"
+#include "core/mesh/triangle_area.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -25,7 +25,7 @@ typedef struct texel_point {
 
 struct pelt__clump_cells {
     pelt_allocator alloc;
-    const pelt_mesh *mesh;
+    pelt_mesh_data mesh; /* the surface's arrays, owned by its mesh */
     unsigned width, height;
     texel_point *points;   /* per texel; triangle NONE where uncovered */
     uint32_t *cell_of;     /* per texel: its cell, NONE where uncovered */
@@ -138,7 +138,7 @@ static void cover_texel(void *user, size_t px, size_t py, pelt_vec3 X)
 static size_t cover_triangle(pelt__clump_cells *c, size_t t)
 {
     triangle_on_texels d = {c, (uint32_t)t, 0};
-    pelt__raster_surface_points(c->mesh, t, c->width, c->height, cover_texel, &d);
+    pelt__raster_surface_points(&c->mesh, t, c->width, c->height, cover_texel, &d);
     return d.covered;
 }
 
@@ -160,7 +160,7 @@ void pelt__clump_cells_destroy(pelt__clump_cells *c)
 
 /* Seeds spread by area: the triangle by its share of the area (binary
  * search in the running sum), the point uniform in it. */
-static void scatter_seeds(const pelt_mesh *m, const double *area_sum, size_t n, uint32_t seed, float *out)
+static void scatter_seeds(const pelt_mesh_data *m, const double *area_sum, size_t n, uint32_t seed, float *out)
 {
     pelt__rng rng = pelt__rng_seed(seed, 0x636c756dULL);
     double total = area_sum[m->triangle_count];
@@ -213,25 +213,26 @@ pelt_status pelt__clump_cells_create(const pelt_mesh *mesh, unsigned width, unsi
     if (!(clump_size > 0.0f) || !isfinite(clump_size))
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "clump size must be a positive number, got %g",
                           (double)clump_size);
-    if (!mesh || !mesh->uvs || mesh->triangle_count == 0 || width == 0 || height == 0)
+    const pelt_mesh_data md = mesh ? pelt_mesh_get_data(mesh) : (pelt_mesh_data){0};
+    if (!mesh || !md.uvs || md.triangle_count == 0 || width == 0 || height == 0)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "clump cells need a mesh with uvs and a mask");
     pelt__clump_cells *c = pelt__alloc_zero(a, 1, sizeof *c);
     if (!c) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for clump cells");
     c->alloc = *a;
-    c->mesh = mesh;
+    c->mesh = md;
     c->width = width, c->height = height;
     size_t texels = (size_t)width * height;
     c->points = pelt__alloc_zero(a, texels, sizeof *c->points);
     c->cell_of = pelt__alloc_zero(a, texels, sizeof *c->cell_of);
-    double *area_sum = pelt__alloc_zero(a, mesh->triangle_count + 1, sizeof *area_sum);
+    double *area_sum = pelt__alloc_zero(a, md.triangle_count + 1, sizeof *area_sum);
     if (!c->points || !c->cell_of || !area_sum) goto oom;
     for (size_t i = 0; i < texels; i++) c->points[i].triangle = NONE, c->cell_of[i] = NONE;
     size_t covered = 0;
-    for (size_t t = 0; t < mesh->triangle_count; t++) {
+    for (size_t t = 0; t < md.triangle_count; t++) {
         covered += cover_triangle(c, t);
-        area_sum[t + 1] = area_sum[t] + (double)pelt__triangle_area(mesh, t);
+        area_sum[t + 1] = area_sum[t] + (double)pelt__triangle_area(&md, t);
     }
-    double want = area_sum[mesh->triangle_count] / ((double)clump_size * clump_size);
+    double want = area_sum[md.triangle_count] / ((double)clump_size * clump_size);
     size_t n = want < 1.0 ? 1 : (size_t)llround(fmin(want, 4.0e6));
     if (covered && n > covered) n = covered;
     c->count = n;
@@ -240,7 +241,7 @@ pelt_status pelt__clump_cells_create(const pelt_mesh *mesh, unsigned width, unsi
     double *sum = pelt__alloc_zero(a, n, 4 * sizeof(double));
     seed_grid g = {{0, 0, 0}, 0, {0, 0, 0}, NULL, NULL};
     if (!seeds || !sum) goto oom_seeds;
-    scatter_seeds(mesh, area_sum, n, seed, seeds);
+    scatter_seeds(&md, area_sum, n, seed, seeds);
     g = grid_for(seeds, n, clump_size);
     size_t boxes = (size_t)g.dim[0] * g.dim[1] * g.dim[2];
     g.start = pelt__alloc_zero(a, boxes + 1, sizeof *g.start);
@@ -322,7 +323,7 @@ uint32_t pelt__clump_cells_of_texel(const pelt__clump_cells *c, unsigned x, unsi
 /* Point X projected on triangle t's plane, in its uv (the affine map of
  * the triangle extended beyond it); and at most how many uv units one
  * world unit becomes on it. False for a triangle without area. */
-static bool triangle_uv(const pelt_mesh *m, uint32_t t, pelt_vec3 X, float uv[2], float *scale)
+static bool triangle_uv(const pelt_mesh_data *m, uint32_t t, pelt_vec3 X, float uv[2], float *scale)
 {
     const uint32_t *ix = m->indices + 3 * (size_t)t;
     pelt_vec3 p0 = v3_load(m->positions + 3 * ix[0]);
@@ -378,7 +379,7 @@ static void clump_cell(pelt__clump_cells *c, pelt__wetness *m, uint32_t s, float
         float *t = m->texels + 4 * (size_t)i;
         if (!(t[3] > 0.0f)) continue;
         float uv[2], scale;
-        if (!triangle_uv(c->mesh, c->points[i].triangle, C, uv, &scale)) {
+        if (!triangle_uv(&c->mesh, c->points[i].triangle, C, uv, &scale)) {
             /* A sliver: the texel is its own clump centre. */
             uv[0] = ((float)(i % c->width) + 0.5f) / (float)c->width;
             uv[1] = ((float)(i / c->width) + 0.5f) / (float)c->height;

@@ -5,7 +5,7 @@
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
-#include "core/mesh/mesh_internal.h"
+#include "core/mesh/triangle_area.h"
 #include "core/base/rng.h"
 #include "core/base/vec.h"
 
@@ -28,21 +28,22 @@ pelt_status pelt__rain_create(const pelt_mesh *m, const pelt_allocator *a, pelt_
 {
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "rain: out is NULL");
     *out = NULL;
-    if (!m || !m->positions || !m->uvs || !m->indices || m->triangle_count == 0)
+    const pelt_mesh_data md = m ? pelt_mesh_get_data(m) : (pelt_mesh_data){0};
+    if (!m || !md.positions || !md.uvs || !md.indices || md.triangle_count == 0)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "rain: a mesh with positions, uvs and triangles is required");
     pelt__rain *r = pelt__alloc_zero(a, 1, sizeof *r);
     if (r && a) r->alloc = *a;
-    if (r) r->area_cdf = pelt__alloc_zero(a, m->triangle_count, sizeof *r->area_cdf);
+    if (r) r->area_cdf = pelt__alloc_zero(a, md.triangle_count, sizeof *r->area_cdf);
     if (!r || !r->area_cdf) {
         pelt__rain_destroy(r);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur");
     }
     r->mesh = m;
     double total = 0.0, uv_total = 0.0;
-    for (size_t t = 0; t < m->triangle_count; t++) {
-        total += pelt__triangle_area(m, t);
-        uv_total += pelt__triangle_area_2d(m, m->uvs, t);
+    for (size_t t = 0; t < md.triangle_count; t++) {
+        total += pelt__triangle_area(&md, t);
+        uv_total += pelt__triangle_area_2d(&md, md.uvs, t);
         r->area_cdf[t] = (float)total;
     }
     /* Mean world length of one mask-uv unit: converts droplet radii given
@@ -111,7 +112,8 @@ size_t pelt__rain_step(pelt__rain *rain, pelt__wetness *mask, pelt__surface_inde
     double whole = floor(rain->carry);
     rain->carry -= whole;
     size_t n = whole > (double)PELT__RAIN_MAX_PER_STEP ? PELT__RAIN_MAX_PER_STEP : (size_t)whole;
-    const float *lo = rain->mesh->bounds_min, *hi = rain->mesh->bounds_max;
+    float lo[3], hi[3];
+    pelt_mesh_bounds(rain->mesh, lo, hi);
     const float down[3] = {0.0f, -1.0f, 0.0f};
     for (size_t i = 0; i < n; i++) {
         float x = range(&rain->rng, lo[0], hi[0]);
@@ -129,7 +131,7 @@ void pelt__rain_random_drops(const pelt__rain *rain, const pelt_rain *settings, 
 {
     pelt_rain r = resolve(settings);
     pelt__rng rng = pelt__rng_seed(r.seed, 0x64726f70ULL);
-    size_t tris = rain->mesh->triangle_count;
+    size_t tris = pelt_mesh_get_data(rain->mesh).triangle_count;
     float total = rain->area_cdf[tris - 1];
     for (unsigned i = 0; i < count; i++) {
         /* A triangle with probability proportional to its area, then a

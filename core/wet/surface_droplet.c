@@ -6,7 +6,7 @@
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
-#include "core/mesh/mesh_internal.h"
+#include "pelt/mesh.h"
 #include "core/base/vec.h"
 #include "core/base/weld.h"
 
@@ -37,12 +37,13 @@ void pelt__surface_index_destroy(pelt__surface_index *index)
     pelt__free(&a, index);
 }
 
-pelt_status pelt__surface_index_create(const pelt_mesh *mesh, const pelt_allocator *a, pelt__surface_index **out,
+pelt_status pelt__surface_index_create(const pelt_mesh *surface, const pelt_allocator *a, pelt__surface_index **out,
                                        pelt_error *err)
 {
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "surface index: out is NULL");
     *out = NULL;
-    if (!mesh || !mesh->positions || !mesh->uvs || !mesh->indices)
+    const pelt_mesh_data md = surface ? pelt_mesh_get_data(surface) : (pelt_mesh_data){0}, *mesh = &md;
+    if (!surface || !mesh->positions || !mesh->uvs || !mesh->indices)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "surface index: mesh with positions, uvs and indices required");
     size_t nv = mesh->vertex_count, nt = mesh->triangle_count;
@@ -58,7 +59,7 @@ pelt_status pelt__surface_index_create(const pelt_mesh *mesh, const pelt_allocat
     pelt__surface_index *x = pelt__alloc_zero(a, 1, sizeof *x);
     if (!x) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "surface index: out of memory");
     if (a) x->alloc = *a;
-    x->mesh = mesh;
+    x->mesh = surface;
     x->triangle_count = nt;
     size_t nt1 = nt ? nt : 1, nv1 = nv ? nv : 1;
     x->welded = pelt__alloc_zero(&x->alloc, nv1, sizeof *x->welded);
@@ -143,12 +144,12 @@ static float triangle_dist2(pelt_vec3 p, pelt_vec3 a, pelt_vec3 b, pelt_vec3 c)
     return v3_dot(d, d);
 }
 
-static pelt_vec3 corner(const pelt_mesh *mesh, size_t t, int k)
+static pelt_vec3 corner(const pelt_mesh_data *mesh, size_t t, int k)
 {
     return v3_load(mesh->positions + (size_t)mesh->indices[3 * t + k] * 3);
 }
 
-static const float *corner_uv(const pelt_mesh *mesh, size_t t, int k)
+static const float *corner_uv(const pelt_mesh_data *mesh, size_t t, int k)
 {
     return mesh->uvs + (size_t)mesh->indices[3 * t + k] * 2;
 }
@@ -156,7 +157,7 @@ static const float *corner_uv(const pelt_mesh *mesh, size_t t, int k)
 /* The droplet in triangle t's coordinates: c = t's affine uv map at P projected
  * on t's plane, r = radius * uv length per world length on t. False when t
  * is degenerate in 3D or in uv. */
-static bool droplet_in_triangle(const pelt_mesh *mesh, size_t t, pelt_vec3 p, float radius,
+static bool droplet_in_triangle(const pelt_mesh_data *mesh, size_t t, pelt_vec3 p, float radius,
                                 float c[2], float *r)
 {
     pelt_vec3 p0 = corner(mesh, t, 0);
@@ -209,7 +210,7 @@ static void wet_texel(void *user, size_t px, size_t py, pelt_vec3 X)
 /* Rasterizes triangle t's uv footprint at texel centres and applies the
  * droplet (c, r, wd) to each texel whose surface point is within the
  * world radius of p. */
-static void wet_triangle(pelt__wetness *m, const pelt_mesh *mesh, size_t t, pelt_vec3 p,
+static void wet_triangle(pelt__wetness *m, const pelt_mesh_data *mesh, size_t t, pelt_vec3 p,
                          float radius2, const float c[2], float r, float wd, changed_box *box)
 {
     droplet_on_texels d = {m, p, radius2, r, wd, c, box};
@@ -224,7 +225,7 @@ static void grow_rect(unsigned r[4], const changed_box *b)
     pelt__rect_union(r, add);
 }
 
-static bool same_uv(const pelt_mesh *mesh, uint32_t a, uint32_t b)
+static bool same_uv(const pelt_mesh_data *mesh, uint32_t a, uint32_t b)
 {
     return a == b || (mesh->uvs[(size_t)a * 2] == mesh->uvs[(size_t)b * 2] &&
                       mesh->uvs[(size_t)a * 2 + 1] == mesh->uvs[(size_t)b * 2 + 1]);
@@ -232,7 +233,7 @@ static bool same_uv(const pelt_mesh *mesh, uint32_t a, uint32_t b)
 
 /* Whether triangle n has the edge of positions (wa, wb) with the same uvs
  * as vertices a and b: the two triangles are then continuous in uv. */
-static bool uv_continuous(const pelt_mesh *mesh, const pelt__surface_index *x, uint32_t n,
+static bool uv_continuous(const pelt_mesh_data *mesh, const pelt__surface_index *x, uint32_t n,
                           uint32_t a, uint32_t b, uint32_t wa, uint32_t wb)
 {
     uint32_t va = NONE, vb = NONE;
@@ -245,20 +246,21 @@ static bool uv_continuous(const pelt_mesh *mesh, const pelt__surface_index *x, u
 }
 
 /* A triangle can carry its piece's droplet when it has area in 3D and uv. */
-static bool usable(const pelt_mesh *mesh, size_t t, pelt_vec3 p, float radius)
+static bool usable(const pelt_mesh_data *mesh, size_t t, pelt_vec3 p, float radius)
 {
     float c[2], r;
     return droplet_in_triangle(mesh, t, p, radius, c, &r);
 }
 
-pelt_status pelt__droplet_surface(pelt__wetness *m, const pelt_mesh *mesh,
+pelt_status pelt__droplet_surface(pelt__wetness *m, const pelt_mesh *surface,
                                   pelt__surface_index *index, size_t triangle,
                                   const float bary[3], float radius_world, float wetness,
                                   pelt_error *err)
 {
-    if (!m || !mesh || !index || !bary)
+    if (!m || !surface || !index || !bary)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "surface droplet: NULL argument");
-    if (index->mesh != mesh || index->triangle_count != mesh->triangle_count)
+    const pelt_mesh_data md = pelt_mesh_get_data(surface), *mesh = &md;
+    if (index->mesh != surface || index->triangle_count != mesh->triangle_count)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "surface droplet: the index was built for another mesh");
     if (triangle >= mesh->triangle_count)

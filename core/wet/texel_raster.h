@@ -7,7 +7,7 @@
 
 #include "core/base/raster.h"
 #include "core/base/vec.h"
-#include "core/mesh/mesh_internal.h"
+#include "pelt/mesh.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -16,7 +16,7 @@
  * grid whose centre triangle t covers, X its point on the surface (the
  * triangle's positions weighted as its uvs place the centre). Nothing for
  * a triangle of zero uv area. Inline, so the visitor inlines too. */
-static inline void pelt__raster_surface_points(const pelt_mesh *mesh, size_t t, unsigned width, unsigned height,
+static inline void pelt__raster_surface_points(const pelt_mesh_data *mesh, size_t t, unsigned width, unsigned height,
                                                void (*visit)(void *user, size_t px, size_t py, pelt_vec3 X),
                                                void *user)
 {

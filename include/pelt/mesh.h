@@ -35,6 +35,10 @@ typedef struct pelt_mesh_data {
      * RGBA in [0,1] (pelt_mesh_load fills it), e.g. a hair colour for
      * pelt_fur_groom_from_vertex_colors. */
     const float *colors;
+    /* 3 floats, or NULL (+Y): the mesh's up axis as its file declares it
+     * (FBX's UpAxis; pelt_mesh_load fills it), normalised by
+     * pelt_mesh_create; pelt_mesh_up reads it back. */
+    const float *up;
 } pelt_mesh_data;
 
 /* What validation did to the input. */
@@ -97,9 +101,10 @@ const float *pelt_mesh_colors(const pelt_mesh *mesh);
 
 /* The validated mesh as arrays (owned by the mesh, valid until it is
  * destroyed): normals are always set (computed when the input had none),
- * uvs always (fallback map), directions, fur_uvs,
+ * uvs and up always (fallback map, +Y), directions, fur_uvs,
  * comb and colors when given.
- * pelt_mesh_create(&data) of the result makes an equal mesh. */
+ * pelt_mesh_create(&data) of the result makes an equal mesh; a skinned
+ * mesh's skeleton and animations are not surface arrays and stay with it. */
 pelt_mesh_data pelt_mesh_get_data(const pelt_mesh *mesh);
 
 /* Unit tangent along +u of the fur-texture coordinates (fur_uvs, else uvs)

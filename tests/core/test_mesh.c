@@ -395,17 +395,34 @@ static void create_of_get_data_gives_the_same_mesh(void)
     CHECK(pelt_mesh_torus(1.0f, 0.4f, 30, 20, &t, NULL) == PELT_OK);
     CHECK(create(t->positions, NULL, t->uvs, t->vertex_count, t->indices, t->triangle_count, &m,
                  NULL) == PELT_OK);
+    pelt_mesh_destroy(m), m = NULL;
+    /* An up axis other than +Y (as an FBX file declares it) is normalised
+     * and travels through the arrays too. */
+    const float up[3] = {0.0f, 0.0f, -2.0f};
+    pelt_mesh_data in = pelt_mesh_get_data(t);
+    in.normals = NULL, in.fur_uvs = NULL, in.comb = NULL, in.up = up;
+    CHECK(pelt_mesh_create(&in, &m, NULL) == PELT_OK);
     pelt_mesh_data d = pelt_mesh_get_data(m);
+    CHECK(d.up && d.up[0] == 0.0f && d.up[1] == 0.0f && d.up[2] == -1.0f);
     CHECK(pelt_mesh_create(&d, &r, NULL) == PELT_OK);
     if (r) {
         size_t n = m->vertex_count;
+        float ru[3];
+        pelt_mesh_up(r, ru);
+        CHECK(ru[0] == 0.0f && ru[1] == 0.0f && ru[2] == -1.0f);
         CHECK(r->vertex_count == n && r->triangle_count == m->triangle_count);
         CHECK(!memcmp(r->positions, m->positions, n * 12));
         CHECK(!memcmp(r->normals, m->normals, n * 12));
         CHECK(!memcmp(r->tangents, m->tangents, n * 16));
         CHECK(!memcmp(r->indices, m->indices, m->triangle_count * 12));
     }
-    pelt_mesh_destroy(r);
+    pelt_mesh_destroy(r), r = NULL;
+    /* A zero or non-finite up is an error, not a silent +Y. */
+    const float zero[3] = {0.0f, 0.0f, 0.0f};
+    in.up = zero;
+    pelt_error err = {0};
+    CHECK(pelt_mesh_create(&in, &r, &err) == PELT_ERR_FORMAT && r == NULL);
+    CHECK(strstr(err.message, "up axis") != NULL);
     pelt_mesh_destroy(m);
     pelt_mesh_destroy(t);
 }

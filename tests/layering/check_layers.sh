@@ -42,7 +42,10 @@ check_includes() {
         while IFS= read -r line; do
             path=$(sed -E 's/^[0-9]+:[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]([^>"]+)[>"].*/\1/' <<<"$line")
             if [[ "$line" =~ \" ]]; then
-                if [[ ! "$path" =~ $allowed ]]; then
+                if [[ "$path" == core/mesh/mesh_internal.h && "$rel" != core/mesh/* ]]; then
+                    echo "$rel:${line%%:*}: includes \"$path\": the mesh's layout is core/mesh's own; use pelt/mesh.h (docs/architecture.md)"
+                    bad=1
+                elif [[ ! "$path" =~ $allowed ]]; then
                     echo "$rel:${line%%:*}: includes \"$path\": not allowed in ${rel%/*}/ (docs/architecture.md)"
                     bad=1
                 fi
@@ -94,6 +97,13 @@ self_test() {
     sed -i '1i #include "gl/shader.h"' "$tmp/core/base/vec.c"
     if check_includes "$tmp" >"$tmp/out"; then
         echo "self-test: core/base including gl/ was not caught"
+        return 1
+    fi
+    echo "self-test: caught: $(cat "$tmp/out")"
+    sed -i '1d' "$tmp/core/base/vec.c"
+    sed -i '1i #include "core/mesh/mesh_internal.h"' "$tmp/core/wet/mask.c"
+    if check_includes "$tmp" >"$tmp/out"; then
+        echo "self-test: core/wet including core/mesh/mesh_internal.h was not caught"
         return 1
     fi
     echo "self-test: caught: $(cat "$tmp/out")"
