@@ -46,7 +46,7 @@ static fin_strand strand_at(const pelt_fur *f, const pelt_mesh_data *m, const fl
     st.u = v3_norm_or(v3_load(ti), v3(1.0f, 0.0f, 0.0f));
     st.v = v3_scale(v3_cross(st.n, st.u), ti[3]);
     pelt_vec3 comb = m->comb ? v3_load(m->comb + 3 * i) : v3_load(ti);
-    st.rho = wet ? rho_at(f->wetness, m->uvs[2 * i], m->uvs[2 * i + 1]) : 0.0f;
+    st.rho = wet ? rho_at(pelt__water_mask(f->water), m->uvs[2 * i], m->uvs[2 * i + 1]) : 0.0f;
     float s = g->length * fd->fins.length;
     st.L = fd->length * s;
     st.K = pelt__fur_vertex_curl_radius(fd) * s;
@@ -124,7 +124,7 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
 
     /* The strands, as shell_vs.glsl displaces them: the fewest rows that
      * follow every strand's bow within row_error, then its points. */
-    const bool wet = !pelt__rect_empty(f->wetness->wet);
+    const bool wet = !pelt__rect_empty(pelt__water_mask(f->water)->wet);
     const float slant = tanf(f->desc.comb.slant * 3.14159265f / 180.0f);
     unsigned most = d->rows < 1 ? 1 : d->rows > PELT__FIN_HEIGHTS - 1 ? PELT__FIN_HEIGHTS - 1 : d->rows;
     unsigned n_rows = most;

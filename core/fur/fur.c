@@ -7,7 +7,6 @@
 #include "core/fur/furtex.h"
 #include "core/mesh/triangle_area.h"
 #include "core/base/vec.h"
-#include "core/wet/paint.h"
 #include "core/wet/picture.h"
 #include "pelt/dynamics.h"
 #include "pelt/wetness.h"
@@ -244,13 +243,9 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
         return st;
     }
     f->tips = pelt__strands_tip_offsets(f->strands);
-    st = pelt__wetness_create(d.wet.mask_size, d.wet.mask_size, &f->desc.hooks.allocator, &f->wetness, err);
-    if (st == PELT_OK && d.wet.clump_size > 0.0f)
-        st = pelt__clump_cells_create(mesh, f->wetness->width, f->wetness->height, d.wet.clump_size, d.seed,
-                                      &f->desc.hooks.allocator, &f->clump_cells, err);
-    if (st == PELT_OK) st = pelt__surface_index_create(mesh, &f->desc.hooks.allocator, &f->surface, err);
-    if (st == PELT_OK) st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
-    if (st == PELT_OK) st = pelt__rain_create(mesh, &f->desc.hooks.allocator, &f->rain, err);
+    st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
+    pelt__water_desc wd = {d.wet.mask_size, d.wet.clump_size, d.seed};
+    if (st == PELT_OK) st = pelt__water_create(mesh, f->bvh, &wd, &f->desc.hooks.allocator, &f->water, err);
     if (st == PELT_OK) st = pelt__groom_init(&f->groom, mesh_data.vertex_count, &f->desc.hooks.allocator, err);
     /* Level 0 holds the fins of the full mesh; with level of detail off
      * there is nothing coarser to build. */
@@ -324,11 +319,8 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__free(&a, f->fur_uvs);
     pelt__free(&a, f->color_texture);
     pelt__strands_destroy(f->strands);
-    pelt__wetness_destroy(f->wetness);
-    pelt__clump_cells_destroy(f->clump_cells);
-    pelt__surface_index_destroy(f->surface);
+    pelt__water_destroy(f->water);
     pelt__bvh_destroy(f->bvh);
-    pelt__rain_destroy(f->rain);
     pelt__groom_free(&f->groom);
     pelt__lod_chain_free(&f->lod, &a);
     pelt__free(&a, f->lod_slices);
@@ -372,34 +364,11 @@ pelt_status pelt_fur_set_pose(pelt_fur *f, const float *positions, const float *
     return PELT_OK;
 }
 
-/* Natural clumps: water lands between water_begin and water_end, which
- * clumps the cells it touched anew (core/wet/clump_cells.h). The mask's
- * dirty rectangle is set aside meanwhile, so that what this call changed
- * can be told apart, and is then grown back. */
-static void water_begin(pelt_fur *f, unsigned saved[4])
-{
-    memcpy(saved, f->wetness->dirty, 4 * sizeof saved[0]);
-    if (f->clump_cells) pelt__rect_clear(f->wetness->dirty);
-}
-
-static void water_end(pelt_fur *f, const unsigned saved[4])
-{
-    if (!f->clump_cells) return;
-    unsigned changed[4];
-    memcpy(changed, f->wetness->dirty, sizeof changed);
-    pelt__clump_cells_apply(f->clump_cells, f->wetness, changed);
-    pelt__rect_union(f->wetness->dirty, saved);
-}
-
 void pelt_fur_step(pelt_fur *f, float dt, const pelt_forces *forces)
 {
     if (!(dt > 0.0f)) return;
     pelt__strands_step(f->strands, dt, forces, f->time);
-    unsigned saved[4];
-    water_begin(f, saved);
-    pelt__rain_step(f->rain, f->wetness, f->surface, f->bvh, dt);
-    water_end(f, saved);
-    if (f->dry_rate > 0.0f) pelt__wetness_dry(f->wetness, f->dry_rate, dt);
+    pelt__water_step(f->water, dt);
     f->time += dt;
     f->tips_version++;
 }
@@ -442,83 +411,45 @@ pelt_status pelt_fur_set_color_texture(pelt_fur *f, const uint8_t *rgba, unsigne
 
 pelt_status pelt_fur_add_droplet(pelt_fur *f, const pelt_droplet *d, pelt_error *err)
 {
-    unsigned saved[4];
-    water_begin(f, saved);
-    pelt_status st = pelt__wetness_add_droplet(f->wetness, d, err);
-    water_end(f, saved);
-    return st;
+    return pelt__water_drop_uv(f->water, d, 1, err);
 }
 
 pelt_status pelt_fur_add_droplets(pelt_fur *f, const pelt_droplet *d, size_t count, pelt_error *err)
 {
-    unsigned saved[4];
-    water_begin(f, saved);
-    pelt_status st = pelt__wetness_add_droplets(f->wetness, d, count, err);
-    water_end(f, saved);
-    return st;
+    return pelt__water_drop_uv(f->water, d, count, err);
 }
 
 pelt_status pelt_fur_add_droplet_at(pelt_fur *f, size_t triangle, const float bary[3],
                                     float radius_world, float wetness, pelt_error *err)
 {
-    /* By distance on the surface, across patch borders (issue 5). */
-    unsigned saved[4];
-    water_begin(f, saved);
-    pelt_status st = pelt__droplet_surface(f->wetness, f->mesh, f->surface, triangle, bary, radius_world,
-                                           wetness, err);
-    water_end(f, saved);
-    return st;
+    return pelt__water_drop_at(f->water, triangle, bary, radius_world, wetness, err);
 }
 
 bool pelt_fur_add_droplet_ray(pelt_fur *f, const float origin[3], const float direction[3],
                               float radius_world, float wetness)
 {
-    unsigned saved[4];
-    water_begin(f, saved);
-    bool hit = pelt__droplet_ray(f->wetness, f->mesh, f->surface, f->bvh, origin, direction,
-                                 radius_world, wetness);
-    water_end(f, saved);
-    return hit;
+    return pelt__water_drop_ray(f->water, origin, direction, radius_world, wetness);
 }
 
 void pelt_fur_add_random_droplets(pelt_fur *f, const pelt_rain *rain, unsigned count)
 {
-    unsigned saved[4];
-    water_begin(f, saved);
-    pelt__rain_random_drops(f->rain, rain, count, f->wetness, f->surface);
-    water_end(f, saved);
+    pelt__water_random_drops(f->water, rain, count);
 }
 
-void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain) { pelt__rain_set(f->rain, rain); }
+void pelt_fur_set_rain(pelt_fur *f, const pelt_rain *rain) { pelt__water_set_rain(f->water, rain); }
 
-void pelt_fur_clear_wetness(pelt_fur *f) { pelt__wetness_clear(f->wetness); }
+void pelt_fur_clear_wetness(pelt_fur *f) { pelt__water_clear(f->water); }
 
-void pelt_fur_set_rain_rate(pelt_fur *f, float rate) { pelt__rain_set_rate(f->rain, rate); }
+void pelt_fur_set_rain_rate(pelt_fur *f, float rate) { pelt__water_set_rain_rate(f->water, rate); }
 
-void pelt_fur_set_dry_rate(pelt_fur *f, float rate)
-{
-    f->dry_rate = isfinite(rate) && rate > 0.0f ? rate : 0.0f;
-}
+void pelt_fur_set_dry_rate(pelt_fur *f, float rate) { pelt__water_set_dry_rate(f->water, rate); }
 
 pelt_status pelt_fur_paint_wetness(pelt_fur *f, const uint8_t *grey, unsigned w, unsigned h,
                                    float wetness, pelt_error *err)
 {
-    if (!grey || w == 0 || h == 0)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness image is empty");
-    /* Scale the grey levels by `wetness` into a copy the painter reads. */
-    const pelt_allocator *a = &f->desc.hooks.allocator;
-    uint8_t *scaled = pelt__alloc_zero(a, (size_t)w * h, 1);
-    if (!scaled) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a %ux%u image", w, h);
-    float k = clampf(wetness, 0.0f, 1.0f);
-    for (size_t i = 0; i < (size_t)w * h; i++) scaled[i] = (uint8_t)(grey[i] * k + 0.5f);
-    unsigned saved[4];
-    water_begin(f, saved);
-    pelt_status st = pelt__wetness_paint_image(f->wetness, scaled, w, h, NULL, err);
-    water_end(f, saved);
-    pelt__free(a, scaled);
-    return st;
+    return pelt__water_paint(f->water, grey, w, h, wetness, &f->desc.hooks.allocator, err);
 }
 
-unsigned pelt_fur_mask_size(const pelt_fur *f) { return f->wetness->width; }
+unsigned pelt_fur_mask_size(const pelt_fur *f) { return pelt__water_mask(f->water)->width; }
 
-void pelt_fur_mask_picture(const pelt_fur *f, uint8_t *rgba) { pelt__wetness_to_rgba8(f->wetness, rgba); }
+void pelt_fur_mask_picture(const pelt_fur *f, uint8_t *rgba) { pelt__wetness_to_rgba8(pelt__water_mask(f->water), rgba); }

@@ -67,14 +67,14 @@ const uint8_t *pelt__fur_gpu_color(const pelt_fur *f, unsigned *width, unsigned 
 
 const float *pelt__fur_gpu_mask(const pelt_fur *f, unsigned *width, unsigned *height)
 {
-    *width = f->wetness->width;
-    *height = f->wetness->height;
-    return f->wetness->texels;
+    *width = pelt__water_mask(f->water)->width;
+    *height = pelt__water_mask(f->water)->height;
+    return pelt__water_mask(f->water)->texels;
 }
 
 bool pelt__fur_gpu_take_mask_dirty(pelt_fur *f, unsigned rect[4])
 {
-    return pelt__wetness_take_dirty(f->wetness, rect);
+    return pelt__water_take_dirty(f->water, rect);
 }
 
 const void *pelt__fur_gpu_groom(const pelt_fur *f, size_t *stride)
@@ -110,4 +110,4 @@ void pelt__fur_gpu_light_table(const pelt_fur *f, float *out)
     pelt__lengyel_table(f->desc.look.diffuse_power, f->desc.look.shininess, out);
 }
 
-bool pelt__fur_gpu_any_wet(const pelt_fur *f) { return !pelt__rect_empty(f->wetness->wet); }
+bool pelt__fur_gpu_any_wet(const pelt_fur *f) { return !pelt__rect_empty(pelt__water_mask(f->water)->wet); }

@@ -9,10 +9,8 @@
 #include "core/fur/groom.h"
 #include "core/fur/lod.h"
 #include "core/fur/strand.h"
-#include "core/wet/clump_cells.h"
 #include "core/wet/mask.h"
-#include "core/wet/rain.h"
-#include "core/wet/surface_droplet.h"
+#include "core/wet/water.h"
 
 struct pelt_fur {
     pelt_fur_desc desc;      /* every default filled in */
@@ -33,12 +31,8 @@ struct pelt_fur {
     pelt__strands *strands;  /* one mass-spring strand per vertex */
     float time;              /* seconds stepped since creation or reset */
     float fur_per_uv[2];     /* fur tiles per uv unit along u and v */
-    pelt__wetness *wetness;  /* the wetness mask over the uvs */
-    pelt__clump_cells *clump_cells; /* natural clumps (wet.clump_size > 0), else NULL */
-    pelt__surface_index *surface; /* droplets by distance on the surface */
-    pelt__bvh *bvh;          /* droplets by a ray */
-    pelt__rain *rain;        /* rain and random drops (core/wet/rain.h) */
-    float dry_rate;
+    pelt__water *water;      /* mask, clump cells, droplets, rain (core/wet/water.h) */
+    pelt__bvh *bvh;          /* the triangles for rays and brushes */
     pelt__groom groom;       /* per-vertex colour, length, density, lean */
     pelt__lod_chain lod;     /* shell geometry levels, each with its fins
                                 (Lengyel §2.3); level 0 is the full mesh */
