@@ -312,7 +312,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     stats.shell_level = frame.lod.shell_level;
     stats.shell_blend = frame.lod.shell_blend;
     stats.culled = frame.lod.cull && !draw->no_shells;
-    /* Frame order (DESIGN.md): the light's maps, ground, skin, fins, shells. */
+    /* Frame order (docs/architecture.md, One frame): the light's maps, ground, skin, fins, shells. */
     if (shadows) {
         light_pass.features = frame.shell_features & (PELT__SHELL_WET | PELT__SHELL_RINGLETS);
         pelt__shadow_pass_draw(&r->shadow, &r->shells, &frame, &light_pass);

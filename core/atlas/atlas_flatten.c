@@ -80,9 +80,8 @@ size_t pelt__atlas_flatten(pelt__atlas_builder *b, size_t n)
     pelt_vec3 n0 = v3_load(b->fnormal + 3 * seed);
     pelt_vec3 fld = pelt__atlas_face_field(b, seed);
     fld = v3_sub(fld, v3_scale(n0, v3_dot(n0, fld)));
-    float fb[3];
-    pelt__any_tangent(b->fnormal + 3 * seed, fb);
-    pelt_vec3 t0 = v3_norm_or(fld, v3_load(fb)), b0 = v3_cross(n0, t0);
+    pelt_vec3 fb = v3_perpendicular(v3_load(b->fnormal + 3 * seed));
+    pelt_vec3 t0 = v3_norm_or(fld, fb), b0 = v3_cross(n0, t0);
     pelt_vec3 origin = pelt__atlas_vpos(b, b->lverts[0]);
     double *X = b->X;
     size_t far = 0;

@@ -8,17 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-void pelt__any_tangent(const float n[3], float t[3])
-{
-    /* Duff et al. 2017 orthonormal basis: continuous except across n.z = 0. */
-    float s = n[2] >= 0.0f ? 1.0f : -1.0f;
-    float a = -1.0f / (s + n[2]);
-    float b = n[0] * n[1] * a;
-    t[0] = 1.0f + s * n[0] * n[0] * a;
-    t[1] = s * b;
-    t[2] = -s * n[0];
-}
-
 static pelt_vec3 project(pelt_vec3 v, pelt_vec3 n) { return v3_sub(v, v3_scale(n, v3_dot(n, v))); }
 
 /* Slant weight from the length of the projected field (relative to the
@@ -97,9 +86,8 @@ bool pelt__direction_field(const float *positions, const float *normals, size_t 
         pelt_vec3 n = v3_load(normals + 3 * i);
         pelt_vec3 f = project(v3_load(field + 3 * c), n);
         float w = clampf(v3_len(v3_load(field + 3 * c)), 0.0f, 1.0f);
-        float fallback[3];
-        pelt__any_tangent(normals + 3 * i, fallback);
-        pelt_vec3 d = v3_len(f) > 1e-6f ? v3_norm_or(f, v3_load(fallback)) : v3_load(fallback);
+        pelt_vec3 fallback = v3_perpendicular(v3_load(normals + 3 * i)); /* the one basis */
+        pelt_vec3 d = v3_len(f) > 1e-6f ? v3_norm_or(f, fallback) : fallback;
         v3_store(dir + 3 * i, d);
         weight[i] = w > 1e-6f ? w : 0.0f;
     }

@@ -5,9 +5,6 @@
 
 #include "pelt/base.h"
 
-/* A unit vector perpendicular to unit n (a consistent frame where the field
- * vanishes). */
-void pelt__any_tangent(const float n[3], float t[3]);
 
 /* Computes a unit tangent direction dir (3 per vertex) and a slant weight in
  * [0,1] per vertex. The raw field is `global` projected on each tangent plane

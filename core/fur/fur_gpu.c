@@ -88,11 +88,6 @@ bool pelt__fur_gpu_take_groom_dirty(pelt_fur *f, size_t range[2])
     return pelt__groom_take_dirty(&f->groom, range);
 }
 
-const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *f, size_t *count)
-{
-    *count = f->lod.levels[0].fin_count;
-    return f->lod.levels[0].fins;
-}
 
 const pelt__lod_chain *pelt__fur_gpu_lod(const pelt_fur *f) { return &f->lod; }
 

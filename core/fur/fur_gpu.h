@@ -72,9 +72,6 @@ const void *pelt__fur_gpu_groom(const pelt_fur *fur, size_t *stride);
  * since the last take; false when nothing changed. */
 bool pelt__fur_gpu_take_groom_dirty(pelt_fur *fur, size_t range[2]);
 
-/* Fins (core/fur/fins.h): one per mesh edge, and their texture (RGBA8,
- * premultiplied, width along the fin, row 0 at the root). */
-const pelt__fin_edge *pelt__fur_gpu_fins(const pelt_fur *fur, size_t *count);
 /* One frame of fins (core/fur/fin_frame.c), drawn from a table of fins
  * and a table of the vertices they stand on. A fin: 4 words, its ends as
  * indices into the level's fin_vertices, the bits of its texture start and

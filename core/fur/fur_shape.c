@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-/* Silva Eq. 1, beta(h) with control point n L0 / 2 (DESIGN.md). */
+/* Silva Eq. 1, beta(h) with control point n L0 / 2 (docs/dynamics.md). */
 pelt_vec3 pelt__fur_bend(pelt_vec3 n, float L0, pelt_vec3 tip, float h)
 {
     float a = 2.0f * h * (1.0f - h) * (0.5f * L0);

@@ -1,5 +1,5 @@
 /* C references of the fur shape of Silva et al. §3.2 (Eq. 1 and 4), as
- * DESIGN.md reads them; gl/shaders/fur_shape.glsl holds the same formulas
+ * docs/method.md reads them; gl/shaders/fur_shape.glsl holds the same formulas
  * with the same argument order, and a parity test compares the two.
  *
  * h in [0, 1] is the normalised height along the strand (layer n of N sits

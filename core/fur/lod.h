@@ -1,5 +1,5 @@
 /* Geometric level of detail for the shells (beyond Lengyel et al. 2001
- * §2.4, see DESIGN.md): simplified triangle lists of the mesh made with
+ * §2.4, see docs/lod.md): simplified triangle lists of the mesh made with
  * meshoptimizer over the SAME vertices, so strands, uvs, the atlas and the
  * wetness mask are shared by every level. Each level has its own fins (its
  * edges). The skin keeps the full mesh. No GL here. */

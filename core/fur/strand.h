@@ -1,5 +1,5 @@
 /* Mass-spring fur strands, one per mesh vertex (Silva et al. §3.2.1,
- * Eq. 2-3; DESIGN.md "Strand and bending"). No GL here.
+ * Eq. 2-3; docs/dynamics.md). No GL here.
  *
  * Units. Positions and lengths are world units (the mesh's units times the
  * transform). External forces (pelt_forces: gravity, wind, gusts) are

@@ -1,6 +1,6 @@
 /* Procedural meshes with analytic normals and uvs in [0,1]^2. The torus is
  * the default scene (Lengyel et al. 2001 §2 and the Table 1 set-up of
- * DESIGN.md: 78 x 60 segments = 9,360 triangles). */
+ * Silva Table 1: 78 x 60 segments = 9,360 triangles). */
 #include "core/mesh/mesh_internal.h"
 
 #include "core/base/error.h"

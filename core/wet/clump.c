@@ -1,4 +1,4 @@
-/* Clump displacement: Silva et al. Eq. 5 and Alg. 2, see DESIGN.md. */
+/* Clump displacement: Silva et al. Eq. 5 and Alg. 2, see docs/wetness.md. */
 #include "core/wet/clump.h"
 
 #include "core/base/vec.h"
@@ -58,7 +58,7 @@ pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
     if (sqrtf(ox * ox + oy * oy) > t[2]) return PELT__CLUMP_DISCARD; /* another clump */
     float pull = clampf(s * rho * pelt__clump_profile(h, w, n_layers), 0.0f,
                         PELT__CLUMP_MAX_PULL);
-    /* Inverse of the strand map root q -> c + (q - c)(1 - pull) (DESIGN.md). */
+    /* Inverse of the strand map root q -> c + (q - c)(1 - pull) (docs/wetness.md). */
     float k = 1.0f / (1.0f - pull);
     q[0] = t[0] + ox * k;
     q[1] = t[1] + oy * k;

@@ -1,4 +1,4 @@
-/* Clump displacement reference (Silva et al. Eq. 5 and Alg. 2 as DESIGN.md
+/* Clump displacement reference (Silva et al. Eq. 5 and Alg. 2 as docs/wetness.md
  * reads them). gl/shaders/clump.glsl is the same maths in GLSL; keep them
  * in step. No GL here. */
 #ifndef PELT_CORE_CLUMP_H

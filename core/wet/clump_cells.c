@@ -311,8 +311,6 @@ oom:
                       width, height);
 }
 
-size_t pelt__clump_cells_count(const pelt__clump_cells *c) { return c->count; }
-
 uint32_t pelt__clump_cells_of_texel(const pelt__clump_cells *c, unsigned x, unsigned y)
 {
     return x < c->width && y < c->height ? c->cell_of[(size_t)y * c->width + x] : NONE;

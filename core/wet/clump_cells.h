@@ -25,9 +25,6 @@ pelt_status pelt__clump_cells_create(const pelt_mesh *mesh, unsigned width, unsi
                                      pelt__clump_cells **out, pelt_error *err);
 void pelt__clump_cells_destroy(pelt__clump_cells *cells);
 
-/* Number of cells (seeds). */
-size_t pelt__clump_cells_count(const pelt__clump_cells *cells);
-
 /* The cell of mask texel (x, y), or UINT32_MAX where no triangle covers it. */
 uint32_t pelt__clump_cells_of_texel(const pelt__clump_cells *cells, unsigned x, unsigned y);
 

@@ -1,5 +1,5 @@
 /* Wetness mask: texels, droplets blended by Silva et al. Alg. 1 (§3.1), drying, dirty rect. */
-/* Alg. 1 as DESIGN.md reads it. Painting from an image is core/wet/paint.h, the
+/* Alg. 1 as docs/wetness.md reads it. Painting from an image is core/wet/paint.h, the
  * picture of the mask core/wet/picture.h, rain core/wet/rain.h. No GL here; the
  * renderer uploads the dirty rectangle as RGBA32F. */
 #ifndef PELT_CORE_WET_MASK_H

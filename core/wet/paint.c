@@ -3,23 +3,12 @@
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
+#include "core/base/rng.h"
 #include "core/base/vec.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* splitmix64: small and seedable; hashes the clump grid of a painting. */
-static uint64_t rng_next(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15ull);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-    return z ^ (z >> 31);
-}
-
-/* Uniform in [0, 1). */
-static float rng_unit(uint64_t *s) { return (float)(rng_next(s) >> 40) * (1.0f / 16777216.0f); }
 
 /* Bilinear grey level in [0,1] at image pixel coordinates (x, y), edges
  * clamped. */
@@ -35,12 +24,14 @@ static float grey_at(const uint8_t *g, unsigned w, unsigned h, float x, float y)
     return (a * (1.0f - fy) + b * fy) * (1.0f / 255.0f);
 }
 
-/* A hash of a grid cell to [0,1), for the jitter of clump seeds. */
+/* A grid cell hashed to [0,1), for the jitter of clump seeds: the one
+ * lattice hash of core/base/rng.h, one axis at a time. */
 static float cell_hash(int64_t gx, int64_t gy, uint32_t seed, uint32_t salt)
 {
-    uint64_t s = (uint64_t)gx * 0x9e3779b1ull ^ (uint64_t)gy * 0x85ebca77ull ^
-                 ((uint64_t)seed << 32) ^ salt;
-    return rng_unit(&s);
+    uint32_t h = pelt__hash32(seed ^ salt * 0x9e3779b9u);
+    h = pelt__hash_axis(h, (int32_t)gx, 0x85ebca77u);
+    h = pelt__hash_axis(h, (int32_t)gy, 0xc2b2ae3du);
+    return (float)(h >> 8) * (1.0f / 16777216.0f);
 }
 
 typedef struct paint_key {

@@ -1,6 +1,6 @@
 /* Seam-free droplets: a droplet wets the mask by distance on the surface,
  * not in texture space (Silva et al. §3.1, Alg. 1 applied per atlas patch;
- * DESIGN.md "Arbitrary topology"). A drop on a patch border wets texels in
+ * docs/wetness.md). A drop on a patch border wets texels in
  * every patch within its radius, each storing the clump centre in its own
  * patch coordinates, so the clump renders as one. No GL here. */
 #ifndef PELT_CORE_SURFACE_DROPLET_H

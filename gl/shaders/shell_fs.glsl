@@ -46,7 +46,7 @@ void main()
     vec2 d = vec2(0.0);
     float rho = 0.0;
 #ifdef PELT_WET
-    // Clumps (Silva Eq. 5, Alg. 2 as DESIGN.md reads them): sample the hair
+    // Clumps (Silva Eq. 5, Alg. 2 as docs/wetness.md reads them): sample the hair
     // rooted at q; colour and fur coordinates move together.
     vec2 q;
     vec4 t = clump_texel(u_mask, v_uv);

@@ -90,7 +90,7 @@ const uint32_t *pelt_atlas_triangle_patches(const pelt_atlas *atlas);
 const float *pelt_atlas_directions(const pelt_atlas *atlas);
 const float *pelt_atlas_direction_weights(const pelt_atlas *atlas);
 
-/* The brief's one-call form: builds, hands over the mesh, copies the stats
+/* The one-call form: builds, hands over the mesh, copies the stats
  * (stats may be NULL) and frees everything else. */
 pelt_status pelt_atlas_build(const pelt_mesh *in, const pelt_atlas_desc *desc,
                              pelt_mesh **out_mesh, pelt_atlas_stats *stats,

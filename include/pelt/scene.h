@@ -177,7 +177,7 @@ typedef struct pelt_scene_groom {
     size_t stroke_count;
 } pelt_scene_groom;
 
-/* How the surface gets its atlas (issue 5); copied into pelt_atlas_desc. */
+/* How the surface gets its atlas (Lengyel §2.1); copied into pelt_atlas_desc. */
 typedef enum pelt_direction_source {
     PELT_DIRECTION_GLOBAL = 0,   /* atlas.direction, projected per vertex */
     PELT_DIRECTION_VERTEX_COLORS /* the mesh's vertex colours as a flow map */

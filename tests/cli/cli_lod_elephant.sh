@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 17's large mesh: Debian libcgal-demo's refined elephant split 1-to-4
+# The large mesh of docs/lod.md: Debian libcgal-demo's refined elephant split 1-to-4
 # (355,712 triangles, scripts/subdivide-off.py), 16 layers, 800x600, framed
 # by default. With level of detail (a coarse mesh level for shells and fins,
 # culled back shells) its picture stays within the golden tolerance of the

@@ -1,5 +1,5 @@
 /* Clump displacement reference: Silva et al. Eq. 5 profile and Alg. 2 with
- * the inverse mapping, as DESIGN.md reads them. */
+ * the inverse mapping, as docs/wetness.md reads them. */
 #include "support/check.h"
 #include "core/wet/clump.h"
 

@@ -1,4 +1,4 @@
-/* Wetness mask: Alg. 1 branches (Silva et al. §3.1 as DESIGN.md reads it),
+/* Wetness mask: Alg. 1 branches (Silva et al. §3.1 as docs/wetness.md reads it),
  * drying, dirty rectangles, painting and the mask picture. Rain and the
  * ray -> droplet path are in test_rain.c, droplets at surface points in
  * test_surface_droplet.c. */

@@ -1,5 +1,5 @@
 /* Fur over a patch atlas, rendered: a droplet that lands on a patch border
- * wets by distance on the surface and makes one round clump (issue 5). */
+ * wets by distance on the surface and makes one round clump. */
 #include "support/gl_test.h"
 
 #include "core/mesh/mesh_internal.h"

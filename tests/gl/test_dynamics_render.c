@@ -1,4 +1,4 @@
-/* Images of dynamic fur on Mesa llvmpipe (issue 3): wind leans the fur of
+/* Images of dynamic fur on Mesa llvmpipe: wind leans the fur of
  * Silva et al. Fig. 4b downwind, shells stay joined under strong wind, a
  * turntable leaves the tips behind, and the four curl looks of Fig. 7
  * differ. Properties only: no reference images. */
@@ -245,7 +245,7 @@ static pelt_mesh *roof(unsigned n, bool split)
     return m;
 }
 
-/* DESIGN.md: one strand per vertex keeps adjacent shells joined. Under a
+/* docs/dynamics.md: one strand per vertex keeps adjacent shells joined. Under a
  * gale with gusts the closed torus shows no background through its shells;
  * the counter does see the cracks of a creased surface whose strands are
  * split along the crease, and none when they are shared. */

@@ -1,5 +1,5 @@
 /* The default camera frames any mesh (pelt_camera_frame through the scene
- * runner, issue 15): every mesh of Debian's libcgal-demo data archive that
+ * runner): every mesh of Debian's libcgal-demo data archive that
  * loads is rendered as `pelt render --mesh FILE` would, without camera keys,
  * small and with few layers. No hair may touch the picture's border (the
  * fur would be cut there), and on the creatures the fur covers between 15%
