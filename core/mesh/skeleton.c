@@ -3,6 +3,7 @@
 #include "core/mesh/skeleton.h"
 
 #include "core/base/error.h"
+#include "core/base/vec.h"
 #include "core/mesh/mesh_internal.h"
 
 #include <errno.h>
@@ -37,15 +38,6 @@ void pelt__skeleton_free(pelt__skeleton *s)
 }
 
 /* ---- matrices (column-major) ------------------------------------------- */
-
-static void mat4_mul(const float *a, const float *b, float *out)
-{
-    float r[16];
-    for (int c = 0; c < 4; c++)
-        for (int i = 0; i < 4; i++)
-            r[4 * c + i] = a[i] * b[4 * c] + a[4 + i] * b[4 * c + 1] + a[8 + i] * b[4 * c + 2] + a[12 + i] * b[4 * c + 3];
-    memcpy(out, r, sizeof r);
-}
 
 void pelt__trs_matrix(const float t[3], const float q[4], const float s[3], float out[16])
 {
@@ -195,7 +187,7 @@ void pelt__skeleton_globals(const pelt__skeleton *s, const pelt__animation *a, f
         }
     /* Parents come first: one pass makes the locals global. */
     for (uint32_t i = 0; i < s->node_count; i++)
-        if (s->parent[i] >= 0) mat4_mul(globals + 16 * s->parent[i], globals + 16 * i, globals + 16 * i);
+        if (s->parent[i] >= 0) pelt__mat4_mul(globals + 16 * i, globals + 16 * s->parent[i], globals + 16 * i);
 }
 
 /* A vertex's blended bone matrix. */
@@ -273,7 +265,7 @@ bool pelt__skeleton_bind(pelt__skeleton *s, const float *positions, const float 
 {
     pelt__skeleton_globals(s, NULL, 0.0f, s->scratch_globals);
     for (uint32_t b = 0; b < s->bone_count; b++)
-        mat4_mul(s->scratch_globals + 16 * s->bone_node[b], s->bone_offset + 16 * b, s->scratch_skin + 16 * b);
+        pelt__mat4_mul(s->scratch_skin + 16 * b, s->scratch_globals + 16 * s->bone_node[b], s->bone_offset + 16 * b);
     for (size_t v = 0; v < s->vertex_count; v++) {
         float m[16], inv[16], c[9];
         blended(s, s->scratch_skin, v, m);
@@ -443,7 +435,7 @@ pelt_status pelt_mesh_pose(const pelt_mesh *m, size_t animation, float seconds, 
     if (t < 0.0f) t += a->duration;
     pelt__skeleton_globals(s, a, t, s->scratch_globals);
     for (uint32_t b = 0; b < s->bone_count; b++)
-        mat4_mul(s->scratch_globals + 16 * s->bone_node[b], s->bone_offset + 16 * b, s->scratch_skin + 16 * b);
+        pelt__mat4_mul(s->scratch_skin + 16 * b, s->scratch_globals + 16 * s->bone_node[b], s->bone_offset + 16 * b);
     pelt__skeleton_skin(s, s->scratch_skin, positions, normals, tangents);
     return PELT_OK;
 }

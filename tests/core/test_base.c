@@ -1,6 +1,6 @@
 /* core/base helpers that several modules share: the one integer hash
- * (rng.h), the one value noise (noise.c) and the one orthonormal basis
- * (vec.h). */
+ * (rng.h), the one value noise (noise.c), the one orthonormal basis and
+ * the one 4x4 product (vec.h). */
 #include "support/check.h"
 
 #include "core/base/noise.h"
@@ -98,6 +98,25 @@ static void value_noise_differs_by_seed_and_slice(void)
     CHECK(by_slice > 190);
 }
 
+/* The one 4x4 product (column-major, out = a b): a translation after a
+ * scale moves a point as the two applied in turn; out may alias a or b, as
+ * the skeleton's node walk needs. */
+static void mat4_mul_composes_column_major_and_may_alias(void)
+{
+    float scale[16] = {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 0, 0, 0, 1};
+    float move[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1};
+    float m[16];
+    pelt__mat4_mul(m, move, scale); /* scale first, then move */
+    const float want[16] = {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, 4, 0, 5, 6, 7, 1};
+    CHECK(memcmp(m, want, sizeof m) == 0);
+    pelt__mat4_mul(m, scale, move); /* move first: the move is scaled */
+    CHECK(m[12] == 10.0f && m[13] == 18.0f && m[14] == 28.0f && m[0] == 2.0f);
+    float alias[16];
+    memcpy(alias, scale, sizeof alias);
+    pelt__mat4_mul(alias, move, alias);
+    CHECK(memcmp(alias, want, sizeof alias) == 0);
+}
+
 static void basis_is_orthonormal_and_right_handed(void)
 {
     pelt__rng r = pelt__rng_seed(3, 4);
@@ -134,5 +153,6 @@ int main(void)
     RUN(value_noise_tiles_with_its_period);
     RUN(value_noise_differs_by_seed_and_slice);
     RUN(basis_is_orthonormal_and_right_handed);
+    RUN(mat4_mul_composes_column_major_and_may_alias);
     return check_summary();
 }
