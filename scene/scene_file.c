@@ -1,10 +1,12 @@
-/* Scene files: JSON (cJSON) into pelt_scene, driven by one table of keys so
- * that parsing, --set overrides and error messages all agree. */
+/* Scene files: JSON (cJSON) into pelt_scene, driven by one table of keys
+ * (scene_keys.c) so that parsing, --set overrides and error messages all
+ * agree. */
 #include "pelt/scene.h"
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
 #include "core/base/vec.h"
+#include "scene/scene_keys.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
@@ -26,351 +28,8 @@ _Static_assert(sizeof(pelt_lod_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_strand_curl_shape) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_curl_phase) == sizeof(int), "enum size");
 
-#define PI_F 3.14159265358979f
-
-/* ---------------------------------------------------------------- defaults */
-
-void pelt_scene_defaults(pelt_scene *s)
-{
-    memset(s, 0, sizeof *s);
-
-    s->mesh.shape = PELT_SHAPE_TORUS;
-    s->mesh.major_radius = 1.0f;
-    s->mesh.minor_radius = 0.4f;
-    s->mesh.major_segments = 78; /* 78 * 60 * 2 = 9,360 triangles, Silva Table 1 */
-    s->mesh.minor_segments = 60;
-    s->mesh.radius = 1.0f;
-    s->mesh.slices = 64;
-    s->mesh.stacks = 32;
-    s->mesh.size = 2.0f;
-    s->mesh.subdivisions = 16;
-    s->mesh.scale = 1.0f;
-
-    /* The fur desc stays zero (pelt_fur_create's defaults) but for the
-     * Table 1 numbers the scene format documents. */
-    s->fur.layers = 16;
-    s->fur.look.texture_size = 256;
-    s->fur.look.color_scale = 1.0f;
-    s->fur.wet.clump_blend = 0.5f;
-    s->fur.wet.clump_tightness = 0.9f;
-    s->fur.wet.darken = 0.35f;
-    s->fur.wet.gloss = 2.0f;
-    s->fur.wet.gloss_sharpness = 4.0f;
-
-    s->texture.pattern = PELT_COLOR_PATTERN_NONE;
-
-    s->camera.yaw = 30.0f;
-    s->camera.pitch = 25.0f;
-    s->camera.distance = 4.2f;
-    s->camera.fov_y = 40.0f;
-
-    s->light.direction[0] = 0.5f;
-    s->light.direction[1] = 1.0f;
-    s->light.direction[2] = 0.8f;
-    s->light.color[0] = s->light.color[1] = s->light.color[2] = 1.0f;
-    s->light.ambient = 0.25f;
-
-    s->output.width = 800;
-    s->output.height = 600;
-    s->output.msaa = 0;
-    s->output.background[0] = 0.10f;
-    s->output.background[1] = 0.11f;
-    s->output.background[2] = 0.13f;
-    s->output.background[3] = 1.0f;
-
-    s->forces = pelt_forces_default();
-
-    s->animation.frames = 1;
-    s->animation.fps = 30.0f;
-    s->animation.shake_frequency = 2.0f;
-    s->animation.bounce_frequency = 1.0f;
-
-    s->wetness.drops_seed = 1;
-    s->wetness.drops_radius[0] = 0.02f;
-    s->wetness.drops_radius[1] = 0.06f;
-    s->wetness.drops_wetness[0] = 0.6f;
-    s->wetness.drops_wetness[1] = 1.0f;
-    s->wetness.rain.radius_min = 0.02f;
-    s->wetness.rain.radius_max = 0.06f;
-    s->wetness.rain.wetness_min = 0.6f;
-    s->wetness.rain.wetness_max = 1.0f;
-    s->wetness.rain.seed = 1;
-    s->wetness.mask_image_wetness = 1.0f;
-
-    s->atlas.mode = PELT_ATLAS_AUTO;
-    s->atlas.direction[1] = -1.0f;
-
-    s->draw.skin = s->draw.fins = s->draw.shells = true;
-    s->groom.length_range[1] = 1.0f;
-    s->groom.density_range[1] = 1.0f;
-    s->groom.flow_strength = 1.0f;
-}
-
-void pelt_scene_free(pelt_scene *s)
-{
-    if (!s) return;
-    free(s->wetness.droplets);
-    s->wetness.droplets = NULL;
-    s->wetness.droplet_count = 0;
-    free(s->animation.wind_keys);
-    s->animation.wind_keys = NULL;
-    s->animation.wind_key_count = 0;
-    free(s->groom.strokes);
-    s->groom.strokes = NULL;
-    s->groom.stroke_count = 0;
-}
-
-/* -------------------------------------------------------------- key table */
-
-typedef enum kind {
-    K_UINT,     /* unsigned, integer in [lo, hi] */
-    K_BOOL,     /* true or false into a bool */
-    K_U32,      /* uint32_t seed, integer in [0, 2^32-1] */
-    K_FLOAT,    /* float in [lo, hi] */
-    K_VEC,      /* `count` floats, each in [lo, hi] */
-    K_RANGE,    /* [min, max] into two floats at off and off2, min <= max */
-    K_PATH,     /* string into char[PELT_SCENE_PATH_MAX], resolved */
-    K_ENUM,     /* one of names[], stored as its index in an int */
-    K_PRESET,   /* a curl preset name or "", stored as the string */
-    K_NAME,     /* a name (string) or an index (integer) into char[PELT_ANIMATION_NAME_MAX] */
-    K_DROPLETS, /* array of droplet objects: pointer at off, count at off2 */
-    K_WINDKEYS, /* array of wind keyframes: pointer at off, count at off2 */
-    K_STROKES   /* array of brush strokes: pointer at off, count at off2 */
-} kind;
-
-enum {
-    F_LO_OPEN = 1u << 0,  /* the lower bound itself is not allowed */
-    F_ZERO_OK = 1u << 1,  /* 0 is allowed as "default" below the range */
-    F_NONZERO = 1u << 2,  /* a vector that must not be all zero */
-    F_ACCEPT3 = 1u << 3   /* a 4-vector may be given with 3 numbers */
-};
-
-typedef struct key_def {
-    const char *path;
-    kind k;
-    size_t off, off2;
-    double lo, hi;
-    unsigned flags;
-    unsigned count;           /* K_VEC */
-    const char *const *names; /* K_ENUM; NULL-terminated */
-} key_def;
-
-static const char *const shape_names[] = {"torus", "sphere", "square", "file", NULL};
-static const char *const up_names[] = {"file", "+y", "-y", "+x", "-x", "+z", "-z", NULL};
-static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
-static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
-static const char *const direction_names[] = {"global", "vertex-colors", NULL};
-static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
-static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
-static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
-static const char *const lod_names[] = {"auto", "off", "fixed", NULL};
-static const char *const strand_curl_names[] = {"helix", "wave", NULL};
-static const char *const curl_phase_names[] = {"ringlets", "coherent", NULL};
-/* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
- * The scene format names them as the issue does; the preset table spells two
- * of them differently, so both spellings are accepted (same index). */
-static const char *const preset_names[] = {"straight", "wavy", "few-large-curls",
-                                           "many-small-curls", NULL};
-static const char *const preset_aliases[] = {"straight", "wavy", "large_curls",
-                                             "small_curls", NULL};
-
-#define BIG 1e30
-#define OFF(field) offsetof(pelt_scene, field)
-#define UINT_(p, f, lo, hi, fl) {p, K_UINT, OFF(f), 0, lo, hi, fl, 0, NULL}
-#define FLT(p, f, lo, hi, fl) {p, K_FLOAT, OFF(f), 0, lo, hi, fl, 0, NULL}
-#define VEC(p, f, n, lo, hi, fl) {p, K_VEC, OFF(f), 0, lo, hi, fl, n, NULL}
-#define RANGE(p, f, g, lo, hi) {p, K_RANGE, OFF(f), OFF(g), lo, hi, 0, 0, NULL}
-#define SEED(p, f) {p, K_U32, OFF(f), 0, 0, 4294967295.0, 0, 0, NULL}
-#define PATH(p, f) {p, K_PATH, OFF(f), 0, 0, 0, 0, 0, NULL}
-#define ENUM(p, f, names) {p, K_ENUM, OFF(f), 0, 0, 0, 0, 0, names}
-
-static const key_def scene_keys[] = {
-    ENUM("mesh.shape", mesh.shape, shape_names),
-    PATH("mesh.file", mesh.file),
-    FLT("mesh.major_radius", mesh.major_radius, 0, BIG, F_LO_OPEN),
-    FLT("mesh.minor_radius", mesh.minor_radius, 0, BIG, F_LO_OPEN),
-    UINT_("mesh.major_segments", mesh.major_segments, 3, 16384, 0),
-    UINT_("mesh.minor_segments", mesh.minor_segments, 3, 16384, 0),
-    FLT("mesh.radius", mesh.radius, 0, BIG, F_LO_OPEN),
-    UINT_("mesh.slices", mesh.slices, 3, 16384, 0),
-    UINT_("mesh.simplify", mesh.simplify, 0, 0x7fffffff, 0),
-    UINT_("mesh.stacks", mesh.stacks, 2, 16384, 0),
-    FLT("mesh.size", mesh.size, 0, BIG, F_LO_OPEN),
-    UINT_("mesh.subdivisions", mesh.subdivisions, 1, 16384, 0),
-    VEC("mesh.rotation", mesh.rotation, 3, -BIG, BIG, 0),
-    ENUM("mesh.up", mesh.up, up_names),
-    FLT("mesh.scale", mesh.scale, 0, BIG, F_LO_OPEN),
-
-    {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, preset_names},
-    {"animation.name", K_NAME, OFF(animation.name), 0, 0, 0, 0, 0, NULL},
-    UINT_("fur.layers", fur.layers, 1, 256, 0),
-    FLT("fur.length", fur.length, 0, BIG, 0),
-    UINT_("fur.texture_size", fur.look.texture_size, 1, 16384, 0),
-    SEED("fur.seed", fur.seed),
-    FLT("fur.density", fur.look.density, 0, BIG, 0),
-    FLT("fur.strand_radius", fur.look.strand_radius, 0, BIG, 0),
-    FLT("fur.taper", fur.look.taper, 0, 1, 0),
-    FLT("fur.strand_curl", fur.look.strand_curl, 0, 64, 0),
-    FLT("fur.strand_curl_turns", fur.look.strand_curl_turns, 0, 32, F_LO_OPEN | F_ZERO_OK),
-    ENUM("fur.strand_curl_shape", fur.look.strand_curl_shape, strand_curl_names),
-    FLT("fur.tiling", fur.look.tiling, 0, BIG, 0),
-    VEC("fur.color", fur.look.color, 3, 0, 1, 0),
-    VEC("fur.tip_color", fur.look.tip_color, 3, 0, 1, 0),
-    VEC("fur.specular", fur.look.specular, 3, 0, BIG, 0),
-    FLT("fur.shininess", fur.look.shininess, 0, BIG, 0),
-    FLT("fur.shadow", fur.look.shadow, 1, BIG, F_ZERO_OK),
-    FLT("fur.curl_frequency", fur.look.curl_frequency, 0, BIG, 0),
-    FLT("fur.curl_radius", fur.look.curl_radius, 0, BIG, 0),
-    ENUM("fur.curl_phase", fur.look.curl_phase, curl_phase_names),
-    FLT("fur.slant", fur.comb.slant, 0, 60, 0),
-    VEC("fur.skin_color", fur.look.skin_color, 3, 0, 1, 0),
-    {"fur.inter_shadow", K_BOOL, OFF(fur.look.inter_shadow), 0, 0, 0, 0, 0, NULL},
-    FLT("fur.inter_shadow_offset", fur.look.inter_shadow_offset, 0, 64, F_LO_OPEN | F_ZERO_OK),
-    FLT("fur.inter_shadow_darkness", fur.look.inter_shadow_darkness, 0, 1, F_LO_OPEN | F_ZERO_OK),
-    ENUM("shading.model", fur.look.shading, shading_names),
-    FLT("shading.diffuse_power", fur.look.diffuse_power, 0, 256, F_LO_OPEN | F_ZERO_OK),
-    PATH("fur.groom", groom.file),
-    ENUM("fur.lod", fur.lod.mode, lod_names),
-    UINT_("fur.lod_shell_level", fur.lod.shell_level, 0, 8, 0),
-    UINT_("fur.lod_mesh_level", fur.lod.mesh_level, 0, 11, 0),
-    FLT("fur.lod_shell_pixels", fur.lod.shell_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
-    FLT("fur.lod_mesh_error", fur.lod.mesh_error_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
-    FLT("fur.lod_mesh_edge", fur.lod.mesh_edge_pixels, 0, 1024, F_LO_OPEN | F_ZERO_OK),
-    FLT("fins.length", fur.fins.length, 0, 8, F_LO_OPEN | F_ZERO_OK),
-    FLT("fins.density", fur.fins.density, 0, 4096, F_LO_OPEN | F_ZERO_OK),
-    FLT("fins.curl", fur.fins.curl, 0, 64, 0),
-    FLT("fins.curl_turns", fur.fins.curl_turns, 0, 64, F_LO_OPEN | F_ZERO_OK),
-    {"draw.skin", K_BOOL, OFF(draw.skin), 0, 0, 0, 0, 0, NULL},
-    {"draw.fins", K_BOOL, OFF(draw.fins), 0, 0, 0, 0, 0, NULL},
-    {"draw.shells", K_BOOL, OFF(draw.shells), 0, 0, 0, 0, 0, NULL},
-    {"draw.fins_unfaded", K_BOOL, OFF(draw.fins_unfaded), 0, 0, 0, 0, 0, NULL},
-    PATH("fur.length_map", groom.length_map),
-    RANGE("fur.length_range", groom.length_range[0], groom.length_range[1], 0, PELT_GROOM_MAX_LENGTH),
-    PATH("fur.density_map", groom.density_map),
-    RANGE("fur.density_range", groom.density_range[0], groom.density_range[1], 0, 1),
-    PATH("fur.flow_map", groom.flow_map),
-    FLT("fur.flow_strength", groom.flow_strength, 0, PELT_GROOM_MAX_LEAN, 0),
-    PATH("fur.color_map", groom.color_map),
-    ENUM("fur.vertex_colors", groom.vertex_colors, vertex_colors_names),
-    {"strokes", K_STROKES, OFF(groom.strokes), OFF(groom.stroke_count), 0, 0, 0, 0, NULL},
-
-    PATH("texture.image", texture.image),
-    ENUM("texture.pattern", texture.pattern, pattern_names),
-    FLT("texture.scale", fur.look.color_scale, 0, BIG, F_LO_OPEN),
-
-    FLT("camera.yaw", camera.yaw, -BIG, BIG, 0),
-    FLT("camera.pitch", camera.pitch, -89, 89, 0),
-    FLT("camera.distance", camera.distance, 0, BIG, F_LO_OPEN),
-    FLT("camera.fov_y", camera.fov_y, 1, 179, 0),
-    VEC("camera.target", camera.target, 3, -BIG, BIG, 0),
-
-    VEC("light.direction", light.direction, 3, -BIG, BIG, F_NONZERO),
-    VEC("light.color", light.color, 3, 0, BIG, 0),
-    FLT("light.ambient", light.ambient, 0, 1, 0),
-    {"shadows.enabled", K_BOOL, OFF(shadows.enabled), 0, 0, 0, 0, 0, NULL},
-    UINT_("shadows.map_size", shadows.map_size, 16, PELT_SHADOW_MAX_MAP_SIZE, 0),
-    UINT_("shadows.slices", shadows.slices, 1, PELT_SHADOW_MAX_SLICES, 0),
-    FLT("shadows.softness", shadows.softness, -1, 64, 0),
-    FLT("shadows.depth", shadows.depth, 0, 64, F_LO_OPEN),
-    FLT("shadows.density", shadows.density, 0, 64, F_LO_OPEN),
-    {"shadows.gamma", K_BOOL, OFF(shadows.keep_gamma), 0, 0, 0, 0, 0, NULL},
-    {"ground.enabled", K_BOOL, OFF(ground.enabled), 0, 0, 0, 0, 0, NULL},
-    VEC("ground.color", ground.color, 3, 0, 1, 0),
-    FLT("ground.size", ground.size, 0, 1000, F_LO_OPEN),
-
-    UINT_("output.width", output.width, 1, 16384, 0),
-    UINT_("output.height", output.height, 1, 16384, 0),
-    UINT_("output.msaa", output.msaa, 0, 16, 0),
-    VEC("output.background", output.background, 4, 0, 1, F_ACCEPT3),
-
-    VEC("forces.gravity", forces.gravity, 3, -BIG, BIG, 0),
-    VEC("forces.wind", forces.wind, 3, -BIG, BIG, 0),
-    FLT("forces.gust_strength", forces.gust_strength, 0, BIG, 0),
-    FLT("forces.gust_scale", forces.gust_scale, 0, BIG, F_LO_OPEN),
-    FLT("forces.gust_frequency", forces.gust_frequency, 0, BIG, 0),
-
-    FLT("dynamics.spring_k", fur.dynamics.spring_k, 0, BIG, 0),
-    FLT("dynamics.mass", fur.dynamics.mass, 0, BIG, 0),
-    FLT("dynamics.damping", fur.dynamics.damping, 0, BIG, 0),
-
-    UINT_("animation.frames", animation.frames, 1, 1000000, 0),
-    FLT("animation.fps", animation.fps, 0, 1000, F_LO_OPEN),
-    FLT("animation.turntable", animation.turntable, -BIG, BIG, 0),
-    FLT("animation.shake.amplitude", animation.shake_amplitude, 0, BIG, 0),
-    FLT("animation.shake.frequency", animation.shake_frequency, 0, BIG, 0),
-    FLT("animation.bounce.height", animation.bounce_height, 0, BIG, 0),
-    FLT("animation.bounce.frequency", animation.bounce_frequency, 0, BIG, 0),
-    {"animation.wind", K_WINDKEYS, OFF(animation.wind_keys), OFF(animation.wind_key_count),
-     0, 0, 0, 0, NULL},
-
-    UINT_("wetness.mask_size", fur.wet.mask_size, 1, 8192, 0),
-    {"wetness.droplets", K_DROPLETS, OFF(wetness.droplets), OFF(wetness.droplet_count),
-     0, 0, 0, 0, NULL},
-    UINT_("wetness.drops.count", wetness.drops, 0, PELT_SCENE_MAX_DROPLETS, 0),
-    SEED("wetness.drops.seed", wetness.drops_seed),
-    RANGE("wetness.drops.radius", wetness.drops_radius[0], wetness.drops_radius[1], 0, 1),
-    RANGE("wetness.drops.wetness", wetness.drops_wetness[0], wetness.drops_wetness[1], -1, 1),
-    FLT("wetness.rain.rate", wetness.rain.rate, 0, BIG, 0),
-    RANGE("wetness.rain.radius", wetness.rain.radius_min, wetness.rain.radius_max, 0, 1),
-    RANGE("wetness.rain.wetness", wetness.rain.wetness_min, wetness.rain.wetness_max, -1, 1),
-    SEED("wetness.rain.seed", wetness.rain.seed),
-    FLT("wetness.rain.start", wetness.rain_start, 0, BIG, 0),
-    FLT("wetness.rain.stop", wetness.rain_stop, 0, BIG, 0),
-    FLT("wetness.dry_rate", wetness.dry_rate, 0, BIG, 0),
-    FLT("wetness.clump_blend", fur.wet.clump_blend, 0, 1, 0),
-    FLT("wetness.clump_tightness", fur.wet.clump_tightness, 0, 1, 0),
-    FLT("wetness.darken", fur.wet.darken, 0, 1, 0),
-    FLT("wetness.clump_size", fur.wet.clump_size, 0, BIG, 0),
-    FLT("wetness.gloss", fur.wet.gloss, 1, 16, 0),
-    FLT("wetness.gloss_sharpness", fur.wet.gloss_sharpness, 1, 64, 0),
-    PATH("wetness.mask_image", wetness.mask_image),
-    FLT("wetness.mask_image_wetness", wetness.mask_image_wetness, -1, 1, 0),
-
-    ENUM("atlas.mode", atlas.mode, atlas_names),
-    FLT("atlas.texel_density", atlas.texel_density, 0, BIG, 0),
-    VEC("atlas.direction", atlas.direction, 3, -BIG, BIG, 0),
-    FLT("atlas.max_stretch", atlas.max_stretch, 1.1, BIG, F_ZERO_OK),
-    ENUM("atlas.direction_from", atlas.direction_from, direction_names),
-};
-
-#undef OFF
-#define OFF(field) offsetof(pelt_droplet, field)
-static const key_def droplet_keys[] = {
-    {"center", K_VEC, OFF(center), 0, 0, 1, 0, 2, NULL},
-    {"radius", K_FLOAT, OFF(radius), 0, 0, 1, F_LO_OPEN, 0, NULL},
-    {"wetness", K_FLOAT, OFF(wetness), 0, -1, 1, 0, 0, NULL},
-};
-#undef OFF
-#define OFF(field) offsetof(pelt_wind_key, field)
-static const key_def wind_key_keys[] = {
-    {"time", K_FLOAT, OFF(time), 0, 0, BIG, 0, 0, NULL},
-    {"wind", K_VEC, OFF(wind), 0, -BIG, BIG, 0, 3, NULL},
-};
-#undef OFF
-#define OFF(field) offsetof(pelt_scene_stroke, field)
-static const key_def stroke_keys[] = {
-    {"tool", K_ENUM, OFF(brush.tool), 0, 0, 0, 0, 0, tool_names},
-    {"radius", K_FLOAT, OFF(brush.radius), 0, 0, BIG, F_LO_OPEN, 0, NULL},
-    {"strength", K_FLOAT, OFF(brush.strength), 0, 0, 1, F_LO_OPEN, 0, NULL},
-    {"delta", K_VEC, OFF(brush.delta), 0, -BIG, BIG, 0, 3, NULL},
-    {"amount", K_FLOAT, OFF(brush.amount), 0, -PELT_GROOM_MAX_LENGTH, PELT_GROOM_MAX_LENGTH, 0, 0, NULL},
-    {"color", K_VEC, OFF(brush.color), 0, 0, 1, 0, 3, NULL},
-    {"pixel", K_VEC, OFF(pixel), 0, -BIG, BIG, 0, 2, NULL},
-    {"at", K_VEC, OFF(at), 0, -BIG, BIG, 0, 3, NULL},
-    {"drag", K_VEC, OFF(drag), 0, -BIG, BIG, 0, 2, NULL},
-};
-#undef OFF
-
-typedef struct table {
-    const key_def *keys;
-    size_t count;
-} table;
-
-#define TABLE(a) {a, sizeof(a) / sizeof((a)[0])}
-static const table scene_table = TABLE(scene_keys);
-static const table droplet_table = TABLE(droplet_keys);
-static const table wind_key_table = TABLE(wind_key_keys);
-static const table stroke_table = TABLE(stroke_keys);
+typedef pelt__scene_key key_def;
+typedef pelt__scene_keys table;
 
 /* ------------------------------------------------------------ the parser */
 
@@ -611,8 +270,8 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
         int alias;
         ctx quiet = *c;
         quiet.err = NULL;
-        if (name_in(&quiet, key, v, preset_aliases, false, &alias) == PELT_OK) index = alias;
-        else if ((st = name_in(c, key, v, preset_names, true, &index)) != PELT_OK) break;
+        if (name_in(&quiet, key, v, pelt__scene_preset_aliases, false, &alias) == PELT_OK) index = alias;
+        else if ((st = name_in(c, key, v, pelt__scene_preset_names, true, &index)) != PELT_OK) break;
         if (index < 0) {
             ((char *)field)[0] = '\0';
             break;
@@ -621,12 +280,12 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
            hand fur_preset straight to pelt_fur_curl_look. */
         float omega, radius;
         const char *stored = NULL;
-        if (pelt_fur_curl_look(preset_names[index], &omega, &radius)) stored = preset_names[index];
-        else if (pelt_fur_curl_look(preset_aliases[index], &omega, &radius))
-            stored = preset_aliases[index];
+        if (pelt_fur_curl_look(pelt__scene_preset_names[index], &omega, &radius)) stored = pelt__scene_preset_names[index];
+        else if (pelt_fur_curl_look(pelt__scene_preset_aliases[index], &omega, &radius))
+            stored = pelt__scene_preset_aliases[index];
         if (!stored)
             return pelt__fail(c->err, PELT_ERR_FORMAT, "%s: %s: \"%s\" is missing from the "
-                              "curl preset table", c->name, key, preset_names[index]);
+                              "curl preset table", c->name, key, pelt__scene_preset_names[index]);
         snprintf((char *)field, PELT_SCENE_NAME_MAX, "%s", stored);
         break;
     }
@@ -635,7 +294,7 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
         const pelt_droplet init = {{0, 0}, 0, 1.0f};
         void *items = NULL;
         size_t n = 0;
-        st = read_list(c, key, v, &droplet_table, sizeof(pelt_droplet), &init, required,
+        st = read_list(c, key, v, &pelt__droplet_key_table, sizeof(pelt_droplet), &init, required,
                        PELT_SCENE_MAX_DROPLETS, &items, &n);
         if (st != PELT_OK) break;
         memcpy(field, &items, sizeof items);
@@ -647,7 +306,7 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
         const pelt_wind_key init = {0, {0, 0, 0}};
         void *items = NULL;
         size_t n = 0;
-        st = read_list(c, key, v, &wind_key_table, sizeof(pelt_wind_key), &init, required,
+        st = read_list(c, key, v, &pelt__wind_key_table, sizeof(pelt_wind_key), &init, required,
                        PELT_SCENE_MAX_WIND_KEYS, &items, &n);
         if (st != PELT_OK) break;
         const pelt_wind_key *keys = items;
@@ -673,7 +332,7 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
         init.brush.strength = 1.0f;
         void *items = NULL;
         size_t n = 0;
-        st = read_list(c, key, v, &stroke_table, sizeof(pelt_scene_stroke), &init, required,
+        st = read_list(c, key, v, &pelt__stroke_key_table, sizeof(pelt_scene_stroke), &init, required,
                        PELT_SCENE_MAX_STROKES, &items, &n);
         if (st != PELT_OK) break;
         /* Where it lands: a pixel or a point, exactly one of them. */
@@ -797,7 +456,7 @@ static pelt_status apply_path(const ctx *c, const table *t, void *base, const cJ
     const key_def *d = find(t, path);
     if (d) {
         pelt_status st = apply(c, d, base, v, shown_key);
-        if (st == PELT_OK && t == &scene_table) fixup(d, base);
+        if (st == PELT_OK && t == &pelt__scene_key_table) fixup(d, base);
         return st;
     }
     if (is_group(t, path)) {
@@ -807,7 +466,7 @@ static pelt_status apply_path(const ctx *c, const table *t, void *base, const cJ
         if (cJSON_IsString(v) && join(file_key, sizeof file_key, path, "file") &&
             (d = find(t, file_key)) != NULL) {
             pelt_status st = apply(c, d, base, v, shown_key);
-            if (st == PELT_OK && t == &scene_table) fixup(d, base);
+            if (st == PELT_OK && t == &pelt__scene_key_table) fixup(d, base);
             return st;
         }
         return bad(c, shown_key, "an object", v);
@@ -909,7 +568,7 @@ static pelt_status parse_into(const ctx *c, const char *text, pelt_scene *s)
         st = bad(c, "top level", "an object {...}", root);
     if (st == PELT_OK) st = check_exclusive(c, root, "mesh", "file", "shape", "file");
     if (st == PELT_OK) st = check_exclusive(c, root, "texture", "image", "pattern", "none");
-    if (st == PELT_OK) st = walk_object(c, &scene_table, s, root, "", "");
+    if (st == PELT_OK) st = walk_object(c, &pelt__scene_key_table, s, root, "", "");
     if (st == PELT_OK) st = validate(c, s);
     cJSON_Delete(root);
     return st;
@@ -1002,9 +661,9 @@ pelt_status pelt_scene_set(pelt_scene *s, const char *key_path, const char *valu
 
     /* JSON when it parses as JSON, else the bare string (a path, a name).
        Keys that only take strings always get one: a file may be named 123. */
-    const key_def *d = find(&scene_table, key_path);
+    const key_def *d = find(&pelt__scene_key_table, key_path);
     bool string_only = d ? (d->k == K_PATH || d->k == K_ENUM || d->k == K_PRESET)
-                         : (is_group(&scene_table, key_path) && value[0] != '{');
+                         : (is_group(&pelt__scene_key_table, key_path) && value[0] != '{');
     cJSON *v = cJSON_Parse(value);
     if (v && string_only && !cJSON_IsString(v)) {
         cJSON_Delete(v);
@@ -1014,7 +673,7 @@ pelt_status pelt_scene_set(pelt_scene *s, const char *key_path, const char *valu
     if (!v) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "--set %s: no memory", key_path);
 
     pelt_scene tmp = *s;
-    pelt_status st = apply_path(&c, &scene_table, &tmp, v, key_path, "", "", key_path);
+    pelt_status st = apply_path(&c, &pelt__scene_key_table, &tmp, v, key_path, "", "", key_path);
     if (st == PELT_OK) st = validate(&c, &tmp);
     cJSON_Delete(v);
 
@@ -1032,68 +691,7 @@ pelt_status pelt_scene_set(pelt_scene *s, const char *key_path, const char *valu
     return st;
 }
 
-/* ------------------------------------------------------------ animation */
-
-void pelt_scene_wind_at(const pelt_scene *s, float t, float out[3])
-{
-    const pelt_wind_key *k = s->animation.wind_keys;
-    size_t n = s->animation.wind_key_count;
-    if (!k || n == 0) {
-        memcpy(out, s->forces.wind, 3 * sizeof(float));
-        return;
-    }
-    if (!isfinite(t)) t = 0.0f;
-    if (t <= k[0].time) {
-        memcpy(out, k[0].wind, 3 * sizeof(float));
-        return;
-    }
-    if (t >= k[n - 1].time) {
-        memcpy(out, k[n - 1].wind, 3 * sizeof(float));
-        return;
-    }
-    /* k[lo].time <= t < k[hi].time */
-    size_t lo = 0, hi = n - 1;
-    while (hi - lo > 1) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (k[mid].time <= t) lo = mid;
-        else hi = mid;
-    }
-    float a = (t - k[lo].time) / (k[hi].time - k[lo].time);
-    for (int i = 0; i < 3; i++) out[i] = k[lo].wind[i] + (k[hi].wind[i] - k[lo].wind[i]) * a;
-}
-
-void pelt_scene_model_at(const pelt_scene *s, float t, float model[16])
-{
-    const float deg = PI_F / 180.0f;
-    const pelt_scene_mesh *m = &s->mesh;
-    const pelt_scene_animation *a = &s->animation;
-    if (!isfinite(t)) t = 0.0f;
-
-    /* placement: scale, then X, Y, Z rotations */
-    float r[16], tmp[16];
-    pelt__mat4_identity(model);
-    model[0] = model[5] = model[10] = m->scale;
-    pelt__mat4_rotate(r, v3(1, 0, 0), m->rotation[0] * deg);
-    pelt__mat4_mul(model, r, model);
-    pelt__mat4_rotate(r, v3(0, 1, 0), m->rotation[1] * deg);
-    pelt__mat4_mul(model, r, model);
-    pelt__mat4_rotate(r, v3(0, 0, 1), m->rotation[2] * deg);
-    pelt__mat4_mul(model, r, model);
-
-    /* turntable about +Y; fmod keeps the angle small over long runs */
-    float angle = fmodf(a->turntable * t, 360.0f) * deg;
-    pelt__mat4_rotate(r, v3(0, 1, 0), angle);
-    pelt__mat4_mul(tmp, r, model);
-
-    /* shake along X, bounce along +Y: bounce_frequency hops per second */
-    float x = a->shake_amplitude * sinf(2.0f * PI_F * a->shake_frequency * t);
-    float y = a->bounce_height * fabsf(sinf(PI_F * a->bounce_frequency * t));
-    memcpy(model, tmp, sizeof tmp);
-    model[12] += x;
-    model[13] += y;
-}
-
 const char *pelt_scene_key_name(size_t i)
 {
-    return i < scene_table.count ? scene_table.keys[i].path : NULL;
+    return i < pelt__scene_key_table.count ? pelt__scene_key_table.keys[i].path : NULL;
 }

@@ -19,4 +19,10 @@ pelt_status pelt__scene_decode_image(const char *key, const char *name, const ui
                                      size_t size, int channels, uint8_t **px, int *w, int *h,
                                      pelt_error *err);
 
+/* Loads an image file into *px (free with stbi_image_free); errors name the
+ * scene key and the file, with the system's reason when the file cannot be
+ * read. */
+pelt_status pelt__scene_load_image(const char *key, const char *path, int channels, uint8_t **px,
+                                   int *w, int *h, pelt_error *err);
+
 #endif

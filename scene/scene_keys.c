@@ -1,0 +1,219 @@
+/* The scene file's key table (scene_keys.h): every key's path, kind, field
+ * and range, in one place. */
+#include "scene/scene_keys.h"
+
+#include "pelt/atlas.h"
+#include "pelt/groom.h"
+
+#include <stddef.h>
+
+static const char *const shape_names[] = {"torus", "sphere", "square", "file", NULL};
+static const char *const up_names[] = {"file", "+y", "-y", "+x", "-x", "+z", "-z", NULL};
+static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
+static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
+static const char *const direction_names[] = {"global", "vertex-colors", NULL};
+static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
+static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
+static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
+static const char *const lod_names[] = {"auto", "off", "fixed", NULL};
+static const char *const strand_curl_names[] = {"helix", "wave", NULL};
+static const char *const curl_phase_names[] = {"ringlets", "coherent", NULL};
+/* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
+ * The scene format names them as the issue does; the preset table spells two
+ * of them differently, so both spellings are accepted (same index). */
+const char *const pelt__scene_preset_names[] = {"straight", "wavy", "few-large-curls",
+                                           "many-small-curls", NULL};
+const char *const pelt__scene_preset_aliases[] = {"straight", "wavy", "large_curls",
+                                             "small_curls", NULL};
+
+#define OFF(field) offsetof(pelt_scene, field)
+#define UINT_(p, f, lo, hi, fl) {p, K_UINT, OFF(f), 0, lo, hi, fl, 0, NULL}
+#define FLT(p, f, lo, hi, fl) {p, K_FLOAT, OFF(f), 0, lo, hi, fl, 0, NULL}
+#define VEC(p, f, n, lo, hi, fl) {p, K_VEC, OFF(f), 0, lo, hi, fl, n, NULL}
+#define RANGE(p, f, g, lo, hi) {p, K_RANGE, OFF(f), OFF(g), lo, hi, 0, 0, NULL}
+#define SEED(p, f) {p, K_U32, OFF(f), 0, 0, 4294967295.0, 0, 0, NULL}
+#define PATH(p, f) {p, K_PATH, OFF(f), 0, 0, 0, 0, 0, NULL}
+#define ENUM(p, f, names) {p, K_ENUM, OFF(f), 0, 0, 0, 0, 0, names}
+
+static const pelt__scene_key scene_keys[] = {
+    ENUM("mesh.shape", mesh.shape, shape_names),
+    PATH("mesh.file", mesh.file),
+    FLT("mesh.major_radius", mesh.major_radius, 0, BIG, F_LO_OPEN),
+    FLT("mesh.minor_radius", mesh.minor_radius, 0, BIG, F_LO_OPEN),
+    UINT_("mesh.major_segments", mesh.major_segments, 3, 16384, 0),
+    UINT_("mesh.minor_segments", mesh.minor_segments, 3, 16384, 0),
+    FLT("mesh.radius", mesh.radius, 0, BIG, F_LO_OPEN),
+    UINT_("mesh.slices", mesh.slices, 3, 16384, 0),
+    UINT_("mesh.simplify", mesh.simplify, 0, 0x7fffffff, 0),
+    UINT_("mesh.stacks", mesh.stacks, 2, 16384, 0),
+    FLT("mesh.size", mesh.size, 0, BIG, F_LO_OPEN),
+    UINT_("mesh.subdivisions", mesh.subdivisions, 1, 16384, 0),
+    VEC("mesh.rotation", mesh.rotation, 3, -BIG, BIG, 0),
+    ENUM("mesh.up", mesh.up, up_names),
+    FLT("mesh.scale", mesh.scale, 0, BIG, F_LO_OPEN),
+
+    {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, pelt__scene_preset_names},
+    {"animation.name", K_NAME, OFF(animation.name), 0, 0, 0, 0, 0, NULL},
+    UINT_("fur.layers", fur.layers, 1, 256, 0),
+    FLT("fur.length", fur.length, 0, BIG, 0),
+    UINT_("fur.texture_size", fur.look.texture_size, 1, 16384, 0),
+    SEED("fur.seed", fur.seed),
+    FLT("fur.density", fur.look.density, 0, BIG, 0),
+    FLT("fur.strand_radius", fur.look.strand_radius, 0, BIG, 0),
+    FLT("fur.taper", fur.look.taper, 0, 1, 0),
+    FLT("fur.strand_curl", fur.look.strand_curl, 0, 64, 0),
+    FLT("fur.strand_curl_turns", fur.look.strand_curl_turns, 0, 32, F_LO_OPEN | F_ZERO_OK),
+    ENUM("fur.strand_curl_shape", fur.look.strand_curl_shape, strand_curl_names),
+    FLT("fur.tiling", fur.look.tiling, 0, BIG, 0),
+    VEC("fur.color", fur.look.color, 3, 0, 1, 0),
+    VEC("fur.tip_color", fur.look.tip_color, 3, 0, 1, 0),
+    VEC("fur.specular", fur.look.specular, 3, 0, BIG, 0),
+    FLT("fur.shininess", fur.look.shininess, 0, BIG, 0),
+    FLT("fur.shadow", fur.look.shadow, 1, BIG, F_ZERO_OK),
+    FLT("fur.curl_frequency", fur.look.curl_frequency, 0, BIG, 0),
+    FLT("fur.curl_radius", fur.look.curl_radius, 0, BIG, 0),
+    ENUM("fur.curl_phase", fur.look.curl_phase, curl_phase_names),
+    FLT("fur.slant", fur.comb.slant, 0, 60, 0),
+    VEC("fur.skin_color", fur.look.skin_color, 3, 0, 1, 0),
+    {"fur.inter_shadow", K_BOOL, OFF(fur.look.inter_shadow), 0, 0, 0, 0, 0, NULL},
+    FLT("fur.inter_shadow_offset", fur.look.inter_shadow_offset, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    FLT("fur.inter_shadow_darkness", fur.look.inter_shadow_darkness, 0, 1, F_LO_OPEN | F_ZERO_OK),
+    ENUM("shading.model", fur.look.shading, shading_names),
+    FLT("shading.diffuse_power", fur.look.diffuse_power, 0, 256, F_LO_OPEN | F_ZERO_OK),
+    PATH("fur.groom", groom.file),
+    ENUM("fur.lod", fur.lod.mode, lod_names),
+    UINT_("fur.lod_shell_level", fur.lod.shell_level, 0, 8, 0),
+    UINT_("fur.lod_mesh_level", fur.lod.mesh_level, 0, 11, 0),
+    FLT("fur.lod_shell_pixels", fur.lod.shell_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    FLT("fur.lod_mesh_error", fur.lod.mesh_error_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    FLT("fur.lod_mesh_edge", fur.lod.mesh_edge_pixels, 0, 1024, F_LO_OPEN | F_ZERO_OK),
+    FLT("fins.length", fur.fins.length, 0, 8, F_LO_OPEN | F_ZERO_OK),
+    FLT("fins.density", fur.fins.density, 0, 4096, F_LO_OPEN | F_ZERO_OK),
+    FLT("fins.curl", fur.fins.curl, 0, 64, 0),
+    FLT("fins.curl_turns", fur.fins.curl_turns, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    {"draw.skin", K_BOOL, OFF(draw.skin), 0, 0, 0, 0, 0, NULL},
+    {"draw.fins", K_BOOL, OFF(draw.fins), 0, 0, 0, 0, 0, NULL},
+    {"draw.shells", K_BOOL, OFF(draw.shells), 0, 0, 0, 0, 0, NULL},
+    {"draw.fins_unfaded", K_BOOL, OFF(draw.fins_unfaded), 0, 0, 0, 0, 0, NULL},
+    PATH("fur.length_map", groom.length_map),
+    RANGE("fur.length_range", groom.length_range[0], groom.length_range[1], 0, PELT_GROOM_MAX_LENGTH),
+    PATH("fur.density_map", groom.density_map),
+    RANGE("fur.density_range", groom.density_range[0], groom.density_range[1], 0, 1),
+    PATH("fur.flow_map", groom.flow_map),
+    FLT("fur.flow_strength", groom.flow_strength, 0, PELT_GROOM_MAX_LEAN, 0),
+    PATH("fur.color_map", groom.color_map),
+    ENUM("fur.vertex_colors", groom.vertex_colors, vertex_colors_names),
+    {"strokes", K_STROKES, OFF(groom.strokes), OFF(groom.stroke_count), 0, 0, 0, 0, NULL},
+
+    PATH("texture.image", texture.image),
+    ENUM("texture.pattern", texture.pattern, pattern_names),
+    FLT("texture.scale", fur.look.color_scale, 0, BIG, F_LO_OPEN),
+
+    FLT("camera.yaw", camera.yaw, -BIG, BIG, 0),
+    FLT("camera.pitch", camera.pitch, -89, 89, 0),
+    FLT("camera.distance", camera.distance, 0, BIG, F_LO_OPEN),
+    FLT("camera.fov_y", camera.fov_y, 1, 179, 0),
+    VEC("camera.target", camera.target, 3, -BIG, BIG, 0),
+
+    VEC("light.direction", light.direction, 3, -BIG, BIG, F_NONZERO),
+    VEC("light.color", light.color, 3, 0, BIG, 0),
+    FLT("light.ambient", light.ambient, 0, 1, 0),
+    {"shadows.enabled", K_BOOL, OFF(shadows.enabled), 0, 0, 0, 0, 0, NULL},
+    UINT_("shadows.map_size", shadows.map_size, 16, PELT_SHADOW_MAX_MAP_SIZE, 0),
+    UINT_("shadows.slices", shadows.slices, 1, PELT_SHADOW_MAX_SLICES, 0),
+    FLT("shadows.softness", shadows.softness, -1, 64, 0),
+    FLT("shadows.depth", shadows.depth, 0, 64, F_LO_OPEN),
+    FLT("shadows.density", shadows.density, 0, 64, F_LO_OPEN),
+    {"shadows.gamma", K_BOOL, OFF(shadows.keep_gamma), 0, 0, 0, 0, 0, NULL},
+    {"ground.enabled", K_BOOL, OFF(ground.enabled), 0, 0, 0, 0, 0, NULL},
+    VEC("ground.color", ground.color, 3, 0, 1, 0),
+    FLT("ground.size", ground.size, 0, 1000, F_LO_OPEN),
+
+    UINT_("output.width", output.width, 1, 16384, 0),
+    UINT_("output.height", output.height, 1, 16384, 0),
+    UINT_("output.msaa", output.msaa, 0, 16, 0),
+    VEC("output.background", output.background, 4, 0, 1, F_ACCEPT3),
+
+    VEC("forces.gravity", forces.gravity, 3, -BIG, BIG, 0),
+    VEC("forces.wind", forces.wind, 3, -BIG, BIG, 0),
+    FLT("forces.gust_strength", forces.gust_strength, 0, BIG, 0),
+    FLT("forces.gust_scale", forces.gust_scale, 0, BIG, F_LO_OPEN),
+    FLT("forces.gust_frequency", forces.gust_frequency, 0, BIG, 0),
+
+    FLT("dynamics.spring_k", fur.dynamics.spring_k, 0, BIG, 0),
+    FLT("dynamics.mass", fur.dynamics.mass, 0, BIG, 0),
+    FLT("dynamics.damping", fur.dynamics.damping, 0, BIG, 0),
+
+    UINT_("animation.frames", animation.frames, 1, 1000000, 0),
+    FLT("animation.fps", animation.fps, 0, 1000, F_LO_OPEN),
+    FLT("animation.turntable", animation.turntable, -BIG, BIG, 0),
+    FLT("animation.shake.amplitude", animation.shake_amplitude, 0, BIG, 0),
+    FLT("animation.shake.frequency", animation.shake_frequency, 0, BIG, 0),
+    FLT("animation.bounce.height", animation.bounce_height, 0, BIG, 0),
+    FLT("animation.bounce.frequency", animation.bounce_frequency, 0, BIG, 0),
+    {"animation.wind", K_WINDKEYS, OFF(animation.wind_keys), OFF(animation.wind_key_count),
+     0, 0, 0, 0, NULL},
+
+    UINT_("wetness.mask_size", fur.wet.mask_size, 1, 8192, 0),
+    {"wetness.droplets", K_DROPLETS, OFF(wetness.droplets), OFF(wetness.droplet_count),
+     0, 0, 0, 0, NULL},
+    UINT_("wetness.drops.count", wetness.drops, 0, PELT_SCENE_MAX_DROPLETS, 0),
+    SEED("wetness.drops.seed", wetness.drops_seed),
+    RANGE("wetness.drops.radius", wetness.drops_radius[0], wetness.drops_radius[1], 0, 1),
+    RANGE("wetness.drops.wetness", wetness.drops_wetness[0], wetness.drops_wetness[1], -1, 1),
+    FLT("wetness.rain.rate", wetness.rain.rate, 0, BIG, 0),
+    RANGE("wetness.rain.radius", wetness.rain.radius_min, wetness.rain.radius_max, 0, 1),
+    RANGE("wetness.rain.wetness", wetness.rain.wetness_min, wetness.rain.wetness_max, -1, 1),
+    SEED("wetness.rain.seed", wetness.rain.seed),
+    FLT("wetness.rain.start", wetness.rain_start, 0, BIG, 0),
+    FLT("wetness.rain.stop", wetness.rain_stop, 0, BIG, 0),
+    FLT("wetness.dry_rate", wetness.dry_rate, 0, BIG, 0),
+    FLT("wetness.clump_blend", fur.wet.clump_blend, 0, 1, 0),
+    FLT("wetness.clump_tightness", fur.wet.clump_tightness, 0, 1, 0),
+    FLT("wetness.darken", fur.wet.darken, 0, 1, 0),
+    FLT("wetness.clump_size", fur.wet.clump_size, 0, BIG, 0),
+    FLT("wetness.gloss", fur.wet.gloss, 1, 16, 0),
+    FLT("wetness.gloss_sharpness", fur.wet.gloss_sharpness, 1, 64, 0),
+    PATH("wetness.mask_image", wetness.mask_image),
+    FLT("wetness.mask_image_wetness", wetness.mask_image_wetness, -1, 1, 0),
+
+    ENUM("atlas.mode", atlas.mode, atlas_names),
+    FLT("atlas.texel_density", atlas.texel_density, 0, BIG, 0),
+    VEC("atlas.direction", atlas.direction, 3, -BIG, BIG, 0),
+    FLT("atlas.max_stretch", atlas.max_stretch, 1.1, BIG, F_ZERO_OK),
+    ENUM("atlas.direction_from", atlas.direction_from, direction_names),
+};
+
+#undef OFF
+#define OFF(field) offsetof(pelt_droplet, field)
+static const pelt__scene_key droplet_keys[] = {
+    {"center", K_VEC, OFF(center), 0, 0, 1, 0, 2, NULL},
+    {"radius", K_FLOAT, OFF(radius), 0, 0, 1, F_LO_OPEN, 0, NULL},
+    {"wetness", K_FLOAT, OFF(wetness), 0, -1, 1, 0, 0, NULL},
+};
+#undef OFF
+#define OFF(field) offsetof(pelt_wind_key, field)
+static const pelt__scene_key wind_key_keys[] = {
+    {"time", K_FLOAT, OFF(time), 0, 0, BIG, 0, 0, NULL},
+    {"wind", K_VEC, OFF(wind), 0, -BIG, BIG, 0, 3, NULL},
+};
+#undef OFF
+#define OFF(field) offsetof(pelt_scene_stroke, field)
+static const pelt__scene_key stroke_keys[] = {
+    {"tool", K_ENUM, OFF(brush.tool), 0, 0, 0, 0, 0, tool_names},
+    {"radius", K_FLOAT, OFF(brush.radius), 0, 0, BIG, F_LO_OPEN, 0, NULL},
+    {"strength", K_FLOAT, OFF(brush.strength), 0, 0, 1, F_LO_OPEN, 0, NULL},
+    {"delta", K_VEC, OFF(brush.delta), 0, -BIG, BIG, 0, 3, NULL},
+    {"amount", K_FLOAT, OFF(brush.amount), 0, -PELT_GROOM_MAX_LENGTH, PELT_GROOM_MAX_LENGTH, 0, 0, NULL},
+    {"color", K_VEC, OFF(brush.color), 0, 0, 1, 0, 3, NULL},
+    {"pixel", K_VEC, OFF(pixel), 0, -BIG, BIG, 0, 2, NULL},
+    {"at", K_VEC, OFF(at), 0, -BIG, BIG, 0, 3, NULL},
+    {"drag", K_VEC, OFF(drag), 0, -BIG, BIG, 0, 2, NULL},
+};
+#undef OFF
+
+#define TABLE(a) {a, sizeof(a) / sizeof((a)[0])}
+const pelt__scene_keys pelt__scene_key_table = TABLE(scene_keys);
+const pelt__scene_keys pelt__droplet_key_table = TABLE(droplet_keys);
+const pelt__scene_keys pelt__wind_key_table = TABLE(wind_key_keys);
+const pelt__scene_keys pelt__stroke_key_table = TABLE(stroke_keys);
