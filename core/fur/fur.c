@@ -4,6 +4,7 @@
 #include "core/base/error.h"
 #include "core/base/hooks.h"
 #include "core/fur/fur_shape.h"
+#include "core/fur/fur_params.h"
 #include "core/fur/furtex.h"
 #include "core/mesh/triangle_area.h"
 #include "core/base/vec.h"
@@ -16,50 +17,19 @@
 
 void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
 {
+    size_t count;
+    const pelt_param *rows = pelt_fur_params(&count);
+    pelt__params_defaults(rows, count, d);
+    /* The defaults the rows call derived: they scale with the mesh or
+       follow other fields. */
     float diag = mesh ? pelt_mesh_diagonal(mesh) : 1.0f;
     if (!(diag > 0.0f)) diag = 1.0f;
-    if (d->layers == 0) d->layers = 16;
     if (d->length == 0.0f) d->length = 0.03f * diag;
-    if (d->look.texture_size == 0) d->look.texture_size = 256;
-    if (d->seed == 0) d->seed = 1;
-    if (d->look.density == 0.0f) d->look.density = 3000.0f;
-    if (d->look.strand_radius == 0.0f) d->look.strand_radius = 1.6f;
-    if (d->look.taper == 0.0f) d->look.taper = 0.8f;
-    if (d->look.strand_curl_turns == 0.0f) d->look.strand_curl_turns = 2.0f;
     /* Tiles per world unit: five fur tiles across the bounding diagonal. */
     if (d->look.tiling == 0.0f) d->look.tiling = 5.0f / diag;
-    if (d->look.color[0] == 0.0f && d->look.color[1] == 0.0f && d->look.color[2] == 0.0f) {
-        d->look.color[0] = 0.55f; d->look.color[1] = 0.34f; d->look.color[2] = 0.18f;
-    }
-    if (d->look.tip_color[0] == 0.0f && d->look.tip_color[1] == 0.0f && d->look.tip_color[2] == 0.0f) {
-        d->look.tip_color[0] = 1.0f; d->look.tip_color[1] = 0.82f; d->look.tip_color[2] = 0.58f;
-    }
-    if (d->look.skin_color[0] == 0.0f && d->look.skin_color[1] == 0.0f && d->look.skin_color[2] == 0.0f) {
-        d->look.skin_color[0] = 0.78f; d->look.skin_color[1] = 0.56f; d->look.skin_color[2] = 0.47f;
-    }
-    if (d->look.specular[0] == 0.0f && d->look.specular[1] == 0.0f && d->look.specular[2] == 0.0f)
-        d->look.specular[0] = 0.9f, d->look.specular[1] = 0.85f, d->look.specular[2] = 0.8f;
-    if (d->look.shininess == 0.0f) d->look.shininess = 20.0f;
-    if (d->look.shadow == 0.0f) d->look.shadow = 2.0f;
-    if (d->dynamics.mass == 0.0f) d->dynamics.mass = 1.0f;
     if (d->dynamics.spring_k == 0.0f) d->dynamics.spring_k = d->dynamics.mass * 9.81f / (0.4f * d->length);
     if (d->dynamics.damping == 0.0f) d->dynamics.damping = 0.5f * sqrtf(d->dynamics.spring_k * d->dynamics.mass);
-    if (d->wet.mask_size == 0) d->wet.mask_size = 256;
-    if (d->wet.clump_blend == 0.0f) d->wet.clump_blend = 0.5f;
-    if (d->wet.clump_tightness == 0.0f) d->wet.clump_tightness = 0.9f;
-    if (d->wet.darken == 0.0f) d->wet.darken = 0.35f;
-    if (d->wet.gloss == 0.0f) d->wet.gloss = 2.0f;
-    if (d->wet.gloss_sharpness == 0.0f) d->wet.gloss_sharpness = 4.0f;
-    if (d->look.color_scale == 0.0f) d->look.color_scale = 1.0f;
-    if (d->look.inter_shadow_offset == 0.0f) d->look.inter_shadow_offset = 4.0f;
-    if (d->look.inter_shadow_darkness == 0.0f) d->look.inter_shadow_darkness = 0.8f;
-    if (d->look.diffuse_power == 0.0f) d->look.diffuse_power = 1.0f;
-    if (d->fins.length == 0.0f) d->fins.length = 1.0f;
     if (d->fins.density == 0.0f) d->fins.density = (float)d->look.texture_size / 16.0f;
-    if (d->fins.curl_turns == 0.0f) d->fins.curl_turns = 2.0f;
-    if (d->lod.shell_pixels == 0.0f) d->lod.shell_pixels = 1.0f;
-    if (d->lod.mesh_error_pixels == 0.0f) d->lod.mesh_error_pixels = 0.5f;
-    if (d->lod.mesh_edge_pixels == 0.0f) d->lod.mesh_edge_pixels = 8.0f;
 }
 
 bool pelt__fur_has_ringlets(const pelt_fur_desc *d)
@@ -72,84 +42,17 @@ float pelt__fur_vertex_curl_radius(const pelt_fur_desc *d)
     return pelt__fur_has_ringlets(d) ? 0.0f : d->look.curl_radius;
 }
 
+/* Every field in its row's range (core/fur/fur_params.c), then what one
+ * row cannot say alone. */
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)
 {
-    if (d->layers < 1 || d->layers > 256)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur layers must be 1..256, got %u", d->layers);
-    if (d->look.texture_size < 8 || d->look.texture_size > 4096)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur texture size must be 8..4096, got %u",
-                          d->look.texture_size);
-    const float positive[] = {d->length, d->look.density, d->look.strand_radius, d->look.tiling, d->look.shininess};
-    const char *names[] = {"length", "density", "strand radius", "tiling", "shininess"};
-    for (size_t i = 0; i < sizeof positive / sizeof positive[0]; i++)
-        if (!(positive[i] > 0.0f) || !isfinite(positive[i]))
-            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur %s must be a positive number, got %g",
-                              names[i], (double)positive[i]);
-    if (d->look.density > 1e6f)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur density %g is too high (max 1e6)", (double)d->look.density);
-    if (d->look.strand_radius > 64.0f)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur strand radius %g texels is too large (max 64)",
-                          (double)d->look.strand_radius);
-    if (!(d->look.taper >= 0.0f && d->look.taper <= 1.0f))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur taper must be in [0, 1], got %g", (double)d->look.taper);
-    if (!(d->look.strand_curl >= 0.0f && d->look.strand_curl <= 64.0f) ||
-        !(d->look.strand_curl_turns > 0.0f && d->look.strand_curl_turns <= 32.0f) ||
-        (unsigned)d->look.strand_curl_shape > PELT_STRAND_CURL_WAVE)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "fur strand curl must be 0..64 texels with 0..32 turns and a known shape, got "
-                          "%g texels, %g turns",
-                          (double)d->look.strand_curl, (double)d->look.strand_curl_turns);
-    if (!(d->look.shadow >= 1.0f) || !isfinite(d->look.shadow))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur shadow K must be >= 1, got %g", (double)d->look.shadow);
-    if (!(d->dynamics.mass > 0.0f) || !(d->dynamics.spring_k > 0.0f) || !(d->dynamics.damping >= 0.0f) || !isfinite(d->dynamics.mass) ||
-        !isfinite(d->dynamics.spring_k) || !isfinite(d->dynamics.damping))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "fur mass and spring constant must be positive, damping >= 0");
-    if (d->wet.mask_size > 8192)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wetness mask size must be 1..8192, got %u", d->wet.mask_size);
-    if (!(d->wet.clump_blend >= 0.0f && d->wet.clump_blend <= 1.0f) ||
-        !(d->wet.clump_tightness > 0.0f && d->wet.clump_tightness <= 1.0f) ||
-        !(d->wet.darken >= 0.0f && d->wet.darken < 1.0f))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "clump blend must be in [0,1], tightness in (0,1], wet darkening in [0,1)");
-    if (!(d->wet.clump_size >= 0.0f) || !isfinite(d->wet.clump_size))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "wet clump size must be >= 0, got %g",
-                          (double)d->wet.clump_size);
-    if (!(d->wet.gloss >= 1.0f && d->wet.gloss <= 16.0f) ||
-        !(d->wet.gloss_sharpness >= 1.0f && d->wet.gloss_sharpness <= 64.0f))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "wet gloss must be in [1, 16] and its sharpness in [1, 64], got %g and %g",
-                          (double)d->wet.gloss, (double)d->wet.gloss_sharpness);
-    if (!(d->comb.slant >= 0.0f && d->comb.slant <= 60.0f))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur slant must be 0..60 degrees, got %g",
-                          (double)d->comb.slant);
-    if (!(d->look.color_scale > 0.0f) || !isfinite(d->look.color_scale))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "colour scale must be positive");
-    if (!isfinite(d->look.curl_frequency) || !isfinite(d->look.curl_radius) || d->look.curl_radius < 0.0f)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl frequency and radius must be finite, radius >= 0");
-    if ((unsigned)d->look.curl_phase > PELT_CURL_COHERENT)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "curl phase must be ringlets or coherent, got %d",
-                          (int)d->look.curl_phase);
-    if (!(d->look.inter_shadow_offset > 0.0f && d->look.inter_shadow_offset <= 64.0f) ||
-        !(d->look.inter_shadow_darkness > 0.0f && d->look.inter_shadow_darkness <= 1.0f) ||
-        !(d->look.diffuse_power > 0.0f && d->look.diffuse_power <= 256.0f) ||
-        (unsigned)d->look.shading > PELT_SHADING_LENGYEL_TABLE)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "inter-fur shadow offset must be in (0, 64] texels, darkness in (0, 1], "
-                          "diffuse power in (0, 256], shading a known model");
-    if (!(d->fins.length > 0.0f && d->fins.length <= 8.0f) || !(d->fins.density > 0.0f) ||
-        !(d->fins.density <= (float)d->look.texture_size) || !(d->fins.curl >= 0.0f && d->fins.curl <= 64.0f) ||
-        !(d->fins.curl_turns > 0.0f && d->fins.curl_turns <= 64.0f))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "fin length must be in (0, 8], density in (0, texture size], curl in [0, 64] "
-                          "texels, curl turns in (0, 64]");
-    if ((unsigned)d->lod.mode > PELT_LOD_FIXED || d->lod.shell_level > 8 || d->lod.mesh_level > 11 ||
-        !(d->lod.shell_pixels > 0.0f && d->lod.shell_pixels <= 64.0f) ||
-        !(d->lod.mesh_error_pixels > 0.0f && d->lod.mesh_error_pixels <= 64.0f) ||
-        !(d->lod.mesh_edge_pixels > 0.0f && d->lod.mesh_edge_pixels <= 1024.0f))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "level of detail: mode auto, off or fixed, shell level 0..8, mesh level 0..11, shell pixels and "
-                          "mesh error pixels in (0, 64], mesh edge pixels in (0, 1024]");
+    size_t count;
+    const pelt_param *rows = pelt_fur_params(&count);
+    pelt_status st = pelt__params_check(rows, count, d, "fur", err);
+    if (st != PELT_OK) return st;
+    if (d->fins.density > (float)d->look.texture_size)
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "fur fins.density %g must be at most look.texture_size %u",
+                          (double)d->fins.density, d->look.texture_size);
     return PELT_OK;
 }
 
@@ -301,9 +204,9 @@ pelt_status pelt_fur_desc_curl_preset(pelt_fur_desc *d, const pelt_mesh *mesh, c
 {
     float omega = 0.0f, radius_fraction = 0.0f;
     if (!name || !pelt__curl_preset(name, &omega, &radius_fraction))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
-                          "unknown curl preset '%s' (straight, wavy, few-large-curls, many-small-curls)",
-                          name ? name : "(null)");
+        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "unknown curl preset '%s' (%s, %s, %s, %s)",
+                          name ? name : "(null)", pelt_curl_preset_names[0], pelt_curl_preset_names[1],
+                          pelt_curl_preset_names[2], pelt_curl_preset_names[3]);
     pelt_fur_desc resolved = *d;
     pelt__fur_desc_defaults(&resolved, mesh);
     if (d->look.curl_frequency == 0.0f) d->look.curl_frequency = omega;

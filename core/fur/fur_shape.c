@@ -1,6 +1,7 @@
 /* Fur shape references: Silva et al. Eq. 1 (bend) and Eq. 4 (curl), and the
  * tangent of the displaced curve used by Kajiya-Kay (Eq. 6). */
 #include "core/fur/fur_shape.h"
+#include "pelt/params.h"
 
 #include "pelt/fur.h"
 
@@ -65,38 +66,35 @@ pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_ve
 }
 
 /* Silva Fig. 7: (a) straight, (b) wavy, (c) few large curls, (d) many
- * small curls. Radius K is the curl radius at the tip, relative to L0. */
+ * small curls. Radius K is the curl radius at the tip, relative to L0. The
+ * one list of their names is pelt_curl_preset_names; the scene file also
+ * takes a second spelling of two of them (same index). */
+const char *const pelt_curl_preset_names[] = {"straight", "wavy", "few-large-curls", "many-small-curls", NULL};
+static const char *const preset_aliases[] = {"straight", "wavy", "large_curls", "small_curls"};
 static const struct {
-    const char *name;
     float omega;  /* radians over the length: turns * 2 pi */
     float radius; /* fraction of L0 */
 } presets[] = {
-    {"straight", 0.0f, 0.0f},
-    {"wavy", 6.2831853f, 0.08f},          /* one slow turn, small sway */
-    {"few-large-curls", 12.566371f, 0.35f},  /* two wide turns */
-    {"many-small-curls", 37.699112f, 0.12f}, /* six tight turns */
-    /* Short spellings the scene file accepts too. */
-    {"large_curls", 12.566371f, 0.35f},
-    {"small_curls", 37.699112f, 0.12f},
+    {0.0f, 0.0f},
+    {6.2831853f, 0.08f},  /* one slow turn, small sway */
+    {12.566371f, 0.35f},  /* two wide turns */
+    {37.699112f, 0.12f},  /* six tight turns */
 };
+
+int pelt_curl_preset_index(const char *name)
+{
+    for (int i = 0; name && i < (int)(sizeof presets / sizeof presets[0]); i++)
+        if (strcmp(name, pelt_curl_preset_names[i]) == 0 || strcmp(name, preset_aliases[i]) == 0) return i;
+    return -1;
+}
 
 bool pelt__curl_preset(const char *name, float *omega, float *radius_fraction)
 {
-    if (!name) return false;
-    for (size_t i = 0; i < sizeof presets / sizeof presets[0]; i++) {
-        if (strcmp(name, presets[i].name) == 0) {
-            if (omega) *omega = presets[i].omega;
-            if (radius_fraction) *radius_fraction = presets[i].radius;
-            return true;
-        }
-    }
-    return false;
-}
-
-const char *pelt__curl_preset_name(unsigned i)
-{
-    /* The first four rows are the canonical names; the rest are aliases. */
-    return i < 4 ? presets[i].name : NULL;
+    int i = pelt_curl_preset_index(name);
+    if (i < 0) return false;
+    if (omega) *omega = presets[i].omega;
+    if (radius_fraction) *radius_fraction = presets[i].radius;
+    return true;
 }
 
 bool pelt_fur_curl_look(const char *name, float *omega, float *radius_fraction)

@@ -64,8 +64,4 @@ pelt_vec3 pelt__fur_groom_shear(pelt_vec3 comb, float slant, pelt_vec3 u, pelt_v
  * for an unknown or NULL name. */
 bool pelt__curl_preset(const char *name, float *omega, float *radius_fraction);
 
-/* Canonical name of preset i (0..3), NULL past the end: for listing
- * them ("large_curls" and "small_curls" are accepted aliases). */
-const char *pelt__curl_preset_name(unsigned i);
-
 #endif

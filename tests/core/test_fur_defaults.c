@@ -5,8 +5,11 @@
 
 #include "pelt/fur.h"
 #include "pelt/mesh.h"
+#include "pelt/params.h"
 
+#include <float.h>
 #include <math.h>
+#include <stdio.h>
 #include <string.h>
 
 /* Relative closeness: the header states a formula, the code evaluates it in
@@ -37,6 +40,104 @@ static pelt_fur *fur_on(const pelt_mesh *m, const pelt_fur_desc *d)
         return NULL;
     }
     return fur;
+}
+
+/* Writes x into a row's field of d (every float of a colour). */
+static void put(const pelt_param *p, pelt_fur_desc *d, double x)
+{
+    unsigned char *f = (unsigned char *)d + p->offset;
+    switch (p->type) {
+    case PELT_PARAM_UINT: *(unsigned *)(void *)f = (unsigned)x; break;
+    case PELT_PARAM_SEED: *(uint32_t *)(void *)f = (uint32_t)x; break;
+    case PELT_PARAM_ENUM: *(int *)(void *)f = (int)x; break;
+    case PELT_PARAM_BOOL: *(bool *)(void *)f = x != 0.0; break;
+    case PELT_PARAM_FLOAT:
+        for (unsigned k = 0; k < p->count; k++) ((float *)(void *)f)[k] = (float)x;
+        break;
+    }
+}
+
+/* Every row names a field inside pelt_fur_desc, once; its default (when
+ * zero means default) lies in its range; the resolved desc of a zero desc
+ * holds that default. */
+static void every_row_has_its_default_in_range_and_its_field_in_the_desc(void)
+{
+    size_t n = 0;
+    const pelt_param *rows = pelt_fur_params(&n);
+    CHECK(n >= 45);
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_torus(1.0f, 0.4f, 24, 12, &m, NULL) == PELT_OK);
+    const pelt_fur_desc zero = {0};
+    pelt_fur *fur = m ? fur_on(m, &zero) : NULL;
+    pelt_fur_desc d = fur ? pelt_fur_get_desc(fur) : zero;
+    for (size_t i = 0; i < n; i++) {
+        const pelt_param *p = &rows[i];
+        CHECK(pelt_fur_param(p->name) == p);
+        CHECK(p->offset < offsetof(pelt_fur_desc, hooks));
+        for (size_t j = 0; j < i; j++) CHECK(rows[j].offset != p->offset);
+        if (p->derived || !pelt_param_zero_is_default(p)) continue;
+        for (unsigned k = 0; k < p->count; k++) {
+            double x = p->def[k];
+            bool in = ((p->flags & PELT_PARAM_MIN_OPEN) ? x > p->min : x >= p->min) &&
+                      ((p->flags & PELT_PARAM_MAX_OPEN) ? x < p->max : x <= p->max);
+            if (!in) fprintf(stderr, "  %s: default %g outside its range\n", p->name, x);
+            CHECK(in);
+            if (p->type == PELT_PARAM_FLOAT)
+                CHECK_REL(((const float *)(const void *)((const unsigned char *)&d + p->offset))[k], (float)x);
+            else if (p->type == PELT_PARAM_UINT || p->type == PELT_PARAM_SEED)
+                CHECK(*(const unsigned *)(const void *)((const unsigned char *)&d + p->offset) == (unsigned)x);
+        }
+    }
+    CHECK(pelt_fur_param("layers") && pelt_fur_param("layers")->def[0] == 16.0);
+    CHECK(pelt_fur_param("look.texture_size")->max == 4096.0);
+    CHECK(pelt_fur_param("no.such.field") == NULL);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
+}
+
+/* For every bounded row: a value just past either end of its range makes
+ * pelt_fur_create fail with a message that names the field. */
+static void a_field_just_outside_its_range_is_refused_by_name(void)
+{
+    size_t n = 0;
+    const pelt_param *rows = pelt_fur_params(&n);
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_sphere(1.0f, 12, 6, &m, NULL) == PELT_OK);
+    size_t tried = 0;
+    for (size_t i = 0; m && i < n; i++) {
+        const pelt_param *p = &rows[i];
+        if (p->type == PELT_PARAM_BOOL || p->type == PELT_PARAM_SEED) continue;
+        double outside[2];
+        int count = 0;
+        if (p->type == PELT_PARAM_ENUM) {
+            int names = 0;
+            while (p->names[names]) names++;
+            outside[count++] = names;
+        } else {
+            bool integer = p->type == PELT_PARAM_UINT;
+            double step = integer ? 1.0 : fmax(1e-3, 1e-3 * fabs(p->max));
+            double below = (p->flags & PELT_PARAM_MIN_OPEN) ? p->min : p->min - (integer ? 1.0 : 1e-3);
+            /* Zero below the range means "default", and an unsigned cannot go below 0. */
+            if (!(below == 0.0 && pelt_param_zero_is_default(p)) && !(integer && below < 0.0) && p->min > -FLT_MAX)
+                outside[count++] = below;
+            if (p->max < FLT_MAX) outside[count++] = (p->flags & PELT_PARAM_MAX_OPEN) ? p->max : p->max + step;
+        }
+        for (int c = 0; c < count; c++) {
+            pelt_fur_desc d = {0};
+            put(p, &d, outside[c]);
+            pelt_fur *fur = NULL;
+            pelt_error err = {0};
+            pelt_status st = pelt_fur_create(m, &d, &fur, &err);
+            if (st == PELT_OK || !strstr(err.message, p->name))
+                fprintf(stderr, "  %s = %g: status %d, \"%s\"\n", p->name, outside[c], (int)st, err.message);
+            CHECK(st == PELT_ERR_INVALID_ARGUMENT && fur == NULL);
+            CHECK(strstr(err.message, p->name) != NULL);
+            pelt_fur_destroy(fur);
+            tried++;
+        }
+    }
+    CHECK(tried >= 40);
+    pelt_mesh_destroy(m);
 }
 
 static void zero_desc_gets_every_documented_default(void)
@@ -142,5 +243,7 @@ int main(void)
 {
     RUN(zero_desc_gets_every_documented_default);
     RUN(derived_defaults_follow_the_given_fields);
+    RUN(every_row_has_its_default_in_range_and_its_field_in_the_desc);
+    RUN(a_field_just_outside_its_range_is_refused_by_name);
     return check_summary();
 }

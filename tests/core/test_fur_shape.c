@@ -3,6 +3,7 @@
 #include "support/check.h"
 
 #include "core/fur/fur_shape.h"
+#include "pelt/params.h"
 
 #include <math.h>
 #include <string.h>
@@ -135,11 +136,13 @@ static void curl_presets_cover_fig7_and_differ(void)
     float om[4], rad[4];
     for (int i = 0; i < 4; i++) {
         CHECK(pelt__curl_preset(names[i], &om[i], &rad[i]));
-        const char *listed = pelt__curl_preset_name((unsigned)i);
+        const char *listed = pelt_curl_preset_names[i];
         CHECK(listed != NULL && strcmp(listed, names[i]) == 0);
+        CHECK(pelt_curl_preset_index(names[i]) == i);
         CHECK(rad[i] >= 0.0f && rad[i] < 1.0f);
     }
-    CHECK(pelt__curl_preset_name(4) == NULL);
+    CHECK(pelt_curl_preset_names[4] == NULL);
+    CHECK(pelt_curl_preset_index("curly") == -1 && pelt_curl_preset_index(NULL) == -1);
     CHECK(rad[0] == 0.0f);                     /* straight: no curl */
     CHECK(rad[1] < rad[2] && om[1] < om[2]);   /* wavy: slow and small */
     CHECK(rad[2] > rad[3] && om[2] < om[3]);   /* few large vs many small */

@@ -1,0 +1,189 @@
+/* The rows of pelt_fur_desc (pelt/params.h): name, field, default, range.
+ * pelt__fur_desc_defaults fills zeros from them and check_desc (fur.c)
+ * checks every field against them; the scene's keys and the command line
+ * point here instead of repeating a default or a range. */
+#include "core/fur/fur_params.h"
+
+#include "core/base/error.h"
+
+#include <float.h>
+#include <math.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#define FMAX ((double)FLT_MAX)
+#define OPEN PELT_PARAM_MIN_OPEN
+#define OFF(f) offsetof(pelt_fur_desc, f)
+#define UINT_(n, f, lo, hi, d) {n, PELT_PARAM_UINT, OFF(f), 1, lo, hi, 0, {d, 0, 0}, NULL, NULL}
+#define FLT(n, f, lo, hi, fl, d) {n, PELT_PARAM_FLOAT, OFF(f), 1, lo, hi, fl, {d, 0, 0}, NULL, NULL}
+#define DERIVED(n, f, lo, hi, fl, why) {n, PELT_PARAM_FLOAT, OFF(f), 1, lo, hi, fl, {0, 0, 0}, why, NULL}
+#define RGB(n, f, hi, r, g, b) {n, PELT_PARAM_FLOAT, OFF(f), 3, 0, hi, 0, {r, g, b}, NULL, NULL}
+#define ENUM(n, f, names) {n, PELT_PARAM_ENUM, OFF(f), 1, 0, 0, 0, {0, 0, 0}, NULL, names}
+
+static const char *const strand_curl_shapes[] = {"helix", "wave", NULL};
+static const char *const curl_phases[] = {"ringlets", "coherent", NULL};
+static const char *const shadings[] = {"kajiya-kay", "lengyel-table", NULL};
+static const char *const lod_modes[] = {"auto", "off", "fixed", NULL};
+
+/* The ranges are what the library can draw; the defaults are the papers'
+ * (Silva Table 1: 16 layers, a 256 x 256 texture and mask). */
+static const pelt_param fur_params[] = {
+    UINT_("layers", layers, 1, 256, 16),
+    DERIVED("length", length, 0, FMAX, OPEN, "3% of the mesh's bounding-box diagonal"),
+    {"seed", PELT_PARAM_SEED, OFF(seed), 1, 0, 4294967295.0, 0, {1, 0, 0}, NULL, NULL},
+    UINT_("look.texture_size", look.texture_size, 8, 4096, 256),
+    FLT("look.density", look.density, 0, 1e6, OPEN, 3000),
+    FLT("look.strand_radius", look.strand_radius, 0, 64, OPEN, 1.6),
+    FLT("look.taper", look.taper, 0, 1, 0, 0.8),
+    FLT("look.strand_curl", look.strand_curl, 0, 64, 0, 0),
+    FLT("look.strand_curl_turns", look.strand_curl_turns, 0, 32, OPEN, 2),
+    ENUM("look.strand_curl_shape", look.strand_curl_shape, strand_curl_shapes),
+    DERIVED("look.tiling", look.tiling, 0, FMAX, OPEN, "5 / the mesh's bounding-box diagonal"),
+    RGB("look.color", look.color, 1, 0.55, 0.34, 0.18),
+    RGB("look.tip_color", look.tip_color, 1, 1.0, 0.82, 0.58),
+    RGB("look.skin_color", look.skin_color, 1, 0.78, 0.56, 0.47),
+    FLT("look.color_scale", look.color_scale, 0, FMAX, OPEN, 1),
+    RGB("look.specular", look.specular, FMAX, 0.9, 0.85, 0.8),
+    FLT("look.shininess", look.shininess, 0, FMAX, OPEN, 20),
+    FLT("look.shadow", look.shadow, 1, FMAX, 0, 2),
+    FLT("look.curl_frequency", look.curl_frequency, -FMAX, FMAX, 0, 0),
+    FLT("look.curl_radius", look.curl_radius, 0, FMAX, 0, 0),
+    ENUM("look.curl_phase", look.curl_phase, curl_phases),
+    {"look.inter_shadow", PELT_PARAM_BOOL, OFF(look.inter_shadow), 1, 0, 1, 0, {0, 0, 0}, NULL, NULL},
+    FLT("look.inter_shadow_offset", look.inter_shadow_offset, 0, 64, OPEN, 4),
+    FLT("look.inter_shadow_darkness", look.inter_shadow_darkness, 0, 1, OPEN, 0.8),
+    ENUM("look.shading", look.shading, shadings),
+    FLT("look.diffuse_power", look.diffuse_power, 0, 256, OPEN, 1),
+    FLT("dynamics.mass", dynamics.mass, 0, FMAX, OPEN, 1),
+    DERIVED("dynamics.spring_k", dynamics.spring_k, 0, FMAX, OPEN, "mass * 9.81 / (0.4 * length)"),
+    DERIVED("dynamics.damping", dynamics.damping, 0, FMAX, 0, "0.5 * sqrt(spring_k * mass)"),
+    UINT_("wet.mask_size", wet.mask_size, 1, 8192, 256),
+    FLT("wet.clump_blend", wet.clump_blend, 0, 1, 0, 0.5),
+    FLT("wet.clump_tightness", wet.clump_tightness, 0, 1, OPEN, 0.9),
+    FLT("wet.darken", wet.darken, 0, 1, PELT_PARAM_MAX_OPEN, 0.35),
+    FLT("wet.clump_size", wet.clump_size, 0, FMAX, 0, 0),
+    FLT("wet.gloss", wet.gloss, 1, 16, 0, 2),
+    FLT("wet.gloss_sharpness", wet.gloss_sharpness, 1, 64, 0, 4),
+    FLT("comb.slant", comb.slant, 0, 60, 0, 0),
+    FLT("fins.length", fins.length, 0, 8, OPEN, 1),
+    DERIVED("fins.density", fins.density, 0, 4096, OPEN, "look.texture_size / 16, at most look.texture_size"),
+    FLT("fins.curl", fins.curl, 0, 64, 0, 0),
+    FLT("fins.curl_turns", fins.curl_turns, 0, 64, OPEN, 2),
+    ENUM("lod.mode", lod.mode, lod_modes),
+    UINT_("lod.shell_level", lod.shell_level, 0, 8, 0),
+    UINT_("lod.mesh_level", lod.mesh_level, 0, 11, 0),
+    FLT("lod.shell_pixels", lod.shell_pixels, 0, 64, OPEN, 1),
+    FLT("lod.mesh_error_pixels", lod.mesh_error_pixels, 0, 64, OPEN, 0.5),
+    FLT("lod.mesh_edge_pixels", lod.mesh_edge_pixels, 0, 1024, OPEN, 8),
+};
+
+#define FUR_PARAM_COUNT (sizeof fur_params / sizeof fur_params[0])
+
+const pelt_param *pelt_fur_params(size_t *count)
+{
+    if (count) *count = FUR_PARAM_COUNT;
+    return fur_params;
+}
+
+const pelt_param *pelt_fur_param(const char *name)
+{
+    for (size_t i = 0; name && i < FUR_PARAM_COUNT; i++)
+        if (strcmp(fur_params[i].name, name) == 0) return &fur_params[i];
+    return NULL;
+}
+
+bool pelt_param_zero_is_default(const pelt_param *p)
+{
+    return p->derived || p->def[0] != 0.0 || p->def[1] != 0.0 || p->def[2] != 0.0;
+}
+
+/* A field's values as doubles (count of them). */
+static unsigned read_values(const pelt_param *p, const void *desc, double v[3])
+{
+    const unsigned char *f = (const unsigned char *)desc + p->offset;
+    switch (p->type) {
+    case PELT_PARAM_UINT: v[0] = *(const unsigned *)(const void *)f; return 1;
+    case PELT_PARAM_SEED: v[0] = *(const uint32_t *)(const void *)f; return 1;
+    case PELT_PARAM_ENUM: v[0] = *(const int *)(const void *)f; return 1;
+    case PELT_PARAM_BOOL: v[0] = *(const bool *)(const void *)f; return 1;
+    case PELT_PARAM_FLOAT:
+        for (unsigned k = 0; k < p->count; k++) v[k] = ((const float *)(const void *)f)[k];
+        return p->count;
+    }
+    return 0;
+}
+
+void pelt__params_defaults(const pelt_param *rows, size_t count, void *desc)
+{
+    for (size_t i = 0; i < count; i++) {
+        const pelt_param *p = &rows[i];
+        if (p->derived || !pelt_param_zero_is_default(p)) continue;
+        double v[3] = {0, 0, 0};
+        unsigned n = read_values(p, desc, v);
+        bool zero = true;
+        for (unsigned k = 0; k < n; k++) zero = zero && v[k] == 0.0;
+        if (!zero) continue;
+        unsigned char *f = (unsigned char *)desc + p->offset;
+        if (p->type == PELT_PARAM_UINT) *(unsigned *)(void *)f = (unsigned)p->def[0];
+        else if (p->type == PELT_PARAM_SEED) *(uint32_t *)(void *)f = (uint32_t)p->def[0];
+        else if (p->type == PELT_PARAM_FLOAT)
+            for (unsigned k = 0; k < n; k++) ((float *)(void *)f)[k] = (float)p->def[k];
+    }
+}
+
+bool pelt__param_in_range(const pelt_param *p, double x)
+{
+    if (!isfinite(x)) return false;
+    if (p->type == PELT_PARAM_ENUM) {
+        int n = 0;
+        while (p->names[n]) n++;
+        return x >= 0 && x < n;
+    }
+    if (p->type == PELT_PARAM_BOOL) return true;
+    if ((p->flags & PELT_PARAM_MIN_OPEN) ? !(x > p->min) : !(x >= p->min)) return false;
+    if ((p->flags & PELT_PARAM_MAX_OPEN) ? !(x < p->max) : !(x <= p->max)) return false;
+    return true;
+}
+
+void pelt__param_range_text(const pelt_param *p, char *buf, size_t size)
+{
+    if (p->type == PELT_PARAM_ENUM) {
+        size_t at = 0;
+        buf[0] = '\0';
+        for (int i = 0; p->names[i] && at < size; i++)
+            at += (size_t)snprintf(buf + at, size - at, "%s%s", i ? ", " : "one of ", p->names[i]);
+        return;
+    }
+    bool integer = p->type != PELT_PARAM_FLOAT;
+    const char *what = integer ? "an integer" : "a number";
+    char lo[32], hi[32];
+    snprintf(lo, sizeof lo, "%g", p->min);
+    snprintf(hi, sizeof hi, "%g", p->max);
+    if (p->min <= -FMAX && p->max >= FMAX) snprintf(buf, size, "a finite number");
+    else if (p->max >= FMAX)
+        snprintf(buf, size, "%s %s %s", what, (p->flags & PELT_PARAM_MIN_OPEN) ? ">" : ">=", lo);
+    else
+        snprintf(buf, size, "%s in %c%s, %s%c", what, (p->flags & PELT_PARAM_MIN_OPEN) ? '(' : '[', lo, hi,
+                 (p->flags & PELT_PARAM_MAX_OPEN) ? ')' : ']');
+}
+
+pelt_status pelt__params_check(const pelt_param *rows, size_t count, const void *desc, const char *what,
+                               pelt_error *err)
+{
+    for (size_t i = 0; i < count; i++) {
+        const pelt_param *p = &rows[i];
+        double v[3] = {0, 0, 0};
+        unsigned n = read_values(p, desc, v);
+        for (unsigned k = 0; k < n; k++) {
+            if (pelt__param_in_range(p, v[k])) continue;
+            char range[160];
+            pelt__param_range_text(p, range, sizeof range);
+            if (n > 1)
+                return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s %s[%u] must be %s, got %g", what, p->name, k,
+                                  range, v[k]);
+            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "%s %s must be %s, got %g", what, p->name, range, v[k]);
+        }
+    }
+    return PELT_OK;
+}
