@@ -95,7 +95,7 @@ static pelt_scene build_scene(view_app *a)
 {
     pelt_scene s = a->o.scene; /* shallow: the arrays stay a->o's */
     s.fur.layers = a->st.layers;
-    snprintf(s.fur_preset, sizeof s.fur_preset, "%s", view_presets[a->st.preset]);
+    snprintf(s.fur_preset, sizeof s.fur_preset, "%s", view_preset_name(a->st.preset));
     if (a->st.shadows) s.fur.look.inter_shadow = true; /* drawn or not per frame */
     if (!a->st.lod) s.fur.lod.mode = PELT_LOD_OFF;
     else if (s.fur.lod.mode == PELT_LOD_OFF) s.fur.lod.mode = PELT_LOD_AUTO;
@@ -219,11 +219,9 @@ static void reset(view_app *a)
 {
     a->mesh_file[0] = '\0';
     view_state keep = a->st;
-    a->st.layers = a->o.scene.fur.layers ? a->o.scene.fur.layers : 16;
+    a->st.layers = view_scene_layers(&a->o.scene);
     a->st.lod = a->o.scene.fur.lod.mode != PELT_LOD_OFF;
-    a->st.preset = 0;
-    for (int i = 0; view_presets[i]; i++)
-        if (!strcmp(view_presets[i], a->o.scene.fur_preset)) a->st.preset = i;
+    a->st.preset = view_preset_of(a->o.scene.fur_preset);
     pelt_scene s = build_scene(a);
     pelt_error err = {0};
     if (!build(a, &s, false, &err)) {
@@ -248,7 +246,7 @@ static void rebuild(view_app *a)
     }
     view_input_apply(&a->st, a->inst);
     view_message(&a->st, false, "%u layers, curl %s (groom kept, water and motion start over)",
-                 a->st.layers, view_presets[a->st.preset][0] ? view_presets[a->st.preset] : "as the scene");
+                 a->st.layers, view_preset_name(a->st.preset)[0] ? view_preset_name(a->st.preset) : "as the scene");
 }
 
 static bool write_screenshot(view_app *a, const char *path)
@@ -324,7 +322,7 @@ static void draw_hud(view_app *a)
                      (double)st->radius, 100.0 * (double)a->wet_share,
                      st->wind_on ? "on" : "off", (double)st->wind_strength,
                      st->gravity_on ? "on" : "off", st->rain_on ? "on" : "off",
-                     view_presets[st->preset][0] ? view_presets[st->preset] : "-",
+                     view_preset_name(st->preset)[0] ? view_preset_name(st->preset) : "-",
                      st->fins ? "on" : "off", st->shadows ? "on" : "off", st->light_shadows ? "on" : "off");
     if (st->lod)
         n += snprintf(text + n, sizeof text - (size_t)n, "\nlevel of detail: mesh level %u (%zu triangles), shell level %u",
@@ -456,10 +454,9 @@ int cmd_view(int argc, char **argv)
         return 1;
     }
     pelt_error perr = {0};
-    a->st.layers = sc->fur.layers ? sc->fur.layers : 16;
+    a->st.layers = view_scene_layers(sc);
     a->st.lod = sc->fur.lod.mode != PELT_LOD_OFF;
-    for (int i = 0; view_presets[i]; i++)
-        if (!strcmp(view_presets[i], sc->fur_preset)) a->st.preset = i;
+    a->st.preset = view_preset_of(sc->fur_preset);
     pelt_scene s = build_scene(a);
     if (!build(a, &s, false, &perr)) {
         cli_error("view", "%s", perr.message);

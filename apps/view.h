@@ -139,7 +139,7 @@ typedef struct view_state {
     pelt_forces scene_forces; /* the scene's, to switch back to */
     bool forces_touched;  /* wind or gravity switched: the scene's no longer hold */
     float rain_rate;
-    int preset;           /* index into view_presets */
+    int preset;           /* place in the curl cycle (view_preset_name) */
     unsigned layers;
     bool fins, shadows;   /* the fin pass, Kenwright's inter-fur shadows */
     bool light_shadows;   /* the light's shadow maps (docs/shadows.md) */
@@ -153,7 +153,12 @@ typedef struct view_state {
     float message_seconds; /* shown this much longer */
 } view_state;
 
-extern const char *const view_presets[]; /* "", "straight", ... NULL-ended */
+/* The viewer's curl cycle: 0 = the scene's own curl, then the curl looks
+ * of pelt_curl_preset_names; view_preset_of(name) is a name's place in it. */
+const char *view_preset_name(int i);
+int view_preset_of(const char *name);
+/* The scene's layers, or the library's default when it leaves them 0. */
+unsigned view_scene_layers(const pelt_scene *sc);
 
 /* The state for a freshly made instance (camera, forces, radius). */
 void view_input_init(view_state *st, pelt_scene_instance *inst, const pelt_scene *scene);

@@ -3,6 +3,8 @@
  * the same paths as a hand on the mouse. */
 #include "apps/view.h"
 
+#include "pelt/params.h"
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
@@ -11,9 +13,25 @@
 #include <stdio.h>
 #include <string.h>
 
-const char *const view_presets[] = {"", "straight", "wavy", "few-large-curls", "many-small-curls",
-                                    NULL};
-#define PRESET_COUNT 5
+const char *view_preset_name(int i) { return i <= 0 ? "" : pelt_curl_preset_names[i - 1]; }
+
+int view_preset_of(const char *name)
+{
+    int i = pelt_curl_preset_index(name);
+    return i < 0 ? 0 : i + 1;
+}
+
+static int preset_count(void)
+{
+    int n = 0;
+    while (pelt_curl_preset_names[n]) n++;
+    return n + 1; /* and the scene's own curl */
+}
+
+unsigned view_scene_layers(const pelt_scene *sc)
+{
+    return sc->fur.layers ? sc->fur.layers : (unsigned)pelt_fur_param("layers")->def[0];
+}
 
 static const char *const tool_names[VIEW_TOOL_COUNT] = {"orbit", "water", "hair dryer", "comb",
                                                         "length"};
@@ -88,10 +106,8 @@ void view_input_init(view_state *st, pelt_scene_instance *inst, const pelt_scene
     st->gravity_on = len3(st->scene_forces.gravity) > 0.0f;
     st->rain_rate = scene->wetness.rain.rate > 0.0f ? scene->wetness.rain.rate : 60.0f;
     st->rain_on = scene->wetness.rain.rate > 0.0f;
-    st->preset = 0;
-    for (int i = 0; view_presets[i]; i++)
-        if (!strcmp(view_presets[i], scene->fur_preset)) st->preset = i;
-    st->layers = scene->fur.layers ? scene->fur.layers : 16;
+    st->preset = view_preset_of(scene->fur_preset);
+    st->layers = view_scene_layers(scene);
     st->fins = scene->draw.fins;
     st->shadows = scene->fur.look.inter_shadow;
     st->light_shadows = scene->shadows.enabled;
@@ -188,7 +204,7 @@ static void key(view_state *st, pelt_scene_instance *inst, int k, int mods)
         view_message(st, false, "towel: all dry");
         break;
     case GLFW_KEY_C:
-        st->preset = (st->preset + 1) % PRESET_COUNT;
+        st->preset = (st->preset + 1) % preset_count();
         st->requests |= VIEW_REQ_REBUILD;
         break;
     case GLFW_KEY_UP:

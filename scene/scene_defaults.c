@@ -20,16 +20,8 @@ void pelt_scene_defaults(pelt_scene *s)
     s->mesh.subdivisions = 16;
     s->mesh.scale = 1.0f;
 
-    /* The fur desc stays zero (pelt_fur_create's defaults) but for the
-     * Table 1 numbers the scene format documents. */
-    s->fur.layers = 16;
-    s->fur.look.texture_size = 256;
-    s->fur.look.color_scale = 1.0f;
-    s->fur.wet.clump_blend = 0.5f;
-    s->fur.wet.clump_tightness = 0.9f;
-    s->fur.wet.darken = 0.35f;
-    s->fur.wet.gloss = 2.0f;
-    s->fur.wet.gloss_sharpness = 4.0f;
+    /* The fur desc stays zero: pelt_fur_create puts in the defaults of its
+     * rows (pelt/params.h), the one home of each. */
 
     s->texture.pattern = PELT_COLOR_PATTERN_NONE;
 

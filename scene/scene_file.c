@@ -2,6 +2,7 @@
  * (scene_keys.c) so that parsing, --set overrides and error messages all
  * agree. */
 #include "pelt/scene.h"
+#include "pelt/params.h"
 
 #include "core/base/error.h"
 #include "core/base/hooks.h"
@@ -76,8 +77,9 @@ static void range_text(const key_def *d, bool integer, char *buf, size_t size)
         snprintf(buf, size, "a positive %s%s", integer ? "integer" : "number", zero);
     else if (d->hi >= BIG)
         snprintf(buf, size, "%s %s %g%s", what, (d->flags & F_LO_OPEN) ? ">" : ">=", d->lo, zero);
-    else if (d->flags & F_LO_OPEN)
-        snprintf(buf, size, "%s in (%g, %g]%s", what, d->lo, d->hi, zero);
+    else if (d->flags & (F_LO_OPEN | F_HI_OPEN))
+        snprintf(buf, size, "%s in %c%g, %g%c%s", what, (d->flags & F_LO_OPEN) ? '(' : '[', d->lo, d->hi,
+                 (d->flags & F_HI_OPEN) ? ')' : ']', zero);
     else if (integer)
         snprintf(buf, size, "%s from %g to %g%s", what, d->lo, d->hi, zero);
     else snprintf(buf, size, "%s in [%g, %g]%s", what, d->lo, d->hi, zero);
@@ -88,7 +90,7 @@ static bool in_range(const key_def *d, double x)
     if (!isfinite(x)) return false;
     if ((d->flags & F_ZERO_OK) && x == 0.0) return true;
     if (d->flags & F_LO_OPEN ? !(x > d->lo) : !(x >= d->lo)) return false;
-    if (!(x <= d->hi)) return false;
+    if ((d->flags & F_HI_OPEN) ? !(x < d->hi) : !(x <= d->hi)) return false;
     /* A double that fits the range may still overflow a float. */
     return fabs(x) <= 3.0e38;
 }
@@ -214,9 +216,41 @@ static pelt_status read_list(const ctx *c, const char *key, const cJSON *v, cons
 /* Applies one JSON value to the field `d` describes. `key` is the key as the
  * user sees it (for messages). Never frees what the field held before: the
  * callers own that decision (see pelt_scene_set). */
+/* A K_PARAM row as the row of the library's table makes it: the field
+ * inside the embedded desc, its kind, range and whether 0 means default. */
+static bool resolve_param(const key_def *d, key_def *out)
+{
+    const pelt_param *p = pelt_fur_param(d->param);
+    if (!p) return false;
+    *out = *d;
+    out->off = d->off + p->offset;
+    out->lo = p->min, out->hi = p->max, out->count = 0, out->names = NULL;
+    out->flags = ((p->flags & PELT_PARAM_MIN_OPEN) ? F_LO_OPEN : 0u) | ((p->flags & PELT_PARAM_MAX_OPEN) ? F_HI_OPEN : 0u);
+    bool zero_in_range = (p->flags & PELT_PARAM_MIN_OPEN) ? 0.0 > p->min : 0.0 >= p->min;
+    if (pelt_param_zero_is_default(p) && !zero_in_range) out->flags |= F_ZERO_OK;
+    switch (p->type) {
+    case PELT_PARAM_UINT: out->k = K_UINT; break;
+    case PELT_PARAM_SEED: out->k = K_U32; break;
+    case PELT_PARAM_BOOL: out->k = K_BOOL; break;
+    case PELT_PARAM_ENUM: out->k = K_ENUM, out->names = p->names; break;
+    case PELT_PARAM_FLOAT:
+        out->k = p->count > 1 ? K_VEC : K_FLOAT;
+        out->count = p->count > 1 ? p->count : 0;
+        break;
+    }
+    return true;
+}
+
 static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON *v,
                          const char *key)
 {
+    key_def resolved;
+    if (d->k == K_PARAM) {
+        if (!resolve_param(d, &resolved))
+            return pelt__fail(c->err, PELT_ERR_FORMAT, "%s: %s: the library has no parameter '%s'", c->name, key,
+                              d->param);
+        d = &resolved;
+    }
     unsigned char *field = (unsigned char *)base + d->off;
     pelt_status st = PELT_OK;
     double x;
@@ -267,28 +301,23 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
             memcpy(field, &index, sizeof index);
         break;
     case K_PRESET: {
-        int alias;
-        ctx quiet = *c;
-        quiet.err = NULL;
-        if (name_in(&quiet, key, v, pelt__scene_preset_aliases, false, &alias) == PELT_OK) index = alias;
-        else if ((st = name_in(c, key, v, pelt__scene_preset_names, true, &index)) != PELT_OK) break;
+        /* "" clears it; a name (or its second spelling) is stored as the
+           one name pelt_curl_preset_names gives it. */
+        if (cJSON_IsString(v) && v->valuestring[0] == '\0') {
+            ((char *)field)[0] = '\0';
+            break;
+        }
+        index = cJSON_IsString(v) ? pelt_curl_preset_index(v->valuestring) : -1;
+        if (index < 0 && (st = name_in(c, key, v, pelt_curl_preset_names, true, &index)) != PELT_OK) break;
         if (index < 0) {
             ((char *)field)[0] = '\0';
             break;
         }
-        /* Store the spelling the preset table knows, so the renderer can
-           hand fur_preset straight to pelt_fur_curl_look. */
-        float omega, radius;
-        const char *stored = NULL;
-        if (pelt_fur_curl_look(pelt__scene_preset_names[index], &omega, &radius)) stored = pelt__scene_preset_names[index];
-        else if (pelt_fur_curl_look(pelt__scene_preset_aliases[index], &omega, &radius))
-            stored = pelt__scene_preset_aliases[index];
-        if (!stored)
-            return pelt__fail(c->err, PELT_ERR_FORMAT, "%s: %s: \"%s\" is missing from the "
-                              "curl preset table", c->name, key, pelt__scene_preset_names[index]);
-        snprintf((char *)field, PELT_SCENE_NAME_MAX, "%s", stored);
+        snprintf((char *)field, PELT_SCENE_NAME_MAX, "%s", pelt_curl_preset_names[index]);
         break;
     }
+    case K_PARAM: /* resolved above */
+        break;
     case K_DROPLETS: {
         static const char *const required[] = {"center", "radius", NULL};
         const pelt_droplet init = {{0, 0}, 0, 1.0f};
@@ -662,6 +691,8 @@ pelt_status pelt_scene_set(pelt_scene *s, const char *key_path, const char *valu
     /* JSON when it parses as JSON, else the bare string (a path, a name).
        Keys that only take strings always get one: a file may be named 123. */
     const key_def *d = find(&pelt__scene_key_table, key_path);
+    key_def resolved;
+    if (d && d->k == K_PARAM && resolve_param(d, &resolved)) d = &resolved;
     bool string_only = d ? (d->k == K_PATH || d->k == K_ENUM || d->k == K_PRESET)
                          : (is_group(&pelt__scene_key_table, key_path) && value[0] != '{');
     cJSON *v = cJSON_Parse(value);

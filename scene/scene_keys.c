@@ -4,6 +4,7 @@
 
 #include "pelt/atlas.h"
 #include "pelt/groom.h"
+#include "pelt/params.h"
 
 #include <stddef.h>
 
@@ -14,18 +15,6 @@ static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
 static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
-static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
-static const char *const lod_names[] = {"auto", "off", "fixed", NULL};
-static const char *const strand_curl_names[] = {"helix", "wave", NULL};
-static const char *const curl_phase_names[] = {"ringlets", "coherent", NULL};
-/* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
- * The scene format names them as the issue does; the preset table spells two
- * of them differently, so both spellings are accepted (same index). */
-const char *const pelt__scene_preset_names[] = {"straight", "wavy", "few-large-curls",
-                                           "many-small-curls", NULL};
-const char *const pelt__scene_preset_aliases[] = {"straight", "wavy", "large_curls",
-                                             "small_curls", NULL};
-
 #define OFF(field) offsetof(pelt_scene, field)
 #define UINT_(p, f, lo, hi, fl) {p, K_UINT, OFF(f), 0, lo, hi, fl, 0, NULL}
 #define FLT(p, f, lo, hi, fl) {p, K_FLOAT, OFF(f), 0, lo, hi, fl, 0, NULL}
@@ -33,7 +22,10 @@ const char *const pelt__scene_preset_aliases[] = {"straight", "wavy", "large_cur
 #define RANGE(p, f, g, lo, hi) {p, K_RANGE, OFF(f), OFF(g), lo, hi, 0, 0, NULL}
 #define SEED(p, f) {p, K_U32, OFF(f), 0, 0, 4294967295.0, 0, 0, NULL}
 #define PATH(p, f) {p, K_PATH, OFF(f), 0, 0, 0, 0, 0, NULL}
-#define ENUM(p, f, names) {p, K_ENUM, OFF(f), 0, 0, 0, 0, 0, names}
+#define ENUM(p, f, names) {p, K_ENUM, OFF(f), 0, 0, 0, 0, 0, names, NULL}
+/* A field of the embedded pelt_fur_desc: its range and default are the
+ * library's row (pelt/params.h). */
+#define PARAM(p, name) {p, K_PARAM, OFF(fur), 0, 0, 0, 0, 0, NULL, name}
 
 static const pelt__scene_key scene_keys[] = {
     ENUM("mesh.shape", mesh.shape, shape_names),
@@ -52,45 +44,45 @@ static const pelt__scene_key scene_keys[] = {
     ENUM("mesh.up", mesh.up, up_names),
     FLT("mesh.scale", mesh.scale, 0, BIG, F_LO_OPEN),
 
-    {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, pelt__scene_preset_names},
+    {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, pelt_curl_preset_names},
     {"animation.name", K_NAME, OFF(animation.name), 0, 0, 0, 0, 0, NULL},
-    UINT_("fur.layers", fur.layers, 1, 256, 0),
-    FLT("fur.length", fur.length, 0, BIG, 0),
-    UINT_("fur.texture_size", fur.look.texture_size, 1, 16384, 0),
-    SEED("fur.seed", fur.seed),
-    FLT("fur.density", fur.look.density, 0, BIG, 0),
-    FLT("fur.strand_radius", fur.look.strand_radius, 0, BIG, 0),
-    FLT("fur.taper", fur.look.taper, 0, 1, 0),
-    FLT("fur.strand_curl", fur.look.strand_curl, 0, 64, 0),
-    FLT("fur.strand_curl_turns", fur.look.strand_curl_turns, 0, 32, F_LO_OPEN | F_ZERO_OK),
-    ENUM("fur.strand_curl_shape", fur.look.strand_curl_shape, strand_curl_names),
-    FLT("fur.tiling", fur.look.tiling, 0, BIG, 0),
-    VEC("fur.color", fur.look.color, 3, 0, 1, 0),
-    VEC("fur.tip_color", fur.look.tip_color, 3, 0, 1, 0),
-    VEC("fur.specular", fur.look.specular, 3, 0, BIG, 0),
-    FLT("fur.shininess", fur.look.shininess, 0, BIG, 0),
-    FLT("fur.shadow", fur.look.shadow, 1, BIG, F_ZERO_OK),
-    FLT("fur.curl_frequency", fur.look.curl_frequency, 0, BIG, 0),
-    FLT("fur.curl_radius", fur.look.curl_radius, 0, BIG, 0),
-    ENUM("fur.curl_phase", fur.look.curl_phase, curl_phase_names),
-    FLT("fur.slant", fur.comb.slant, 0, 60, 0),
-    VEC("fur.skin_color", fur.look.skin_color, 3, 0, 1, 0),
-    {"fur.inter_shadow", K_BOOL, OFF(fur.look.inter_shadow), 0, 0, 0, 0, 0, NULL},
-    FLT("fur.inter_shadow_offset", fur.look.inter_shadow_offset, 0, 64, F_LO_OPEN | F_ZERO_OK),
-    FLT("fur.inter_shadow_darkness", fur.look.inter_shadow_darkness, 0, 1, F_LO_OPEN | F_ZERO_OK),
-    ENUM("shading.model", fur.look.shading, shading_names),
-    FLT("shading.diffuse_power", fur.look.diffuse_power, 0, 256, F_LO_OPEN | F_ZERO_OK),
+    PARAM("fur.layers", "layers"),
+    PARAM("fur.length", "length"),
+    PARAM("fur.texture_size", "look.texture_size"),
+    PARAM("fur.seed", "seed"),
+    PARAM("fur.density", "look.density"),
+    PARAM("fur.strand_radius", "look.strand_radius"),
+    PARAM("fur.taper", "look.taper"),
+    PARAM("fur.strand_curl", "look.strand_curl"),
+    PARAM("fur.strand_curl_turns", "look.strand_curl_turns"),
+    PARAM("fur.strand_curl_shape", "look.strand_curl_shape"),
+    PARAM("fur.tiling", "look.tiling"),
+    PARAM("fur.color", "look.color"),
+    PARAM("fur.tip_color", "look.tip_color"),
+    PARAM("fur.specular", "look.specular"),
+    PARAM("fur.shininess", "look.shininess"),
+    PARAM("fur.shadow", "look.shadow"),
+    PARAM("fur.curl_frequency", "look.curl_frequency"),
+    PARAM("fur.curl_radius", "look.curl_radius"),
+    PARAM("fur.curl_phase", "look.curl_phase"),
+    PARAM("fur.slant", "comb.slant"),
+    PARAM("fur.skin_color", "look.skin_color"),
+    PARAM("fur.inter_shadow", "look.inter_shadow"),
+    PARAM("fur.inter_shadow_offset", "look.inter_shadow_offset"),
+    PARAM("fur.inter_shadow_darkness", "look.inter_shadow_darkness"),
+    PARAM("shading.model", "look.shading"),
+    PARAM("shading.diffuse_power", "look.diffuse_power"),
     PATH("fur.groom", groom.file),
-    ENUM("fur.lod", fur.lod.mode, lod_names),
-    UINT_("fur.lod_shell_level", fur.lod.shell_level, 0, 8, 0),
-    UINT_("fur.lod_mesh_level", fur.lod.mesh_level, 0, 11, 0),
-    FLT("fur.lod_shell_pixels", fur.lod.shell_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
-    FLT("fur.lod_mesh_error", fur.lod.mesh_error_pixels, 0, 64, F_LO_OPEN | F_ZERO_OK),
-    FLT("fur.lod_mesh_edge", fur.lod.mesh_edge_pixels, 0, 1024, F_LO_OPEN | F_ZERO_OK),
-    FLT("fins.length", fur.fins.length, 0, 8, F_LO_OPEN | F_ZERO_OK),
-    FLT("fins.density", fur.fins.density, 0, 4096, F_LO_OPEN | F_ZERO_OK),
-    FLT("fins.curl", fur.fins.curl, 0, 64, 0),
-    FLT("fins.curl_turns", fur.fins.curl_turns, 0, 64, F_LO_OPEN | F_ZERO_OK),
+    PARAM("fur.lod", "lod.mode"),
+    PARAM("fur.lod_shell_level", "lod.shell_level"),
+    PARAM("fur.lod_mesh_level", "lod.mesh_level"),
+    PARAM("fur.lod_shell_pixels", "lod.shell_pixels"),
+    PARAM("fur.lod_mesh_error", "lod.mesh_error_pixels"),
+    PARAM("fur.lod_mesh_edge", "lod.mesh_edge_pixels"),
+    PARAM("fins.length", "fins.length"),
+    PARAM("fins.density", "fins.density"),
+    PARAM("fins.curl", "fins.curl"),
+    PARAM("fins.curl_turns", "fins.curl_turns"),
     {"draw.skin", K_BOOL, OFF(draw.skin), 0, 0, 0, 0, 0, NULL},
     {"draw.fins", K_BOOL, OFF(draw.fins), 0, 0, 0, 0, 0, NULL},
     {"draw.shells", K_BOOL, OFF(draw.shells), 0, 0, 0, 0, 0, NULL},
@@ -107,7 +99,7 @@ static const pelt__scene_key scene_keys[] = {
 
     PATH("texture.image", texture.image),
     ENUM("texture.pattern", texture.pattern, pattern_names),
-    FLT("texture.scale", fur.look.color_scale, 0, BIG, F_LO_OPEN),
+    PARAM("texture.scale", "look.color_scale"),
 
     FLT("camera.yaw", camera.yaw, -BIG, BIG, 0),
     FLT("camera.pitch", camera.pitch, -89, 89, 0),
@@ -140,9 +132,9 @@ static const pelt__scene_key scene_keys[] = {
     FLT("forces.gust_scale", forces.gust_scale, 0, BIG, F_LO_OPEN),
     FLT("forces.gust_frequency", forces.gust_frequency, 0, BIG, 0),
 
-    FLT("dynamics.spring_k", fur.dynamics.spring_k, 0, BIG, 0),
-    FLT("dynamics.mass", fur.dynamics.mass, 0, BIG, 0),
-    FLT("dynamics.damping", fur.dynamics.damping, 0, BIG, 0),
+    PARAM("dynamics.spring_k", "dynamics.spring_k"),
+    PARAM("dynamics.mass", "dynamics.mass"),
+    PARAM("dynamics.damping", "dynamics.damping"),
 
     UINT_("animation.frames", animation.frames, 1, 1000000, 0),
     FLT("animation.fps", animation.fps, 0, 1000, F_LO_OPEN),
@@ -154,7 +146,7 @@ static const pelt__scene_key scene_keys[] = {
     {"animation.wind", K_WINDKEYS, OFF(animation.wind_keys), OFF(animation.wind_key_count),
      0, 0, 0, 0, NULL},
 
-    UINT_("wetness.mask_size", fur.wet.mask_size, 1, 8192, 0),
+    PARAM("wetness.mask_size", "wet.mask_size"),
     {"wetness.droplets", K_DROPLETS, OFF(wetness.droplets), OFF(wetness.droplet_count),
      0, 0, 0, 0, NULL},
     UINT_("wetness.drops.count", wetness.drops, 0, PELT_SCENE_MAX_DROPLETS, 0),
@@ -168,12 +160,12 @@ static const pelt__scene_key scene_keys[] = {
     FLT("wetness.rain.start", wetness.rain_start, 0, BIG, 0),
     FLT("wetness.rain.stop", wetness.rain_stop, 0, BIG, 0),
     FLT("wetness.dry_rate", wetness.dry_rate, 0, BIG, 0),
-    FLT("wetness.clump_blend", fur.wet.clump_blend, 0, 1, 0),
-    FLT("wetness.clump_tightness", fur.wet.clump_tightness, 0, 1, 0),
-    FLT("wetness.darken", fur.wet.darken, 0, 1, 0),
-    FLT("wetness.clump_size", fur.wet.clump_size, 0, BIG, 0),
-    FLT("wetness.gloss", fur.wet.gloss, 1, 16, 0),
-    FLT("wetness.gloss_sharpness", fur.wet.gloss_sharpness, 1, 64, 0),
+    PARAM("wetness.clump_blend", "wet.clump_blend"),
+    PARAM("wetness.clump_tightness", "wet.clump_tightness"),
+    PARAM("wetness.darken", "wet.darken"),
+    PARAM("wetness.clump_size", "wet.clump_size"),
+    PARAM("wetness.gloss", "wet.gloss"),
+    PARAM("wetness.gloss_sharpness", "wet.gloss_sharpness"),
     PATH("wetness.mask_image", wetness.mask_image),
     FLT("wetness.mask_image_wetness", wetness.mask_image_wetness, -1, 1, 0),
 

@@ -20,7 +20,8 @@ typedef enum pelt__key_kind {
     K_RANGE,    /* [min, max] into two floats at off and off2, min <= max */
     K_PATH,     /* string into char[PELT_SCENE_PATH_MAX], resolved */
     K_ENUM,     /* one of names[], stored as its index in an int */
-    K_PRESET,   /* a curl preset name or "", stored as the string */
+    K_PRESET,   /* a curl preset name or "", stored as its name in pelt_curl_preset_names */
+    K_PARAM,    /* a field of the embedded pelt_fur_desc, read as its row (pelt/params.h) says */
     K_NAME,     /* a name (string) or an index (integer) into char[PELT_ANIMATION_NAME_MAX] */
     K_DROPLETS, /* array of droplet objects: pointer at off, count at off2 */
     K_WINDKEYS, /* array of wind keyframes: pointer at off, count at off2 */
@@ -31,7 +32,8 @@ enum {
     F_LO_OPEN = 1u << 0,  /* the lower bound itself is not allowed */
     F_ZERO_OK = 1u << 1,  /* 0 is allowed as "default" below the range */
     F_NONZERO = 1u << 2,  /* a vector that must not be all zero */
-    F_ACCEPT3 = 1u << 3   /* a 4-vector may be given with 3 numbers */
+    F_ACCEPT3 = 1u << 3,  /* a 4-vector may be given with 3 numbers */
+    F_HI_OPEN = 1u << 4   /* the upper bound itself is not allowed */
 };
 
 typedef struct pelt__scene_key {
@@ -42,6 +44,7 @@ typedef struct pelt__scene_key {
     unsigned flags;
     unsigned count;           /* K_VEC */
     const char *const *names; /* K_ENUM; NULL-terminated */
+    const char *param;        /* K_PARAM: the row's name, pelt_fur_param */
 } pelt__scene_key;
 
 typedef struct pelt__scene_keys {
@@ -53,10 +56,5 @@ extern const pelt__scene_keys pelt__scene_key_table;   /* the scene object */
 extern const pelt__scene_keys pelt__droplet_key_table; /* one droplet of wetness.droplets */
 extern const pelt__scene_keys pelt__wind_key_table;    /* one key of animation.wind_keys */
 extern const pelt__scene_keys pelt__stroke_key_table;  /* one stroke of groom.strokes */
-
-/* The curl looks of Silva Fig. 7 as the scene names them, and the second
- * spelling of each (same index), NULL-terminated. */
-extern const char *const pelt__scene_preset_names[];
-extern const char *const pelt__scene_preset_aliases[];
 
 #endif

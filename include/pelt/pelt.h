@@ -10,6 +10,7 @@
 #include "pelt/groom.h"
 #include "pelt/headless.h"
 #include "pelt/mesh.h"
+#include "pelt/params.h"
 #include "pelt/render.h"
 #include "pelt/scene.h"
 #include "pelt/scene_instance.h"

@@ -70,7 +70,7 @@ printf 'P5\n60000 60000\n255\n\001' > "$out/huge.pgm"
 expect_fail texture_huge_pnm "declares 60000 x 60000 pixels" $r --texture "$out/huge.pgm"
 expect_fail pattern_unknown "--pattern" $r --pattern plaid
 
-expect_fail layers_zero "--layers" $r --layers 0
+expect_fail layers_too_many "--layers" $r --layers 300
 expect_fail layers_word "--layers" $r --layers many
 expect_fail layers_negative "--layers" $r --layers -3
 expect_fail size_bad "--size" $r --size 800

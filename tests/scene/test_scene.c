@@ -2,6 +2,7 @@
  * wind keyframes, the animated model matrix and the shipped scenes. */
 #define _POSIX_C_SOURCE 200809L
 #include "pelt/scene.h"
+#include "pelt/params.h"
 
 #include "support/check.h"
 
@@ -41,8 +42,16 @@ static void defaults_equal_table1(void)
     CHECK_NEAR(s.mesh.major_radius, 1.0, 0);
     CHECK_NEAR(s.mesh.minor_radius, 0.4, 1e-7);
     CHECK_NEAR(s.mesh.scale, 1.0, 0);
-    CHECK(s.fur.layers == 16);
-    CHECK(s.fur.look.texture_size == 256);
+    /* The fur desc stays zero: the library's rows are the one home of
+       its defaults (test_scene_instance checks what they become). */
+    size_t rows = 0;
+    const pelt_param *p = pelt_fur_params(&rows);
+    for (size_t i = 0; i < rows; i++) {
+        const unsigned char *f = (const unsigned char *)&s.fur + p[i].offset;
+        size_t bytes = p[i].type == PELT_PARAM_FLOAT ? p[i].count * sizeof(float)
+                       : p[i].type == PELT_PARAM_BOOL ? sizeof(bool) : sizeof(unsigned);
+        for (size_t b = 0; b < bytes; b++) CHECK(f[b] == 0);
+    }
     CHECK(s.output.width == 800 && s.output.height == 600);
     CHECK(s.output.msaa == 0);
     CHECK(s.fur.wet.mask_size == 0); /* 0: the atlas picks, else 256 */
@@ -74,11 +83,6 @@ static void defaults_camera_light_forces(void)
     CHECK_NEAR(s.forces.gust_strength, 0.5, 0);
     CHECK_NEAR(s.forces.gust_scale, 0.5, 0);
     CHECK_NEAR(s.forces.gust_frequency, 1.5, 0);
-    CHECK_NEAR(s.fur.wet.clump_blend, 0.5, 0);
-    CHECK_NEAR(s.fur.wet.clump_tightness, 0.9, 1e-7);
-    CHECK_NEAR(s.fur.wet.darken, 0.35, 1e-7);
-    CHECK_NEAR(s.fur.wet.gloss, 2, 0);
-    CHECK_NEAR(s.fur.wet.gloss_sharpness, 4, 0);
 }
 
 static void empty_object_gives_defaults(void)
@@ -248,7 +252,11 @@ static void each_bad_value_names_file_and_key(void)
 {
     static const bad_case cases[] = {
         {"{\"fur\": {\"layers\": -3}}", PELT_ERR_FORMAT, {"fur.layers", "-3", NULL}},
-        {"{\"fur\": {\"layers\": 0}}", PELT_ERR_FORMAT, {"fur.layers", "from 1 to 256"}},
+        {"{\"fur\": {\"layers\": 300}}", PELT_ERR_FORMAT, {"fur.layers", "from 1 to 256"}},
+        /* The library's range (pelt/params.h), not a second one. */
+        {"{\"fur\": {\"texture_size\": 8192}}", PELT_ERR_FORMAT, {"fur.texture_size", "from 8 to 4096"}},
+        {"{\"fur\": {\"texture_size\": 4}}", PELT_ERR_FORMAT, {"fur.texture_size", "got 4"}},
+        {"{\"wetness\": {\"darken\": 1}}", PELT_ERR_FORMAT, {"wetness.darken", "[0, 1)"}},
         {"{\"fur\": {\"layers\": 257}}", PELT_ERR_FORMAT, {"fur.layers", "257"}},
         {"{\"fur\": {\"layers\": 2.5}}", PELT_ERR_FORMAT, {"fur.layers", "2.5"}},
         {"{\"fur\": {\"layers\": \"16\"}}", PELT_ERR_FORMAT, {"fur.layers", "\"16\""}},

@@ -51,6 +51,25 @@ static void default_scene_makes_the_table1_torus(void)
     pelt_fur_desc fd = pelt_fur_get_desc(pelt_scene_instance_fur(inst));
     CHECK(fd.layers == 16);
     CHECK(fd.wet.mask_size == 256);
+    /* A scene that sets nothing gives the library's defaults: the same
+       desc as a fur made from a zero desc on the same mesh. */
+    pelt_fur_desc zero = {0};
+    zero.look.texture_size = 32;
+    pelt_fur *direct = NULL;
+    CHECK(pelt_fur_create(pelt_scene_instance_mesh(inst), &zero, &direct, &err) == PELT_OK);
+    if (direct) {
+        pelt_fur_desc dd = pelt_fur_get_desc(direct);
+        size_t rows = 0;
+        const pelt_param *p = pelt_fur_params(&rows);
+        for (size_t i = 0; i < rows; i++) {
+            size_t bytes = p[i].type == PELT_PARAM_FLOAT ? p[i].count * sizeof(float)
+                           : p[i].type == PELT_PARAM_BOOL ? sizeof(bool) : sizeof(unsigned);
+            bool same = memcmp((const char *)&fd + p[i].offset, (const char *)&dd + p[i].offset, bytes) == 0;
+            if (!same) fprintf(stderr, "  %s differs\n", p[i].name);
+            CHECK(same);
+        }
+    }
+    pelt_fur_destroy(direct);
     pelt_view v = pelt_scene_instance_view(inst);
     CHECK(v.width == 800 && v.height == 600);
     CHECK(pelt_scene_instance_time(inst) == 0.0f);
