@@ -149,7 +149,7 @@ static int bench_skinning(cli_session *s, const pelt_scene *sc, unsigned frames,
         return 1;
     }
     pelt_draw_desc in_vs = s->draw;
-    in_vs.skin_in_vertex_stage = true;
+    in_vs.debug.skin_in_vertex_stage = true;
     for (unsigned i = 0; i < frames; i++) {
         d[i] = timed_draw(s, &s->draw);
         d[frames + i] = timed_draw(s, &in_vs);
@@ -318,19 +318,19 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     /* Without fins the back-facing shells would come back; keep them
      * culled so the difference is the fins alone. */
     v[NO_FINS].no_fins = true;
-    v[NO_FINS].cull_shells = 1;
-    v[NO_INTER].no_inter_shadow = true;
+    v[NO_FINS].debug.cull_shells = 1;
+    v[NO_INTER].debug.no_inter_shadow = true;
     /* The floor: the skin and the same shells with a one-fetch shader. */
     v[FLOOR].no_fins = true;
-    v[FLOOR].cull_shells = 1;
-    v[FLOOR].floor_shader = true;
+    v[FLOOR].debug.cull_shells = 1;
+    v[FLOOR].debug.floor_shader = true;
     /* The same scene with only the shell shader swapped: the fins drawn as
      * they are, so the ratio is the shell shader's alone. */
-    v[FLOOR_FINS].floor_shader = true;
-    v[NO_LIGHT].no_shadows = true;
-    v[LIGHT_ONLY].no_skin = v[LIGHT_ONLY].no_fins = v[LIGHT_ONLY].no_shells = true;
+    v[FLOOR_FINS].debug.floor_shader = true;
+    v[NO_LIGHT].debug.no_shadows = true;
+    v[LIGHT_ONLY].no_skin = v[LIGHT_ONLY].no_fins = v[LIGHT_ONLY].debug.no_shells = true;
     /* The skin alone: what the shells' and the floor's times stand on. */
-    v[SKIN_ONLY].no_fins = v[SKIN_ONLY].no_shells = true;
+    v[SKIN_ONLY].no_fins = v[SKIN_ONLY].debug.no_shells = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
     bool run[VARIANTS] = {true, true, true, with_floor, with_floor && fins, light, light, true};

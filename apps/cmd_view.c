@@ -520,10 +520,10 @@ int cmd_view(int argc, char **argv)
         glClearColor(bg[0], bg[1], bg[2], bg[3]);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         pelt_view view = pelt_scene_instance_view(a->inst);
-        const pelt_scene_draw *sd = &a->o.scene.draw;
-        pelt_draw_desc draw = {.no_skin = !sd->skin, .no_shells = !sd->shells,
-                               .no_fins = !a->st.fins, .fins_unfaded = sd->fins_unfaded,
-                               .no_inter_shadow = !a->st.shadows, .no_shadows = !a->st.light_shadows};
+        pelt_draw_desc draw = a->o.scene.draw; /* the viewer's toggles over the scene's */
+        draw.no_fins = !a->st.fins;
+        draw.debug.no_inter_shadow = !a->st.shadows;
+        draw.debug.no_shadows = !a->st.light_shadows;
         double t_draw = seconds_now();
         pelt_renderer_draw(a->renderer, &view, &draw);
         glFinish(); /* the draw's time apart from the swap's, for the summary */

@@ -19,8 +19,7 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
     memset(s, 0, sizeof *s);
     s->cmd = cmd;
     memcpy(s->background, sc->output.background, sizeof s->background);
-    s->draw = (pelt_draw_desc){.no_skin = !sc->draw.skin, .no_shells = !sc->draw.shells,
-                               .no_fins = !sc->draw.fins, .fins_unfaded = sc->draw.fins_unfaded};
+    s->draw = sc->draw;
     pelt_error err = {0};
     pelt_scene_instance_desc idesc = {.hooks.logger = {print_warning, (void *)cmd}};
     if (pelt_scene_instantiate(sc, &idesc, &s->instance, &err) != PELT_OK) {

@@ -108,7 +108,7 @@ void view_input_init(view_state *st, pelt_scene_instance *inst, const pelt_scene
     st->rain_on = scene->wetness.rain.rate > 0.0f;
     st->preset = view_preset_of(scene->fur_preset);
     st->layers = view_scene_layers(scene);
-    st->fins = scene->draw.fins;
+    st->fins = !scene->draw.no_fins;
     st->shadows = scene->fur.look.inter_shadow;
     st->light_shadows = scene->shadows.enabled;
     st->lod = scene->fur.lod.mode != PELT_LOD_OFF;

@@ -8,6 +8,7 @@
 #include "pelt/render.h"
 
 #include "core/base/hooks.h"
+#include "core/fur/frame_plan.h"
 #include "core/fur/fur_gpu.h" /* core/fur/lod.h: the levels of detail */
 
 #include "gl/shaders/bindings.glsl"
@@ -125,11 +126,6 @@ typedef struct pelt__fur_block {
     float ringlets[2], pad2_[2];
 } pelt__fur_block;
 
-/* The frame block's shadow fields (shaders/blocks.glsl). */
-typedef struct pelt__frame_shadow {
-    float light_matrix[16];
-    float map[4], slab[4];
-} pelt__frame_shadow;
 
 typedef struct pelt__gpu_blocks {
     GLuint frame, fur;        /* uniform buffers */

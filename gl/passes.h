@@ -14,21 +14,8 @@
 #ifndef PELT_GL_PASSES_H
 #define PELT_GL_PASSES_H
 
+#include "core/fur/frame_plan.h"
 #include "gl/gpu.h"
-
-/* The levels of detail of one frame (core/fur/lod.h), chosen by the
- * renderer from the view. */
-typedef struct pelt__frame_lod {
-    bool full_mesh;       /* level of detail off: the mesh's own triangles */
-    unsigned mesh_level;  /* else this geometric level's triangles and fins */
-    unsigned shell_level; /* Lengyel §2.4: ceil(N / 2^level) shells ... */
-    float shell_blend;    /* ... blending this far towards the next level */
-    float fin_row_error;  /* the chord error a fin's rows may show, mesh units
-                             (0: always PELT_FIN_ROWS rows) */
-    bool cull;            /* back-facing shells culled (closed meshes) */
-    bool cull_skin;       /* back-facing skin culled: a closed mesh hides it */
-    bool front_cw;        /* the mesh winds its outside faces clockwise */
-} pelt__frame_lod;
 
 /* What a pass draws with in one frame; the shared objects are bound. */
 typedef struct pelt__pass_frame {
@@ -40,23 +27,6 @@ typedef struct pelt__pass_frame {
     const pelt_view *view;
     unsigned shell_features;  /* PELT__SHELL_* the shells need this frame */
 } pelt__pass_frame;
-
-/* What the shell fragment shader compiles in (shaders/shell_fs.glsl): a
- * frame uses the variant with only the features it needs. */
-enum {
-    PELT__SHELL_WET = 1 << 0,           /* clumps and wet darkening */
-    PELT__SHELL_INTER_SHADOW = 1 << 1,  /* Kenwright's inter-fur shadows */
-    PELT__SHELL_LOD_BLEND = 1 << 2,     /* a second fetch: the next shell level */
-    PELT__SHELL_COLOR_TEXTURE = 1 << 3, /* the fur has a colour texture */
-    PELT__SHELL_KAJIYA_KAY = 1 << 4,    /* the hair lighting models */
-    PELT__SHELL_LIGHT_TABLE = 1 << 5,
-    PELT__SHELL_SHADOW_MAP = 1 << 6,    /* the light's shadow maps darken the direct light */
-    PELT__SHELL_RINGLETS = 1 << 7,      /* wet ringlets: two curl levels blended (with _WET) */
-    PELT__SHELL_GENERIC = (1 << 8) - 1, /* everything, chosen per fragment */
-    PELT__SHELL_LIGHT_PASS = 1 << 8,    /* drawn from the light into its opacity slices */
-    PELT__SHELL_GPU_SKIN = 1 << 9,      /* skinned in the vertex stage (for measuring) */
-    PELT__SHELL_VARIANTS = 1 << 10
-};
 
 /* The #define lines of `features` (PELT_WET, ...), for a program's sources. */
 #define PELT__FEATURE_DEFINES_MAX 448
@@ -122,7 +92,7 @@ typedef struct pelt__shell_program {
 /* All shells in one instanced draw, blended inner to outer, depth tested
  * without depth write. Variants build the first time a frame needs them
  * (tens of milliseconds on llvmpipe, once); the generic one and the floor
- * (pelt_draw_desc.floor_shader) at creation. */
+ * (pelt_draw_desc.debug.floor_shader) at creation. */
 typedef struct pelt__shell_pass {
     pelt__shell_program variants[PELT__SHELL_VARIANTS];
     pelt__shell_program floor;
@@ -148,15 +118,6 @@ typedef struct pelt__shadow_pass {
     unsigned size;         /* texels a side, 0 before the first resize */
 } pelt__shadow_pass;
 
-/* What the light pass needs of the frame besides the pass frame. */
-typedef struct pelt__shadow_frame {
-    unsigned mesh_level;  /* the geometric level drawn from the light */
-    unsigned shell_level; /* and the shell level */
-    bool full_mesh;       /* level of detail off */
-    bool cull;            /* back faces (from the light) culled */
-    bool front_cw;
-    unsigned features;    /* the shells' PELT__SHELL_WET | _LOD_BLEND bits */
-} pelt__shadow_frame;
 
 pelt_status pelt__shadow_pass_create(pelt__shadow_pass *p, const pelt_hooks *hooks, pelt_error *err);
 /* (Re)makes the maps at size x size; PELT_ERR_GL when the framebuffers are

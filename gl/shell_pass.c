@@ -82,11 +82,11 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
         glEnable(GL_CULL_FACE);
         glFrontFace(lod->front_cw ? GL_CW : GL_CCW);
     }
-    const pelt__shell_program *sp = f->draw->floor_shader ? &p->floor : pelt__shell_pass_program(p, f->shell_features);
+    const pelt__shell_program *sp = f->draw->debug.floor_shader ? &p->floor : pelt__shell_pass_program(p, f->shell_features);
     glUseProgram(sp->program);
     glUniform4fv(sp->shells, 1, shells);
     glUniform2fv(sp->shells_next, 1, next);
-    glUniform1i(sp->no_inter_shadow, f->draw->no_inter_shadow ? 1 : 0);
+    glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
     size_t triangles = lod->full_mesh ? f->mesh->triangle_count : f->mesh->level_triangles[lod->mesh_level];
     const void *offset = (const void *)(lod->full_mesh ? 0 : f->mesh->level_offset[lod->mesh_level]);
     glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(triangles * 3), GL_UNSIGNED_INT, offset, (GLsizei)count);

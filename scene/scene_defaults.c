@@ -63,10 +63,7 @@ void pelt_scene_defaults(pelt_scene *s)
     s->wetness.rain.seed = 1;
     s->wetness.mask_image_wetness = 1.0f;
 
-    s->atlas.mode = PELT_ATLAS_AUTO;
-    s->atlas.direction[1] = -1.0f;
 
-    s->draw.skin = s->draw.fins = s->draw.shells = true;
     s->groom.length_range[1] = 1.0f;
     s->groom.density_range[1] = 1.0f;
     s->groom.flow_strength = 1.0f;

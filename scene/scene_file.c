@@ -263,6 +263,10 @@ static pelt_status apply(const ctx *c, const key_def *d, void *base, const cJSON
         if (!cJSON_IsBool(v)) return bad(c, key, "true or false", v);
         *(bool *)(void *)field = cJSON_IsTrue(v);
         break;
+    case K_NOT:
+        if (!cJSON_IsBool(v)) return bad(c, key, "true or false", v);
+        *(bool *)(void *)field = !cJSON_IsTrue(v);
+        break;
     case K_U32:
         if ((st = number(c, d, key, v, true, &x)) == PELT_OK) *(uint32_t *)(void *)field = (uint32_t)x;
         break;

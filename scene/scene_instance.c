@@ -70,23 +70,20 @@ static pelt_status build_atlas(pelt_scene_instance *inst, const char *cache_dir,
     if (sc->mesh.shape != PELT_SHAPE_FILE && sc->atlas.mode != PELT_ATLAS_PATCHES)
         return PELT_OK;
     char cache[1024];
-    pelt_atlas_desc ad = {0};
-    ad.mode = (int)sc->atlas.mode;
+    pelt_atlas_desc ad = sc->atlas;
     ad.mask_size = sc->fur.wet.mask_size; /* 0: the atlas picks, growing with the mesh */
     /* The same fur density as pelt_fur_create's default: 5 tiles per diagonal. */
     float diag = pelt_mesh_diagonal(inst->mesh);
     ad.texel_density = sc->atlas.texel_density > 0.0f ? sc->atlas.texel_density
                        : diag > 0.0f                  ? 5.0f / diag
                                                       : 0.0f;
-    memcpy(ad.direction, sc->atlas.direction, sizeof ad.direction);
-    if (sc->atlas.direction_from == PELT_DIRECTION_VERTEX_COLORS) {
+    if (sc->atlas_direction_from == PELT_DIRECTION_VERTEX_COLORS) {
         ad.vertex_directions = pelt_mesh_directions(inst->mesh);
         if (!ad.vertex_directions)
             return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                               "atlas.direction_from is \"vertex-colors\" but '%s' has no vertex colours",
                               sc->mesh.file);
     }
-    ad.max_stretch = sc->atlas.max_stretch;
     ad.seed = sc->fur.seed;
     if (!cache_dir) cache_dir = pelt_atlas_default_cache_dir(cache, sizeof cache) ? cache : NULL;
     ad.cache_dir = cache_dir;

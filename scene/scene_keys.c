@@ -83,9 +83,10 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("fins.density", "fins.density"),
     PARAM("fins.curl", "fins.curl"),
     PARAM("fins.curl_turns", "fins.curl_turns"),
-    {"draw.skin", K_BOOL, OFF(draw.skin), 0, 0, 0, 0, 0, NULL},
-    {"draw.fins", K_BOOL, OFF(draw.fins), 0, 0, 0, 0, 0, NULL},
-    {"draw.shells", K_BOOL, OFF(draw.shells), 0, 0, 0, 0, 0, NULL},
+    /* The embedded pelt_draw_desc says what to skip; the file says what to draw. */
+    {"draw.skin", K_NOT, OFF(draw.no_skin), 0, 0, 0, 0, 0, NULL},
+    {"draw.fins", K_NOT, OFF(draw.no_fins), 0, 0, 0, 0, 0, NULL},
+    {"draw.shells", K_NOT, OFF(draw.debug.no_shells), 0, 0, 0, 0, 0, NULL},
     {"draw.fins_unfaded", K_BOOL, OFF(draw.fins_unfaded), 0, 0, 0, 0, 0, NULL},
     PATH("fur.length_map", groom.length_map),
     RANGE("fur.length_range", groom.length_range[0], groom.length_range[1], 0, PELT_GROOM_MAX_LENGTH),
@@ -173,7 +174,7 @@ static const pelt__scene_key scene_keys[] = {
     FLT("atlas.texel_density", atlas.texel_density, 0, BIG, 0),
     VEC("atlas.direction", atlas.direction, 3, -BIG, BIG, 0),
     FLT("atlas.max_stretch", atlas.max_stretch, 1.1, BIG, F_ZERO_OK),
-    ENUM("atlas.direction_from", atlas.direction_from, direction_names),
+    ENUM("atlas.direction_from", atlas_direction_from, direction_names),
 };
 
 #undef OFF

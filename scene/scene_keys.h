@@ -14,6 +14,7 @@
 typedef enum pelt__key_kind {
     K_UINT,     /* unsigned, integer in [lo, hi] */
     K_BOOL,     /* true or false into a bool */
+    K_NOT,      /* true or false into a bool, inverted (draw.skin into no_skin) */
     K_U32,      /* uint32_t seed, integer in [0, 2^32-1] */
     K_FLOAT,    /* float in [lo, hi] */
     K_VEC,      /* `count` floats, each in [lo, hi] */

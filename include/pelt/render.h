@@ -26,33 +26,41 @@ typedef struct pelt_renderer_desc {
 
 /* Per-frame choices of one pelt_renderer_draw. Zero-initialised (or a NULL
  * pointer) draws everything. */
-typedef struct pelt_draw_desc {
-    bool no_skin;   /* skip the opaque skin pass */
-    bool no_shells; /* skip the shells (for measuring) */
-    bool no_fins;   /* skip the fins (Lengyel et al. §2.3; drawn by default) */
-    bool fins_unfaded; /* draw every fin at full opacity (Lengyel Fig. 4e) */
-    bool no_inter_shadow; /* skip the fur's inter-fur shadows (for measuring) */
-    /* Draw only shells first_layer .. first_layer + layer_count - 1
-     * (layer_count 0 = through the outermost): for inspecting one height
-     * of the fur, and for level of detail. Still one instanced draw. */
-    unsigned first_layer, layer_count;
+/* Switches for measuring and inspecting (pelt bench, the tests, the
+ * viewer's toggles): documented but not a stable part of the API, so that
+ * a new measurement needs no new field in pelt_draw_desc itself. Zero is
+ * the normal frame. */
+typedef struct pelt_draw_debug {
+    bool no_shells;       /* skip the shells */
+    bool no_inter_shadow; /* skip the fur's inter-fur shadows */
     /* Back-facing shells of a closed mesh (level of detail, docs/lod.md):
      * 0 = culled when the fins are drawn to carry the silhouette (default),
      * 1 = culled even without fins (for measuring the fins alone),
      * -1 = never culled. */
     int cull_shells;
-    /* For measuring (pelt bench --floor): the shells with a one-fetch
-     * shader, the fur's coverage against a 0.05 threshold in a constant
-     * colour, over the same geometry and levels of detail. */
+    /* pelt bench --floor: the shells with a one-fetch shader, the fur's
+     * coverage against a 0.05 threshold in a constant colour, over the same
+     * geometry and levels of detail. */
     bool floor_shader;
-    /* Skip the light's shadow maps this frame, as if they were off (for
-       measuring; pelt_renderer_set_shadows turns them on). */
+    /* Skip the light's shadow maps this frame, as if they were off
+       (pelt_renderer_set_shadows turns them on). */
     bool no_shadows;
-    /* For measuring (pelt bench --animation): a skinned mesh's shells
-       blend its bones per vertex and layer in the vertex stage, from the
-       bind pose and the bones of the last pelt_mesh_pose, instead of
-       reading the pose made once on the CPU (pelt_fur_set_pose). */
+    /* pelt bench --animation: a skinned mesh's shells blend its bones per
+       vertex and layer in the vertex stage, from the bind pose and the bones
+       of the last pelt_mesh_pose, instead of reading the pose made once on
+       the CPU (pelt_fur_set_pose). */
     bool skin_in_vertex_stage;
+} pelt_draw_debug;
+
+typedef struct pelt_draw_desc {
+    bool no_skin;   /* skip the opaque skin pass */
+    bool no_fins;   /* skip the fins (Lengyel et al. §2.3; drawn by default) */
+    bool fins_unfaded; /* draw every fin at full opacity (Lengyel Fig. 4e) */
+    /* Draw only shells first_layer .. first_layer + layer_count - 1
+     * (layer_count 0 = through the outermost): for inspecting one height
+     * of the fur, and for level of detail. Still one instanced draw. */
+    unsigned first_layer, layer_count;
+    pelt_draw_debug debug; /* measuring and inspecting; unstable */
 } pelt_draw_desc;
 
 /* What the last pelt_renderer_draw did. */

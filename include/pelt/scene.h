@@ -16,6 +16,7 @@
 #include "pelt/dynamics.h"
 #include "pelt/fur.h"
 #include "pelt/groom.h"
+#include "pelt/render.h"
 #include "pelt/shadow.h"
 #include "pelt/wetness.h"
 
@@ -133,11 +134,6 @@ typedef struct pelt_scene_wetness {
     float mask_image_wetness;
 } pelt_scene_wetness;
 
-/* Which passes draw (pelt_draw_desc): all of them by default. */
-typedef struct pelt_scene_draw {
-    bool skin, fins, shells;
-    bool fins_unfaded;   /* every fin at full opacity (Lengyel Fig. 4e) */
-} pelt_scene_draw;
 
 /* What the mesh file's vertex colours are, besides a possible flow map
  * for the atlas (atlas.direction_from). */
@@ -177,25 +173,12 @@ typedef struct pelt_scene_groom {
     size_t stroke_count;
 } pelt_scene_groom;
 
-/* How the surface gets its atlas (Lengyel §2.1); copied into pelt_atlas_desc. */
+/* Where the atlas's direction field comes from (atlas.direction_from). */
 typedef enum pelt_direction_source {
     PELT_DIRECTION_GLOBAL = 0,   /* atlas.direction, projected per vertex */
     PELT_DIRECTION_VERTEX_COLORS /* the mesh's vertex colours as a flow map */
 } pelt_direction_source;
 
-typedef struct pelt_scene_atlas {
-    pelt_atlas_mode mode;  /* default AUTO (see pelt/atlas.h) */
-    float texel_density;   /* fur-texture tiles per world unit, default 0 =
-                              the atlas builder's (8 / bounding-box diagonal) */
-    float direction[3];    /* global hair direction, projected on each tangent
-                              plane; default (0, -1, 0): combed downwards */
-    float max_stretch;     /* patch stretch bound, 0 = builder's default (2.0),
-                              else at least 1.1 */
-    /* Where the direction field comes from: the global `direction`
-       (default) or the mesh file's per-vertex directions, read from its
-       first vertex colour set as a flow map (2 rgb - 1). */
-    pelt_direction_source direction_from;
-} pelt_scene_atlas;
 
 /* A whole scene. Plain data: copy it freely, but the three arrays
  * (wetness.droplets, animation.wind_keys, groom.strokes) are owned by exactly one copy,
@@ -227,8 +210,18 @@ typedef struct pelt_scene {
     pelt_forces forces;    /* default pelt_forces_default() */
     pelt_scene_animation animation;
     pelt_scene_wetness wetness;
-    pelt_scene_atlas atlas;
-    pelt_scene_draw draw;   /* default skin, fins and shells on */
+    /* How the surface gets its atlas (Lengyel §2.1), whole (pelt/atlas.h):
+       "atlas.mode", "texel_density" (0 here = the fur's 5 / bounding-box
+       diagonal), "direction" (zero = combed down), "max_stretch". The
+       runner adds the mask size, seed, cache and hooks. */
+    pelt_atlas_desc atlas;
+    /* The global atlas.direction (default) or the mesh file's per-vertex
+       directions, read from its first vertex colour set as a flow map. */
+    pelt_direction_source atlas_direction_from;
+    /* What to draw, whole (pelt/render.h): "draw.skin", "draw.fins" and
+       "draw.shells" set no_skin, no_fins and debug.no_shells inverted;
+       zero draws everything. */
+    pelt_draw_desc draw;
     pelt_scene_groom groom; /* JSON keys "fur.groom", "fur.length_map"...
                                and the top-level "strokes" list */
 } pelt_scene;

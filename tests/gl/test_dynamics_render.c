@@ -109,7 +109,7 @@ static void wind_leans_fur_downwind(void)
     /* dense fur so the silhouette is solid, not a few scattered hairs */
     pelt_fur_desc d = {.length = 0.2f, .layers = 24, .look.texture_size = 128, .look.density = 4000.0f,
                        .look.strand_radius = 2.5f};
-    pelt_draw_desc bare = {.no_shells = true, .no_fins = true};
+    pelt_draw_desc bare = {.debug.no_shells = true, .no_fins = true};
     motion calm = {no_gravity(), 1.5f, 0.0f}, windy = calm;
     windy.forces.wind[0] = 20.0f;
     windy.forces.gust_strength = 0.3f;
@@ -173,7 +173,7 @@ static const pelt_fur_desc opaque_fur = {
 static size_t crack_pixels(const pelt_mesh *mesh, const pelt_fur_desc *d, const pelt_camera *cam,
                            motion *mo, const char *what)
 {
-    pelt_draw_desc bare = {.no_shells = true, .no_fins = true}, shells = {.no_skin = true};
+    pelt_draw_desc bare = {.debug.no_shells = true, .no_fins = true}, shells = {.no_skin = true};
     uint8_t *skin = gl_test_render(gl, mesh, d, cam, &bare, NULL, NULL);
     uint8_t *fur = gl_test_render(gl, mesh, d, cam, &shells, run_motion, mo);
     size_t holes = (size_t)-1, inside = 0;

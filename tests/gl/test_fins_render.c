@@ -162,7 +162,7 @@ static void fins_stay_on_the_fur_in_a_gale(void)
 {
     const pelt_fur_desc d = {.length = 0.25f};
     motion blow = gale(), rest = {pelt_forces_default(), 1.0f};
-    const pelt_draw_desc fins_only = {.no_skin = true, .no_shells = true};
+    const pelt_draw_desc fins_only = {.no_skin = true, .debug.no_shells = true};
     const pelt_draw_desc fur_only = {.no_fins = true};
     uint8_t *fur = gl_test_render(gl, torus, &d, &torus_cam, &fur_only, run_motion, &blow);
     uint8_t *fins = gl_test_render(gl, torus, &d, &torus_cam, &fins_only, run_motion, &blow);
@@ -235,7 +235,7 @@ static void fins_add_up_alike_on_fine_and_coarse_meshes(void)
      * edges (0.38 and 0.09 tiles long). */
     const pelt_fur_desc d = {.length = 0.15f, .fins.density = 128.0f};
     const pelt_camera cam = {0.0f, 0.0f, 3.4f, 40.0f, {0, 0, 0}};
-    const pelt_draw_desc shells = {.no_fins = true}, fins = {.no_shells = true};
+    const pelt_draw_desc shells = {.no_fins = true}, fins = {.debug.no_shells = true};
     uint8_t *a = coarse && fine ? gl_test_render(gl, coarse, &d, &cam, &shells, NULL, NULL) : NULL;
     uint8_t *fc = a ? gl_test_render(gl, coarse, &d, &cam, &fins, NULL, NULL) : NULL;
     uint8_t *ff = fc ? gl_test_render(gl, fine, &d, &cam, &fins, NULL, NULL) : NULL;
@@ -278,7 +278,7 @@ static void all_fins_are_one_draw_call(void)
         GLuint q;
         glGenQueries(1, &q);
         glBeginQuery(GL_PRIMITIVES_GENERATED, q);
-        pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .no_shells = true});
+        pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .debug.no_shells = true});
         glEndQuery(GL_PRIMITIVES_GENERATED);
         GLuint prims = 0;
         glGetQueryObjectuiv(q, GL_QUERY_RESULT, &prims);
@@ -294,7 +294,7 @@ static void all_fins_are_one_draw_call(void)
         CHECK(prims == chunked(st.fins) * 2 * st.fin_rows);
         /* Unfaded, every fin of the level drawn: still one draw. */
         glBeginQuery(GL_PRIMITIVES_GENERATED, q);
-        pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .no_shells = true, .fins_unfaded = true});
+        pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .debug.no_shells = true, .fins_unfaded = true});
         glEndQuery(GL_PRIMITIVES_GENERATED);
         glGetQueryObjectuiv(q, GL_QUERY_RESULT, &prims);
         pelt_render_stats all = pelt_renderer_get_stats(r);

@@ -152,7 +152,7 @@ static void lod_the_measure_sees_a_pop(void)
     if (!r) return;
     unsigned levels;
     bool blended;
-    double worst = dolly(r, &(pelt_draw_desc){.no_shells = true}, &levels, &blended);
+    double worst = dolly(r, &(pelt_draw_desc){.debug.no_shells = true}, &levels, &blended);
     printf("  the shells gone at once: worst step %.2fx its neighbours' median\n", worst);
     CHECK(worst > 2.0);
     pelt_renderer_destroy(r);

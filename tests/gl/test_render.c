@@ -34,7 +34,7 @@ static void golden_square_default_fur(void)
 static void fur_covers_beyond_bare_silhouette(void)
 {
     pelt_fur_desc d = {0};
-    pelt_draw_desc bare = {.no_shells = true, .no_fins = true};
+    pelt_draw_desc bare = {.debug.no_shells = true, .no_fins = true};
     uint8_t *skin = gl_test_render(gl, torus, &d, &torus_cam, &bare, NULL, NULL);
     uint8_t *fur = gl_test_render(gl, torus, &d, &torus_cam, NULL, NULL, NULL);
     CHECK(skin && fur);
@@ -607,7 +607,7 @@ static void stats_count_passes_layers_and_uploads(void)
     pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_skin = true, .no_fins = true, .first_layer = 16});
     st = pelt_renderer_get_stats(r);
     CHECK(st.skin_draw_calls == 0 && st.shell_draw_calls == 0 && st.triangles == 0);
-    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.no_shells = true, .no_fins = true});
+    pelt_renderer_draw(r, &v, &(pelt_draw_desc){.debug.no_shells = true, .no_fins = true});
     st = pelt_renderer_get_stats(r);
     CHECK(st.skin_draw_calls == 1 && st.shell_draw_calls == 0 && st.triangles == tris);
     pelt_renderer_destroy(r);

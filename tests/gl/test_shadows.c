@@ -242,7 +242,7 @@ static void deeper_fur_is_darker(void)
         for (unsigned i = 0; i < layers; i++) {
             pelt_draw_desc dd = {.no_skin = true, .no_fins = true, .first_layer = i, .layer_count = 1};
             draw(&s, &v, &dd, on);
-            dd.no_shadows = true;
+            dd.debug.no_shadows = true;
             draw(&s, &v, &dd, off);
             /* Over the pixels of this layer's hair. */
             double lit = 0.0, all = 0.0;
@@ -288,7 +288,7 @@ static void a_lower_light_casts_a_longer_shadow(void)
             const float light[3] = {cosf(a), sinf(a), 0.0f};
             pelt_view v = view_of(&cam, light);
             draw(&s, &v, NULL, on);
-            pelt_draw_desc dd = {.no_shadows = true};
+            pelt_draw_desc dd = {.debug.no_shadows = true};
             draw(&s, &v, &dd, off);
             CHECK(pelt_renderer_get_stats(s.renderer).ground_draw_calls == 1);
             /* The ground's colour, where no shadow can fall (across the light). */

@@ -43,7 +43,7 @@ static bool draw_with(const pelt_mesh *mesh, float t, const float target[3], flo
         pelt_headless_bind(gl);
         glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_draw_desc dd = {.skin_in_vertex_stage = in_vs};
+        pelt_draw_desc dd = {.debug.skin_in_vertex_stage = in_vs};
         pelt_renderer_draw(r, &v, &dd);
         pelt_headless_read_rgba8(gl, px);
     }

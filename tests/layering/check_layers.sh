@@ -18,8 +18,8 @@ allowed_local() {
         core/mesh/*)  echo '^(pelt/(base|mesh|animation)\.h|core/(base|mesh)/)' ;;
         core/atlas/*) echo '^(pelt/(base|mesh|atlas)\.h|core/(base|mesh|atlas)/)' ;;
         core/wet/*)   echo '^(pelt/(base|mesh|wetness|fur)\.h|core/(base|mesh|wet)/)' ;;
-        core/fur/*)   echo '^(pelt/(base|mesh|fur|groom|dynamics|wetness|shadow|params)\.h|core/(base|mesh|wet|fur)/)' ;;
-        gl/*)         echo '^(pelt/(base|camera|mesh|fur|dynamics|wetness|shadow|render)\.h|core/base/|core/fur/fur_gpu\.h|gl/)' ;;
+        core/fur/*)   echo '^(pelt/(base|mesh|fur|groom|dynamics|wetness|shadow|params|camera)\.h|core/(base|mesh|wet|fur)/)' ;;
+        gl/*)         echo '^(pelt/(base|camera|mesh|fur|dynamics|wetness|shadow|render)\.h|core/base/|core/fur/(fur_gpu|frame_plan)\.h|gl/)' ;;
         scene/*)      echo '^(pelt/|core/base/|scene/)' ;;
         platform/*)   echo '^(pelt/(base|headless|window)\.h|core/base/|platform/)' ;;
         *)            echo '.' ;;

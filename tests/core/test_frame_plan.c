@@ -1,0 +1,198 @@
+/* The frame plan (core/fur/frame_plan.c) without GL: levels of detail
+ * follow the distance, the light's frame holds the fur, the ground lies
+ * under the mesh, the shader's features and the passes follow the fur and
+ * the switches. */
+#include "support/check.h"
+
+#include "core/fur/frame_plan.h"
+#include "pelt/camera.h"
+#include "pelt/fur.h"
+#include "pelt/mesh.h"
+#include "pelt/wetness.h"
+
+#include <math.h>
+#include <string.h>
+
+static const pelt__frame_switches everything = {true, true, true, true, true, 0, false, false};
+
+static pelt_view view_at(float distance)
+{
+    pelt_camera cam = {35.0f, 25.0f, distance, 40.0f, {0, 0, 0}}; /* degrees */
+    pelt_view v;
+    memset(&v, 0, sizeof v);
+    pelt_camera_to_view(&cam, 4.0f / 3.0f, &v);
+    v.width = 800, v.height = 600;
+    v.light.direction[0] = 0.3f, v.light.direction[1] = 1.0f, v.light.direction[2] = 0.5f;
+    return v;
+}
+
+static pelt__frame_setup setup_with(bool shadows, bool ground)
+{
+    pelt__frame_setup s;
+    memset(&s, 0, sizeof s);
+    s.shadow.enabled = shadows;
+    s.shadow.map_size = 512, s.shadow.slices = 4, s.shadow.softness = 1.0f, s.shadow.depth = 1.0f;
+    s.shadow.density = 1.0f;
+    s.shadow_map_size = shadows ? 512 : 0;
+    s.ground.enabled = ground, s.ground.size = 3.0f;
+    return s;
+}
+
+static pelt_fur *torus_fur(pelt_mesh **mesh, const pelt_fur_desc *d)
+{
+    pelt_fur *fur = NULL;
+    CHECK(pelt_mesh_torus(1.0f, 0.4f, 48, 24, mesh, NULL) == PELT_OK);
+    CHECK(*mesh && pelt_fur_create(*mesh, d, &fur, NULL) == PELT_OK);
+    return fur;
+}
+
+/* Further away, the fur is shorter on screen: the shell level never gets
+ * finer and ends coarser; the mesh level likewise. */
+static void levels_of_detail_follow_the_distance(void)
+{
+    pelt_mesh *m = NULL;
+    pelt_fur_desc d = {.layers = 32, .look.texture_size = 32};
+    pelt_fur *fur = torus_fur(&m, &d);
+    if (!fur) return;
+    const pelt__frame_setup setup = setup_with(false, false);
+    pelt__ground_cache cache = {0};
+    unsigned last_shell = 0, last_mesh = 0;
+    pelt__frame_plan p;
+    for (int i = 0; i < 8; i++) {
+        pelt_view v = view_at(3.0f * powf(2.0f, (float)i));
+        pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+        CHECK(!p.lod.full_mesh);
+        CHECK(p.lod.shell_level >= last_shell && p.lod.mesh_level >= last_mesh);
+        last_shell = p.lod.shell_level, last_mesh = p.lod.mesh_level;
+        printf("  distance %6.1f: shell level %u, mesh level %u\n", 3.0 * pow(2.0, i), p.lod.shell_level, p.lod.mesh_level);
+    }
+    CHECK(last_shell >= 3); /* 32 shells a few pixels deep come down to 4 or fewer */
+    CHECK(last_mesh > 0);
+    pelt_view near = view_at(3.0f);
+    pelt__frame_plan_make(fur, &near, &everything, &setup, &cache, &p);
+    CHECK(p.lod.shell_level == 0);
+    /* Inspecting a range of layers keeps the finest shells at any distance. */
+    pelt__frame_switches one = everything;
+    one.one_height = true;
+    pelt_view far = view_at(400.0f);
+    pelt__frame_plan_make(fur, &far, &one, &setup, &cache, &p);
+    CHECK(p.lod.shell_level == 0 && p.lod.shell_blend == 0.0f);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
+}
+
+/* The light's maps run only when they are on, made and not switched off;
+ * then every point of the fur's reach projects inside the maps. */
+static void the_light_frame_holds_the_fur(void)
+{
+    pelt_mesh *m = NULL;
+    pelt_fur_desc d = {.look.texture_size = 32};
+    pelt_fur *fur = torus_fur(&m, &d);
+    if (!fur) return;
+    pelt__ground_cache cache = {0};
+    pelt_view v = view_at(5.0f);
+    pelt__frame_plan p;
+    pelt__frame_setup off = setup_with(false, false), on = setup_with(true, false);
+    pelt__frame_plan_make(fur, &v, &everything, &off, &cache, &p);
+    CHECK(!p.light_maps && !(p.shell_features & PELT__SHELL_SHADOW_MAP));
+    pelt__frame_setup unmade = on;
+    unmade.shadow_map_size = 0;
+    pelt__frame_plan_make(fur, &v, &everything, &unmade, &cache, &p);
+    CHECK(!p.light_maps);
+    pelt__frame_switches no_shadows = everything;
+    no_shadows.shadows = false;
+    pelt__frame_plan_make(fur, &v, &no_shadows, &on, &cache, &p);
+    CHECK(!p.light_maps);
+    pelt__frame_plan_make(fur, &v, &everything, &on, &cache, &p);
+    CHECK(p.light_maps && (p.shell_features & PELT__SHELL_SHADOW_MAP));
+    CHECK(p.shadow.map[1] == 4.0f && p.light_pass.shell_level > 0);
+    /* Every vertex pushed out by the fur's length lands in [0,1]^2. */
+    const pelt_mesh_data md = pelt_mesh_get_data(m);
+    const float len = pelt_fur_get_desc(fur).length;
+    size_t outside = 0;
+    for (size_t i = 0; i < md.vertex_count; i++) {
+        float q[3];
+        for (int k = 0; k < 3; k++) q[k] = md.positions[3 * i + k] + len * md.normals[3 * i + k];
+        const float *L = p.shadow.light_matrix;
+        float s = L[0] * q[0] + L[4] * q[1] + L[8] * q[2] + L[12];
+        float t = L[1] * q[0] + L[5] * q[1] + L[9] * q[2] + L[13];
+        float dd = L[2] * q[0] + L[6] * q[1] + L[10] * q[2] + L[14];
+        if (!(s >= 0.0f && s <= 1.0f && t >= 0.0f && t <= 1.0f && dd >= 0.0f && dd <= 1.0f)) outside++;
+    }
+    CHECK(outside == 0);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
+}
+
+/* The ground disc lies at the mesh's lowest point under its centre; a
+ * lifted model lifts it. */
+static void the_ground_lies_under_the_mesh(void)
+{
+    pelt_mesh *m = NULL;
+    pelt_fur_desc d = {.look.texture_size = 32};
+    pelt_fur *fur = torus_fur(&m, &d);
+    if (!fur) return;
+    pelt__ground_cache cache = {0};
+    pelt_view v = view_at(5.0f);
+    const pelt__frame_setup setup = setup_with(false, true);
+    pelt__frame_plan p;
+    pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+    CHECK(p.ground);
+    CHECK_NEAR(p.disc[1], -0.4, 1e-5); /* the torus's tube radius below its plane */
+    CHECK_NEAR(p.disc[0], 0.0, 1e-5);
+    CHECK(p.disc[3] > 3.0f);
+    v.model[13] = 2.0f;
+    pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+    CHECK_NEAR(p.disc[1], 1.6, 1e-5);
+    const pelt__frame_setup none = setup_with(false, false);
+    pelt__frame_plan_make(fur, &v, &everything, &none, &cache, &p);
+    CHECK(!p.ground);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
+}
+
+/* The shader's features and the passes follow the fur and the switches. */
+static void features_and_passes_follow_the_switches(void)
+{
+    pelt_mesh *m = NULL;
+    pelt_fur_desc d = {.look.texture_size = 32, .look.inter_shadow = true};
+    pelt_fur *fur = torus_fur(&m, &d);
+    if (!fur) return;
+    pelt__ground_cache cache = {0};
+    pelt_view v = view_at(5.0f);
+    const pelt__frame_setup setup = setup_with(false, false);
+    pelt__frame_plan p;
+    pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+    CHECK(p.skin && p.fins && p.shells && !p.gpu_skin);
+    CHECK(p.shell_features & PELT__SHELL_INTER_SHADOW);
+    CHECK(p.shell_features & PELT__SHELL_KAJIYA_KAY);
+    CHECK(!(p.shell_features & (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_LIGHT_TABLE)));
+    CHECK(p.lod.cull); /* a closed torus with fins: the back shells go */
+    pelt__frame_switches sw = everything;
+    sw.inter_shadow = false, sw.fins = false, sw.skin = false, sw.gpu_skin = true;
+    pelt__frame_plan_make(fur, &v, &sw, &setup, &cache, &p);
+    CHECK(!(p.shell_features & PELT__SHELL_INTER_SHADOW));
+    CHECK(!p.fins && !p.skin && p.shells);
+    CHECK(!p.gpu_skin); /* the torus has no bones */
+    CHECK(!p.lod.cull); /* without fins nothing carries the silhouette */
+    sw.cull_shells = 1;
+    pelt__frame_plan_make(fur, &v, &sw, &setup, &cache, &p);
+    CHECK(p.lod.cull);
+    /* Water makes the wet variant. */
+    pelt_droplet drop = {{0.5f, 0.5f}, 0.2f, 1.0f};
+    CHECK(pelt_fur_add_droplet(fur, &drop, NULL) == PELT_OK);
+    pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+    CHECK(p.shell_features & PELT__SHELL_WET);
+    CHECK(p.light_pass.features == 0); /* no light pass this frame */
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
+}
+
+int main(void)
+{
+    RUN(levels_of_detail_follow_the_distance);
+    RUN(the_light_frame_holds_the_fur);
+    RUN(the_ground_lies_under_the_mesh);
+    RUN(features_and_passes_follow_the_switches);
+    return check_summary();
+}
