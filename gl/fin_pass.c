@@ -62,8 +62,10 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
 
     /* The fin texture: repeats along the fin, clamped at root and tip. */
     pelt__gl_unpack_defaults();
-    unsigned w, h;
-    const uint8_t *texels = pelt__fur_gpu_fin_texture(fur, &w, &h);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    unsigned w = fs.fin_width, h = fs.fin_height;
+    const uint8_t *texels = fs.fin_texture;
     glGenTextures(1, &p->texture);
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
     glBindTexture(GL_TEXTURE_2D, p->texture);
@@ -78,7 +80,7 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     _Static_assert(PELT__FIN_HEIGHTS == PELT_FIN_HEIGHTS && PELT__FIN_VERTEX_TEXELS == PELT_FIN_VERTEX_TEXELS &&
                        PELT_FIN_ROWS < PELT_FIN_HEIGHTS,
                    "core/fur/fur_gpu.h and bindings.glsl agree on the fin vertices");
-    const pelt__lod_chain *lod = pelt__fur_gpu_lod(fur);
+    const pelt__lod_chain *lod = fs.lod;
     size_t most = 0, most_vertices = 0;
     for (unsigned k = 0; k < lod->count; k++) {
         if (lod->levels[k].fin_count > most) most = lod->levels[k].fin_count;

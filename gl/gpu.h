@@ -74,7 +74,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
                                   const pelt_hooks *hooks, pelt_error *err);
 /* Rewrites the tip buffer when the strands moved and the changed range of
  * the groom buffer; returns bytes sent. */
-size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur);
+size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur, const pelt__fur_snapshot *fs);
 /* Skinning in the vertex stage: the bones' matrices of the last pose into
  * their texture; returns bytes sent (0 for a mesh without a skeleton). */
 size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur);
@@ -93,7 +93,7 @@ typedef struct pelt__gpu_fur {
 void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur);
 /* Uploads a new colour texture and the changed rectangle of the mask;
  * returns bytes sent. */
-size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur);
+size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs);
 /* Binds the textures to their PELT_UNIT_* units. */
 void pelt__gpu_fur_bind(const pelt__gpu_fur *g);
 void pelt__gpu_fur_destroy(pelt__gpu_fur *g);
@@ -138,7 +138,7 @@ void pelt__gpu_blocks_create(pelt__gpu_blocks *b);
 size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *view, const pelt__frame_shadow *shadow);
 /* Uploads the fur block when the fur's look differs from what was sent;
  * returns bytes sent. */
-size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur);
+size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const pelt__fur_snapshot *fs);
 /* Binds the buffers to their PELT_BLOCK_* binding points. */
 void pelt__gpu_blocks_bind(const pelt__gpu_blocks *b);
 void pelt__gpu_blocks_destroy(pelt__gpu_blocks *b);

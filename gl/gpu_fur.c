@@ -18,15 +18,17 @@ static void bind(GLenum unit, GLenum target, GLuint texture)
 void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
 {
     pelt__gl_unpack_defaults();
-    unsigned size, slices;
-    const uint8_t *volume = pelt__fur_gpu_volume(fur, &size, &slices);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    unsigned size = fs.volume_size, slices = fs.volume_slices;
+    const uint8_t *volume = fs.volume;
     glGenTextures(1, &g->volume);
     bind(PELT_UNIT_FUR, GL_TEXTURE_2D_ARRAY, g->volume);
     /* The shell levels of detail (Lengyel §2.4) follow the volume's slices. */
-    unsigned lod_slices;
-    const uint8_t *lod = pelt__fur_gpu_volume_lod(fur, &lod_slices);
+    unsigned lod_slices = fs.lod_slices;
+    const uint8_t *lod = fs.volume_lod;
     /* Ringlets: one such set per amplitude level of the curl. */
-    unsigned levels = pelt__fur_gpu_ringlet_levels(fur), stride = slices + lod_slices;
+    unsigned levels = fs.ringlet_levels, stride = slices + lod_slices;
     size_t slice_bytes = (size_t)size * size * 4;
     glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)size, (GLsizei)size, (GLsizei)(levels * stride),
                  0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
@@ -54,8 +56,8 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
     g->color_version = (unsigned)-1;
 
     /* The wetness mask: float texels, nearest sampling (Silva §3.1). */
-    unsigned w, h;
-    const float *texels = pelt__fur_gpu_mask(fur, &w, &h);
+    unsigned w = fs.mask_width, h = fs.mask_height;
+    const float *texels = fs.mask;
     glGenTextures(1, &g->mask);
     bind(PELT_UNIT_MASK, GL_TEXTURE_2D, g->mask);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_FLOAT, texels);
@@ -80,11 +82,11 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
-size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur)
+size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs)
 {
     size_t bytes = 0;
-    unsigned w, h, version;
-    const uint8_t *color = pelt__fur_gpu_color(fur, &w, &h, &version);
+    unsigned w = fs->color_width, h = fs->color_height, version = fs->color_version;
+    const uint8_t *color = fs->color;
     if (color && version != g->color_version) {
         bind(PELT_UNIT_COLOR, GL_TEXTURE_2D, g->color);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)w, (GLsizei)h, 0, GL_RGBA,
@@ -99,7 +101,8 @@ size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur)
     /* Only the rectangle of the mask that changed since the last upload. */
     unsigned r[4];
     if (pelt__fur_gpu_take_mask_dirty(fur, r)) {
-        const float *texels = pelt__fur_gpu_mask(fur, &w, &h);
+        const float *texels = fs->mask;
+        w = fs->mask_width;
         bind(PELT_UNIT_MASK, GL_TEXTURE_2D, g->mask);
         glPixelStorei(GL_UNPACK_ROW_LENGTH, (GLint)w);
         glTexSubImage2D(GL_TEXTURE_2D, 0, (GLint)r[0], (GLint)r[1], (GLsizei)(r[2] - r[0]),

@@ -130,6 +130,8 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
 {
     const pelt_mesh_data m = pelt_mesh_get_data(mesh);
     const float *tangents = pelt_mesh_tangents(mesh);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
     const attribute pose_attrs[] = {
         {PELT_ATTR_POSITION, 3, m.positions, 3},
         {PELT_ATTR_NORMAL, 3, m.normals, 3},
@@ -138,7 +140,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
     /* Without a direction field, comb along the fur texture's u axis. */
     const attribute attrs[] = {
         {PELT_ATTR_UV, 2, m.uvs, 2},
-        {PELT_ATTR_FUR_UV, 2, pelt__fur_gpu_uvs(fur), 2},
+        {PELT_ATTR_FUR_UV, 2, fs.fur_uvs, 2},
         {PELT_ATTR_COMB, 3, m.comb ? m.comb : tangents, m.comb ? 3 : 4},
     };
     enum { ATTRS = sizeof attrs / sizeof attrs[0] };
@@ -149,14 +151,15 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
     pelt_status st = interleave(&g->vbo_pose, pose_attrs, 3, m.vertex_count, GL_DYNAMIC_DRAW, hooks, err);
     if (st == PELT_OK) st = interleave(&g->vbo_static, attrs, ATTRS, m.vertex_count, GL_STATIC_DRAW, hooks, err);
     if (st != PELT_OK) return st;
-    pelt__fur_gpu_pose(fur, &g->pose_version);
+    g->pose_version = fs.pose_version;
 
     glGenBuffers(1, &g->vbo_tips);
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * 3 * sizeof(float)),
-                 pelt__fur_gpu_tips(fur, &g->tips_version), GL_DYNAMIC_DRAW);
-    size_t stride;
-    const void *groom = pelt__fur_gpu_groom(fur, &stride);
+                 fs.tips, GL_DYNAMIC_DRAW);
+    g->tips_version = fs.tips_version;
+    size_t stride = fs.groom_stride;
+    const void *groom = fs.groom;
     glGenBuffers(1, &g->vbo_groom);
     glBindBuffer(GL_ARRAY_BUFFER, g->vbo_groom);
     glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)(m.vertex_count * stride), groom, GL_DYNAMIC_DRAW);
@@ -165,7 +168,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
 
     /* One index buffer: the mesh's own triangles (the skin, and the shells
      * with level of detail off), then each level of detail's (lod.h). */
-    const pelt__lod_chain *lod = pelt__fur_gpu_lod(fur);
+    const pelt__lod_chain *lod = fs.lod;
     size_t total = m.triangle_count;
     for (unsigned k = 0; k < lod->count; k++) total += lod->levels[k].triangle_count;
     glGenBuffers(1, &g->ebo);
@@ -184,17 +187,16 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
     point(g->vbo_pose, pose_attrs, 3);
     point_shared(g, attrs, ATTRS, stride);
 
-    pelt__gpu_skin skin;
-    if (pelt__fur_gpu_skin(fur, &skin)) st = make_skin_vao(g, &skin, attrs, ATTRS, stride, hooks, err);
+    if (fs.skinned) st = make_skin_vao(g, &fs.skin, attrs, ATTRS, stride, hooks, err);
     glBindVertexArray(0);
     return st;
 }
 
-size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
+size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur, const pelt__fur_snapshot *fs)
 {
     size_t bytes = 0;
-    unsigned version;
-    const float *pose = pelt__fur_gpu_pose(fur, &version);
+    unsigned version = fs->pose_version;
+    const float *pose = fs->pose;
     if (pose && version != g->pose_version) {
         size_t n = g->vertex_count * 10 * sizeof(float);
         glBindBuffer(GL_ARRAY_BUFFER, g->vbo_pose);
@@ -202,7 +204,8 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
         g->pose_version = version;
         bytes += n;
     }
-    const float *tips = pelt__fur_gpu_tips(fur, &version);
+    const float *tips = fs->tips;
+    version = fs->tips_version;
     if (version != g->tips_version) {
         size_t n = g->vertex_count * 3 * sizeof(float);
         glBindBuffer(GL_ARRAY_BUFFER, g->vbo_tips);
@@ -211,9 +214,9 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
         g->tips_version = version;
     }
     /* Only the vertices a brush or a map changed. */
-    size_t range[2], stride;
+    size_t range[2], stride = fs->groom_stride;
     if (pelt__fur_gpu_take_groom_dirty(fur, range)) {
-        const uint8_t *groom = pelt__fur_gpu_groom(fur, &stride);
+        const uint8_t *groom = fs->groom;
         size_t n = (range[1] - range[0]) * stride;
         glBindBuffer(GL_ARRAY_BUFFER, g->vbo_groom);
         glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(range[0] * stride), (GLsizeiptr)n,
@@ -225,8 +228,10 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur)
 
 size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur)
 {
-    pelt__gpu_skin skin;
-    if (!g->skinned || !pelt__fur_gpu_skin(fur, &skin)) return 0;
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    if (!g->skinned || !fs.skinned) return 0;
+    const pelt__gpu_skin skin = fs.skin;
     /* Rows 0..2 of each column-major 4x4: x, y, z of the blend. */
     for (size_t b = 0; b < skin.bone_count; b++)
         for (int r = 0; r < 3; r++)

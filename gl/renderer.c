@@ -36,7 +36,9 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
 {
     if (!out) return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_renderer_create: out is NULL");
     *out = NULL;
-    if (!mesh || !fur || pelt__fur_gpu_mesh(fur) != mesh)
+    pelt__fur_snapshot fs = {0};
+    if (fur) pelt__fur_gpu_snapshot(fur, &fs);
+    if (!mesh || !fur || fs.mesh != mesh)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT,
                           "pelt_renderer_create: needs a mesh and a fur made for that mesh");
     if (pelt_mesh_get_data(mesh).triangle_count * 3 > 0x7fffffff)
@@ -60,7 +62,7 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
     if (st == PELT_OK) {
         pelt__gpu_fur_create(&r->textures, fur);
         pelt__gpu_blocks_create(&r->blocks);
-        pelt__gpu_blocks_set_fur(&r->blocks, fur);
+        pelt__gpu_blocks_set_fur(&r->blocks, fur, &fs);
     }
     pelt__gl_state_reset();
     if (st != PELT_OK) {
@@ -92,9 +94,11 @@ void pelt_renderer_destroy(pelt_renderer *r)
 static void upload(pelt_renderer *r)
 {
     pelt__gl_unpack_defaults();
-    r->pending_upload += pelt__gpu_mesh_upload(&r->mesh, r->fur);
-    r->pending_upload += pelt__gpu_fur_upload(&r->textures, r->fur);
-    r->pending_upload += pelt__gpu_blocks_set_fur(&r->blocks, r->fur);
+    pelt__fur_snapshot fs; /* one read of the fur for the three */
+    pelt__fur_gpu_snapshot(r->fur, &fs);
+    r->pending_upload += pelt__gpu_mesh_upload(&r->mesh, r->fur, &fs);
+    r->pending_upload += pelt__gpu_fur_upload(&r->textures, r->fur, &fs);
+    r->pending_upload += pelt__gpu_blocks_set_fur(&r->blocks, r->fur, &fs);
 }
 
 void pelt_renderer_upload(pelt_renderer *r)

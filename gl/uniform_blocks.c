@@ -88,7 +88,7 @@ size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v, const
     return sizeof f;
 }
 
-size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
+size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const pelt__fur_snapshot *fs)
 {
     const pelt_fur_desc d = pelt_fur_get_desc(fur);
     pelt__fur_block k;
@@ -99,10 +99,10 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
     k.length = d.length;
     memcpy(k.specular, d.look.specular, sizeof k.specular);
     k.shininess = d.look.shininess;
-    pelt__fur_gpu_per_uv(fur, k.fur_per_uv);
+    memcpy(k.fur_per_uv, fs->fur_per_uv, sizeof k.fur_per_uv);
     k.shadow = d.look.shadow;
     k.curl_frequency = d.look.curl_frequency;
-    k.curl_radius = pelt__fur_gpu_vertex_curl_radius(fur); /* 0 with ringlets: the texture curls */
+    k.curl_radius = fs->vertex_curl_radius; /* 0 with ringlets: the texture curls */
     k.clump_blend = d.wet.clump_blend;
     k.clump_tightness = d.wet.clump_tightness;
     k.wet_darken = d.wet.darken;
@@ -116,11 +116,8 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur)
     k.inter_shadow = d.look.inter_shadow ? d.look.inter_shadow_darkness : 0.0f;
     k.inter_shadow_step = d.look.inter_shadow_offset / (float)d.look.texture_size;
     k.shading_model = (float)d.look.shading;
-    unsigned size, slices, lod_slices;
-    pelt__fur_gpu_volume(fur, &size, &slices);
-    pelt__fur_gpu_volume_lod(fur, &lod_slices);
-    k.ringlets[0] = (float)pelt__fur_gpu_ringlet_levels(fur);
-    k.ringlets[1] = (float)(slices + lod_slices);
+    k.ringlets[0] = (float)fs->ringlet_levels;
+    k.ringlets[1] = (float)(fs->volume_slices + fs->lod_slices);
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

@@ -32,7 +32,9 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     pelt__frame_lod l;
     memset(&l, 0, sizeof l);
     const pelt_fur_lod fl = fd->lod;
-    const pelt__lod_chain *c = pelt__fur_gpu_lod(fur);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    const pelt__lod_chain *c = fs.lod;
     if (fl.mode == PELT_LOD_OFF || c->count == 0) {
         l.full_mesh = true;
         return l;
@@ -79,7 +81,9 @@ static bool shadow_frame(const pelt_fur *fur, const pelt_fur_desc *fd, const pel
     memset(fs, 0, sizeof *fs);
     memset(sf, 0, sizeof *sf);
     const pelt_shadow_desc *d = &setup->shadow;
-    const pelt__lod_chain *c = pelt__fur_gpu_lod(fur);
+    pelt__fur_snapshot snap;
+    pelt__fur_gpu_snapshot(fur, &snap);
+    const pelt__lod_chain *c = snap.lod;
     float scale = model_scale(v->model), center[3];
     transform_point(v->model, c->center, center);
     float radius = (c->radius + 1.5f * fd->length) * scale;
@@ -98,8 +102,7 @@ static bool shadow_frame(const pelt_fur *fur, const pelt_fur_desc *fd, const pel
     fs->slab[2] = (1.5f + d->softness) * texel / depth_unit;
     fs->slab[3] = d->keep_gamma ? 1.0f : 0.0f;
 
-    unsigned slices_lod;
-    pelt__fur_gpu_volume_lod(fur, &slices_lod);
+    unsigned slices_lod = snap.lod_slices;
     if (fd->lod.mode == PELT_LOD_OFF || c->count <= 1) {
         sf->full_mesh = true;
     } else {
@@ -124,10 +127,12 @@ static bool shadow_frame(const pelt_fur *fur, const pelt_fur_desc *fd, const pel
 static void ground_disc(const pelt_fur *fur, const pelt_view *v, float size, pelt__ground_cache *cache,
                         float disc[4])
 {
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
     const float *m = v->model;
     const float row[3] = {m[1], m[5], m[9]};
     if (!cache->valid || memcmp(cache->row, row, sizeof row)) {
-        const pelt_mesh_data md = pelt_mesh_get_data(pelt__fur_gpu_mesh(fur));
+        const pelt_mesh_data md = pelt_mesh_get_data(fs.mesh);
         float lowest = INFINITY;
         for (size_t i = 0; i < md.vertex_count; i++) {
             const float *p = md.positions + 3 * i;
@@ -137,7 +142,7 @@ static void ground_disc(const pelt_fur *fur, const pelt_view *v, float size, pel
         cache->low = isfinite(lowest) ? lowest : 0.0f;
         cache->valid = true;
     }
-    const pelt__lod_chain *c = pelt__fur_gpu_lod(fur);
+    const pelt__lod_chain *c = fs.lod;
     float center[3];
     transform_point(v->model, c->center, center);
     disc[0] = center[0];
@@ -150,15 +155,16 @@ static void ground_disc(const pelt_fur *fur, const pelt_view *v, float size, pel
 static unsigned shell_features(const pelt_fur *fur, const pelt_fur_desc *fd, const pelt__frame_lod *lod,
                                const pelt__frame_switches *sw, bool light_maps)
 {
-    unsigned w, h, version;
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
     unsigned f = 0;
-    if (pelt__fur_gpu_any_wet(fur)) {
+    if (fs.any_wet) {
         f |= PELT__SHELL_WET;
-        if (pelt__fur_gpu_ringlet_levels(fur) > 1) f |= PELT__SHELL_RINGLETS;
+        if (fs.ringlet_levels > 1) f |= PELT__SHELL_RINGLETS;
     }
     if (fd->look.inter_shadow && sw->inter_shadow) f |= PELT__SHELL_INTER_SHADOW;
     if (lod->shell_blend > 0.0f) f |= PELT__SHELL_LOD_BLEND;
-    if (pelt__fur_gpu_color(fur, &w, &h, &version)) f |= PELT__SHELL_COLOR_TEXTURE;
+    if (fs.color) f |= PELT__SHELL_COLOR_TEXTURE;
     f |= fd->look.shading == PELT_SHADING_LENGYEL_TABLE ? PELT__SHELL_LIGHT_TABLE : PELT__SHELL_KAJIYA_KAY;
     if (light_maps) f |= PELT__SHELL_SHADOW_MAP;
     return f;

@@ -1,7 +1,8 @@
-/* What a renderer uploads from a pelt_fur, read through functions so that
- * gl/ never opens the handle (it must not include fur_internal.h). GL-free:
- * plain pointers, sizes and version counters. Pointers are owned by the fur
- * and stay valid until it is destroyed or the data is replaced (a version
+/* What a renderer uploads from a pelt_fur: one snapshot struct filled by
+ * one call, so that gl/ never opens the handle (it must not include
+ * fur_internal.h), plus the few calls that take or compute. GL-free: plain
+ * pointers, sizes and version counters. Pointers are owned by the fur and
+ * stay valid until it is destroyed or the data is replaced (a version
  * change says so). */
 #ifndef PELT_CORE_FUR_GPU_H
 #define PELT_CORE_FUR_GPU_H
@@ -12,15 +13,10 @@
 #include "core/fur/lod.h"
 #include "core/fur/shadow_map.h" /* the light's maps (gl/shadow_pass.c, renderer.c) */
 
-/* The posed mesh (pelt_fur_set_pose), 10 floats a vertex: position,
- * normal, tangent; NULL before the first pose. *version changes with it. */
-const float *pelt__fur_gpu_pose(const pelt_fur *fur, unsigned *version);
-
 /* A skinned mesh's skin, for skinning in the vertex stage (measured
  * against the CPU pose by pelt bench --animation): per vertex 4 bones and
  * weights and the bind-space position, normal, tangent (10 floats); the
- * bones' matrices of the last pelt_mesh_pose (16 floats a bone). False
- * for a mesh without a skeleton. */
+ * bones' matrices of the last pelt_mesh_pose (16 floats a bone). */
 typedef struct pelt__gpu_skin {
     const uint16_t *bones;
     const float *weights;
@@ -28,45 +24,55 @@ typedef struct pelt__gpu_skin {
     const float *matrices;
     size_t bone_count;
 } pelt__gpu_skin;
-bool pelt__fur_gpu_skin(const pelt_fur *fur, pelt__gpu_skin *out);
 
-/* The mesh the fur was made for. */
-const pelt_mesh *pelt__fur_gpu_mesh(const pelt_fur *fur);
+/* Everything a renderer reads of a fur, in one struct that one call fills
+ * (pelt__fur_gpu_snapshot): plain pointers owned by the fur, sizes and
+ * version counters that change with the data. */
+typedef struct pelt__fur_snapshot {
+    const pelt_mesh *mesh;      /* the mesh the fur was made for */
+    const pelt__lod_chain *lod; /* shell geometry levels, level 0 the full
+                                   mesh in vertex-cache order, each with its fins */
+    /* The fur texture volume (Lengyel et al. 2001 §2.2, core/fur/furtex.h):
+       RGBA8, premultiplied, volume_size^2 texels by volume_slices (layers +
+       1, slice 0 the opaque skin), slice after slice; then the coarser
+       shell levels' lod_slices (0, volume_lod NULL, with level of detail
+       off), which follow the volume's in the GPU array. */
+    const uint8_t *volume;
+    unsigned volume_size, volume_slices;
+    const uint8_t *volume_lod;
+    unsigned lod_slices;
+    /* Ringlets (docs/method.md): the curl's amplitude levels the texture
+       holds, 1 without ringlets. With more, the volume and the lod slices
+       hold that many sets one after the other (level 0 the full curl), and
+       the GPU array takes level k's slice s at k * (slices + lod slices) + s. */
+    unsigned ringlet_levels;
+    float vertex_curl_radius; /* Silva's K_alpha for the shells' vertex stage,
+                                 0 when the texture holds the curl */
+    const float *fur_uvs;     /* fur-texture coordinates in tiles, 2 a vertex */
+    float fur_per_uv[2];      /* fur tiles per uv unit along u and v */
+    const float *tips;        /* strand tip offsets p - p_root, mesh-local, 3 a vertex */
+    unsigned tips_version;
+    const float *pose;        /* pelt_fur_set_pose: position, normal, tangent,
+                                 10 floats a vertex; NULL before the first */
+    unsigned pose_version;
+    bool skinned;             /* the mesh has a skeleton: `skin` is set */
+    pelt__gpu_skin skin;
+    const void *groom;        /* one pelt__groom_vertex a vertex (core/fur/groom.h), */
+    size_t groom_stride;      /* this many bytes apart */
+    const uint8_t *fin_texture; /* RGBA8, premultiplied, row 0 at the root */
+    unsigned fin_width, fin_height;
+    const uint8_t *color;     /* the colour texture, RGBA8, or NULL */
+    unsigned color_width, color_height, color_version;
+    /* The wetness mask (Silva et al. §3.1, core/wet/mask.h): texels of 4
+       floats (clump centre, radius, wetness), row 0 at v = 0. */
+    const float *mask;
+    unsigned mask_width, mask_height;
+    bool any_wet;             /* false: every texel dry, the shells' dry variant */
+} pelt__fur_snapshot;
 
-/* The fur texture volume (Lengyel et al. 2001 §2.2, core/fur/furtex.h):
- * RGBA8, premultiplied, size x size texels by slices (layers + 1, slice 0
- * the opaque skin), slice after slice. */
-const uint8_t *pelt__fur_gpu_volume(const pelt_fur *fur, unsigned *size, unsigned *slices);
-
-/* The coarser shell levels' slices (core/fur/lod.h), which follow the
- * volume's in the GPU array; *slices is 0 (and NULL returned) with level
- * of detail off. */
-const uint8_t *pelt__fur_gpu_volume_lod(const pelt_fur *fur, unsigned *slices);
-
-/* Ringlets (docs/method.md): how many amplitude levels of the curl the
- * texture holds, 1 without ringlets. With more, the volume and the lod
- * slices above hold that many sets one after the other (level 0 the full
- * curl, the last none), and the GPU array takes them level by level: level
- * k's slice s (volume or lod) at k * (slices + lod slices) + s. */
-unsigned pelt__fur_gpu_ringlet_levels(const pelt_fur *fur);
-
-/* Silva's curl radius K_alpha for the shells' vertex stage: 0 when the
- * texture holds the curl as ringlets. */
-float pelt__fur_gpu_vertex_curl_radius(const pelt_fur *fur);
-
-/* Fur-texture coordinates in tiles, 2 floats per mesh vertex; and the fur
- * tiles per uv unit along u and v (scales a uv-space clump displacement
- * into fur coordinates). */
-const float *pelt__fur_gpu_uvs(const pelt_fur *fur);
-void pelt__fur_gpu_per_uv(const pelt_fur *fur, float out[2]);
-
-/* Strand tip offsets p - p_root, mesh-local, 3 floats per vertex; *version
- * changes whenever they change. */
-const float *pelt__fur_gpu_tips(const pelt_fur *fur, unsigned *version);
-
-/* The groom (core/fur/groom.h): one pelt__groom_vertex per mesh vertex,
- * *stride bytes apart. */
-const void *pelt__fur_gpu_groom(const pelt_fur *fur, size_t *stride);
+/* Fills *out from the fur; cheap (no copy of any array), once a frame or
+ * wherever a renderer needs it. */
+void pelt__fur_gpu_snapshot(const pelt_fur *fur, pelt__fur_snapshot *out);
 
 /* Takes the range of vertices [range[0], range[1]) whose groom changed
  * since the last take; false when nothing changed. */
@@ -117,29 +123,11 @@ typedef struct pelt__fin_frame_desc {
 size_t pelt__fur_gpu_fin_frame(const pelt_fur *fur, const pelt__fin_frame_desc *d, uint32_t *fins,
                                float *vertices, unsigned *rows);
 
-/* The shell geometry levels (core/fur/lod.h), level 0 the full mesh in
- * vertex-cache order, each level with its fins. */
-const pelt__lod_chain *pelt__fur_gpu_lod(const pelt_fur *fur);
-const uint8_t *pelt__fur_gpu_fin_texture(const pelt_fur *fur, unsigned *width, unsigned *height);
-
 /* Lengyel et al.'s §2.4 hair lighting table for the fur's material
  * (core/fur/shading.h: pelt__lengyel_table): 32x32 texels of (diffuse,
  * specular). */
 #define PELT__FUR_GPU_LIGHT_TABLE 32
 void pelt__fur_gpu_light_table(const pelt_fur *fur, float *out);
-
-/* The colour texture, RGBA8 width x height, or NULL when none was set;
- * *version changes whenever it is set. */
-const uint8_t *pelt__fur_gpu_color(const pelt_fur *fur, unsigned *width, unsigned *height,
-                                   unsigned *version);
-
-/* The wetness mask (Silva et al. §3.1, core/wet/mask.h): width x height
- * texels of 4 floats (clump centre, radius, wetness), row 0 at v = 0. */
-const float *pelt__fur_gpu_mask(const pelt_fur *fur, unsigned *width, unsigned *height);
-
-/* False when every texel of the mask is dry: the shells then need no
- * clump lookups (the shell pass's dry variant). */
-bool pelt__fur_gpu_any_wet(const pelt_fur *fur);
 
 /* Takes the rectangle of mask texels changed since the last take,
  * rect = {x0, y0, x1, y1} (x1, y1 exclusive); false when nothing changed. */

@@ -27,8 +27,10 @@ static int cmp_centre(const void *a, const void *b)
  * clumps Alg. 2 draws. */
 static size_t distinct_clumps(const pelt_fur *fur)
 {
-    unsigned w, h;
-    const float *m = pelt__fur_gpu_mask(fur, &w, &h);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    unsigned w = fs.mask_width, h = fs.mask_height;
+    const float *m = fs.mask;
     float *c = malloc((size_t)w * h * 2 * sizeof *c);
     size_t n = 0;
     for (size_t i = 0; c && i < (size_t)w * h; i++)
@@ -116,8 +118,10 @@ static void overlapping_droplets_keep_whole_clumps_across_the_seam(void)
         pelt_droplet d = {{0.0f, 0.125f * (float)i}, 0.06f, 1.0f};
         pelt_fur_add_droplet(fur, &d, NULL);
     }
-    unsigned w, h;
-    const float *m = pelt__fur_gpu_mask(fur, &w, &h);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    unsigned w = fs.mask_width, h = fs.mask_height;
+    const float *m = fs.mask;
     size_t wet = 0, outside = 0, seam = 0;
     float worst = 0.0f;
     for (unsigned y = 0; y < h; y++)
@@ -155,8 +159,10 @@ static void a_second_droplet_keeps_the_first_ones_clumps(void)
     if (!fur) return;
     pelt_droplet a = {{0.35f, 0.5f}, 0.25f, 1.0f}, b = {{0.65f, 0.5f}, 0.25f, 1.0f};
     pelt_fur_add_droplet(fur, &a, NULL);
-    unsigned w, h;
-    const float *m = pelt__fur_gpu_mask(fur, &w, &h);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    unsigned w = fs.mask_width, h = fs.mask_height;
+    const float *m = fs.mask;
     size_t n = (size_t)w * h;
     float *before = malloc(n * 4 * sizeof *before);
     CHECK(before != NULL);

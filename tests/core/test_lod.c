@@ -195,7 +195,9 @@ static void lod_fins_closer_than_their_slab_fade(void)
  * curl radius) needs more the smaller the error, never more than asked. */
 static unsigned fin_rows_for(pelt_fur *fur, float row_error)
 {
-    const pelt__lod_level *l = &pelt__fur_gpu_lod(fur)->levels[0];
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    const pelt__lod_level *l = &fs.lod->levels[0];
     uint32_t *fins = malloc(l->fin_count * 4 * sizeof *fins);
     float *verts = malloc(l->fin_vertex_count * 4 * PELT__FIN_VERTEX_TEXELS * sizeof *verts);
     pelt__fin_frame_desc fd = {0, 3, row_error, {0.0f, 0.0f, -1.0f}, false};
@@ -242,7 +244,9 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
         pelt_mesh_destroy(m);
         return;
     }
-    const pelt__lod_chain *c = pelt__fur_gpu_lod(fur);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    const pelt__lod_chain *c = fs.lod;
     const pelt__lod_level *l = &c->levels[0];
     uint32_t *fins = malloc(l->fin_count * 4 * sizeof *fins);
     float *verts = malloc(l->fin_vertex_count * 4 * PELT__FIN_VERTEX_TEXELS * sizeof *verts);

@@ -145,8 +145,9 @@ static void tips_trail_a_turning_bone(void)
             pelt_fur_set_pose(fur, p, nrm, tan, NULL);
             pelt_fur_step(fur, phase == 0 ? 1.0f / 60.0f : 0.1f, &still);
         }
-        unsigned version;
-        const float *tips = pelt__fur_gpu_tips(fur, &version);
+        pelt__fur_snapshot fs;
+        pelt__fur_gpu_snapshot(fur, &fs);
+        const float *tips = fs.tips;
         /* Upper's vertices move along +Z x (p - (0, 1, 0)); a lagging tip
            leans against that. */
         double sum = 0.0;

@@ -54,20 +54,21 @@ static bool all_finite(const float *v, size_t n, size_t *bad)
 /* Every strand tip, groom value and mask texel is a finite number. */
 static bool fur_is_finite(const pelt_fur *fur, long step)
 {
-    const pelt_mesh_data md = pelt_mesh_get_data(pelt__fur_gpu_mesh(fur));
-    unsigned version, w, h;
-    size_t bad, stride;
-    const float *tips = pelt__fur_gpu_tips(fur, &version);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    const pelt_mesh_data md = pelt_mesh_get_data(fs.mesh);
+    size_t bad, stride = fs.groom_stride;
+    const float *tips = fs.tips;
     if (!all_finite(tips, 3 * md.vertex_count, &bad)) {
         fprintf(stderr, "soak: step %ld: strand tip %zu is %g\n", step, bad / 3, tips[bad]);
         return false;
     }
-    const float *mask = pelt__fur_gpu_mask(fur, &w, &h);
-    if (!all_finite(mask, 4 * (size_t)w * h, &bad)) {
+    const float *mask = fs.mask;
+    if (!all_finite(mask, 4 * (size_t)fs.mask_width * fs.mask_height, &bad)) {
         fprintf(stderr, "soak: step %ld: mask texel %zu is %g\n", step, bad / 4, mask[bad]);
         return false;
     }
-    const unsigned char *groom = pelt__fur_gpu_groom(fur, &stride);
+    const unsigned char *groom = fs.groom;
     for (size_t v = 0; v < md.vertex_count; v++) {
         const pelt__groom_vertex *g = (const pelt__groom_vertex *)(groom + v * stride);
         float f[4] = {g->length, g->density, g->lean[0], g->lean[1]};
