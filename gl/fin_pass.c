@@ -52,8 +52,8 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     return PELT_OK;
 }
 
-pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_hooks *hooks,
-                                  pelt_error *err)
+pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__fur_snapshot *fs,
+                                  const pelt_hooks *hooks, pelt_error *err)
 {
     memset(p, 0, sizeof *p);
     p->hooks = *hooks;
@@ -62,14 +62,11 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
 
     /* The fin texture: repeats along the fin, clamped at root and tip. */
     pelt__gl_unpack_defaults();
-    pelt__fur_snapshot fs;
-    pelt__fur_gpu_snapshot(fur, &fs);
-    unsigned w = fs.fin_width, h = fs.fin_height;
-    const uint8_t *texels = fs.fin_texture;
     glGenTextures(1, &p->texture);
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
     glBindTexture(GL_TEXTURE_2D, p->texture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)w, (GLsizei)h, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)fs->fin_width, (GLsizei)fs->fin_height, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, fs->fin_texture);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
@@ -80,7 +77,7 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_h
     _Static_assert(PELT__FIN_HEIGHTS == PELT_FIN_HEIGHTS && PELT__FIN_VERTEX_TEXELS == PELT_FIN_VERTEX_TEXELS &&
                        PELT_FIN_ROWS < PELT_FIN_HEIGHTS,
                    "core/fur/fur_gpu.h and bindings.glsl agree on the fin vertices");
-    const pelt__lod_chain *lod = fs.lod;
+    const pelt__lod_chain *lod = fs->lod;
     size_t most = 0, most_vertices = 0;
     for (unsigned k = 0; k < lod->count; k++) {
         if (lod->levels[k].fin_count > most) most = lod->levels[k].fin_count;

@@ -90,7 +90,7 @@ typedef struct pelt__gpu_fur {
     unsigned color_version;
 } pelt__gpu_fur;
 
-void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur);
+void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs);
 /* Uploads a new colour texture and the changed rectangle of the mask;
  * returns bytes sent. */
 size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs);

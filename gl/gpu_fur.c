@@ -15,11 +15,10 @@ static void bind(GLenum unit, GLenum target, GLuint texture)
     glBindTexture(target, texture);
 }
 
-void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur)
+void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *snap)
 {
     pelt__gl_unpack_defaults();
-    pelt__fur_snapshot fs;
-    pelt__fur_gpu_snapshot(fur, &fs);
+    const pelt__fur_snapshot fs = *snap;
     unsigned size = fs.volume_size, slices = fs.volume_slices;
     const uint8_t *volume = fs.volume;
     glGenTextures(1, &g->volume);

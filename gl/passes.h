@@ -77,8 +77,8 @@ typedef struct pelt__fin_pass {
     pelt_allocator alloc;
 } pelt__fin_pass;
 
-pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt_hooks *hooks,
-                                  pelt_error *err);
+pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__fur_snapshot *fs,
+                                  const pelt_hooks *hooks, pelt_error *err);
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f);
 void pelt__fin_pass_destroy(pelt__fin_pass *p);
 

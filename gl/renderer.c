@@ -55,12 +55,12 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
 
     pelt_status st = pelt__skin_pass_create(&r->skin, &hooks, err);
     if (st == PELT_OK) st = pelt__shell_pass_create(&r->shells, &hooks, err);
-    if (st == PELT_OK) st = pelt__fin_pass_create(&r->fins, fur, &hooks, err);
+    if (st == PELT_OK) st = pelt__fin_pass_create(&r->fins, fur, &fs, &hooks, err);
     if (st == PELT_OK) st = pelt__shadow_pass_create(&r->shadow, &hooks, err);
     if (st == PELT_OK) st = pelt__ground_pass_create(&r->ground, &hooks, err);
     if (st == PELT_OK) st = pelt__gpu_mesh_create(&r->mesh, mesh, fur, &hooks, err);
     if (st == PELT_OK) {
-        pelt__gpu_fur_create(&r->textures, fur);
+        pelt__gpu_fur_create(&r->textures, fur, &fs);
         pelt__gpu_blocks_create(&r->blocks);
         pelt__gpu_blocks_set_fur(&r->blocks, fur, &fs);
     }

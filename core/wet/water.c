@@ -40,12 +40,9 @@ pelt_status pelt__water_create(const pelt_mesh *mesh, const pelt__bvh *bvh, cons
                                       &w->cells, err);
     if (st == PELT_OK) st = pelt__surface_index_create(mesh, a, &w->surface, err);
     if (st == PELT_OK) st = pelt__rain_create(mesh, a, &w->rain, err);
-    if (st != PELT_OK) {
-        pelt__water_destroy(w);
-        return st;
-    }
-    *out = w;
-    return PELT_OK;
+    if (st == PELT_OK) *out = w;
+    else pelt__water_destroy(w);
+    return st;
 }
 
 void pelt__water_destroy(pelt__water *w)

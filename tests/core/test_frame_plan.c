@@ -38,22 +38,23 @@ static pelt__frame_setup setup_with(bool shadows, bool ground)
     return s;
 }
 
-static pelt_fur *torus_fur(pelt_mesh **mesh, const pelt_fur_desc *d)
+/* Runs a test on fur of desc d over a 48 x 24 torus. */
+static void on_torus(pelt_fur_desc d, void (*test)(pelt_fur *fur, const pelt_mesh *m))
 {
+    pelt_mesh *m = NULL;
     pelt_fur *fur = NULL;
-    CHECK(pelt_mesh_torus(1.0f, 0.4f, 48, 24, mesh, NULL) == PELT_OK);
-    CHECK(*mesh && pelt_fur_create(*mesh, d, &fur, NULL) == PELT_OK);
-    return fur;
+    CHECK(pelt_mesh_torus(1.0f, 0.4f, 48, 24, &m, NULL) == PELT_OK);
+    CHECK(m && pelt_fur_create(m, &d, &fur, NULL) == PELT_OK);
+    if (fur) test(fur, m);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
 }
 
 /* Further away, the fur is shorter on screen: the shell level never gets
  * finer and ends coarser; the mesh level likewise. */
-static void levels_of_detail_follow_the_distance(void)
+static void levels_of_detail_follow_the_distance(pelt_fur *fur, const pelt_mesh *m)
 {
-    pelt_mesh *m = NULL;
-    pelt_fur_desc d = {.layers = 32, .look.texture_size = 32};
-    pelt_fur *fur = torus_fur(&m, &d);
-    if (!fur) return;
+    (void)m;
     const pelt__frame_setup setup = setup_with(false, false);
     pelt__ground_cache cache = {0};
     unsigned last_shell = 0, last_mesh = 0;
@@ -77,18 +78,12 @@ static void levels_of_detail_follow_the_distance(void)
     pelt_view far = view_at(400.0f);
     pelt__frame_plan_make(fur, &far, &one, &setup, &cache, &p);
     CHECK(p.lod.shell_level == 0 && p.lod.shell_blend == 0.0f);
-    pelt_fur_destroy(fur);
-    pelt_mesh_destroy(m);
 }
 
 /* The light's maps run only when they are on, made and not switched off;
  * then every point of the fur's reach projects inside the maps. */
-static void the_light_frame_holds_the_fur(void)
+static void the_light_frame_holds_the_fur(pelt_fur *fur, const pelt_mesh *m)
 {
-    pelt_mesh *m = NULL;
-    pelt_fur_desc d = {.look.texture_size = 32};
-    pelt_fur *fur = torus_fur(&m, &d);
-    if (!fur) return;
     pelt__ground_cache cache = {0};
     pelt_view v = view_at(5.0f);
     pelt__frame_plan p;
@@ -120,22 +115,19 @@ static void the_light_frame_holds_the_fur(void)
         if (!(s >= 0.0f && s <= 1.0f && t >= 0.0f && t <= 1.0f && dd >= 0.0f && dd <= 1.0f)) outside++;
     }
     CHECK(outside == 0);
-    pelt_fur_destroy(fur);
-    pelt_mesh_destroy(m);
 }
 
 /* The ground disc lies at the mesh's lowest point under its centre; a
  * lifted model lifts it. */
-static void the_ground_lies_under_the_mesh(void)
+static void the_ground_lies_under_the_mesh(pelt_fur *fur, const pelt_mesh *m)
 {
-    pelt_mesh *m = NULL;
-    pelt_fur_desc d = {.look.texture_size = 32};
-    pelt_fur *fur = torus_fur(&m, &d);
-    if (!fur) return;
+    (void)m;
     pelt__ground_cache cache = {0};
     pelt_view v = view_at(5.0f);
-    const pelt__frame_setup setup = setup_with(false, true);
+    const pelt__frame_setup setup = setup_with(false, true), none = setup_with(false, false);
     pelt__frame_plan p;
+    pelt__frame_plan_make(fur, &v, &everything, &none, &cache, &p);
+    CHECK(!p.ground);
     pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
     CHECK(p.ground);
     CHECK_NEAR(p.disc[1], -0.4, 1e-5); /* the torus's tube radius below its plane */
@@ -144,23 +136,15 @@ static void the_ground_lies_under_the_mesh(void)
     v.model[13] = 2.0f;
     pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
     CHECK_NEAR(p.disc[1], 1.6, 1e-5);
-    const pelt__frame_setup none = setup_with(false, false);
-    pelt__frame_plan_make(fur, &v, &everything, &none, &cache, &p);
-    CHECK(!p.ground);
-    pelt_fur_destroy(fur);
-    pelt_mesh_destroy(m);
 }
 
 /* The shader's features and the passes follow the fur and the switches. */
-static void features_and_passes_follow_the_switches(void)
+static void features_and_passes_follow_the_switches(pelt_fur *fur, const pelt_mesh *m)
 {
-    pelt_mesh *m = NULL;
-    pelt_fur_desc d = {.look.texture_size = 32, .look.inter_shadow = true};
-    pelt_fur *fur = torus_fur(&m, &d);
-    if (!fur) return;
-    pelt__ground_cache cache = {0};
-    pelt_view v = view_at(5.0f);
+    (void)m;
     const pelt__frame_setup setup = setup_with(false, false);
+    pelt_view v = view_at(5.0f);
+    pelt__ground_cache cache = {0};
     pelt__frame_plan p;
     pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
     CHECK(p.skin && p.fins && p.shells && !p.gpu_skin);
@@ -184,15 +168,18 @@ static void features_and_passes_follow_the_switches(void)
     pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
     CHECK(p.shell_features & PELT__SHELL_WET);
     CHECK(p.light_pass.features == 0); /* no light pass this frame */
-    pelt_fur_destroy(fur);
-    pelt_mesh_destroy(m);
 }
+
+static void run_levels_of_detail_follow_the_distance(void) { on_torus((pelt_fur_desc){.layers = 32, .look.texture_size = 32}, levels_of_detail_follow_the_distance); }
+static void run_the_light_frame_holds_the_fur(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, the_light_frame_holds_the_fur); }
+static void run_the_ground_lies_under_the_mesh(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, the_ground_lies_under_the_mesh); }
+static void run_features_and_passes_follow_the_switches(void) { on_torus((pelt_fur_desc){.look.texture_size = 32, .look.inter_shadow = true}, features_and_passes_follow_the_switches); }
 
 int main(void)
 {
-    RUN(levels_of_detail_follow_the_distance);
-    RUN(the_light_frame_holds_the_fur);
-    RUN(the_ground_lies_under_the_mesh);
-    RUN(features_and_passes_follow_the_switches);
+    RUN(run_levels_of_detail_follow_the_distance);
+    RUN(run_the_light_frame_holds_the_fur);
+    RUN(run_the_ground_lies_under_the_mesh);
+    RUN(run_features_and_passes_follow_the_switches);
     return check_summary();
 }

@@ -48,6 +48,8 @@ typedef struct sky {
     pelt__surface_index *index;
     pelt__bvh *bvh;
     pelt__wetness *mask;
+    pelt__rain *rains[4]; /* made by make_rain, freed by sky_free */
+    int rain_count;
 } sky;
 
 static bool sky_make(sky *s, const quad *q, size_t n, unsigned mask_size)
@@ -63,16 +65,19 @@ static bool sky_make(sky *s, const quad *q, size_t n, unsigned mask_size)
 
 static void sky_free(sky *s)
 {
+    for (int i = 0; i < s->rain_count; i++) pelt__rain_destroy(s->rains[i]);
     pelt__wetness_destroy(s->mask);
     pelt__bvh_destroy(s->bvh);
     pelt__surface_index_destroy(s->index);
     pelt_mesh_destroy(s->mesh);
 }
 
-static pelt__rain *make_rain(const sky *s, const pelt_rain *settings)
+/* Rain over the sky's mesh, kept with the sky. */
+static pelt__rain *make_rain(sky *s, const pelt_rain *settings)
 {
     pelt__rain *r = NULL;
-    CHECK(pelt__rain_create(s->mesh, NULL, &r, NULL) == PELT_OK);
+    CHECK(s->rain_count < 4 && pelt__rain_create(s->mesh, NULL, &r, NULL) == PELT_OK);
+    if (r) s->rains[s->rain_count++] = r;
     if (r && settings) pelt__rain_set(r, settings);
     return r;
 }
@@ -101,9 +106,6 @@ static void rain_is_deterministic_per_seed(void)
     }
     CHECK(memcmp(a.mask->texels, b.mask->texels, texel_bytes(a.mask)) == 0);
     CHECK(memcmp(a.mask->texels, c.mask->texels, texel_bytes(a.mask)) != 0);
-    pelt__rain_destroy(ra);
-    pelt__rain_destroy(rb);
-    pelt__rain_destroy(rc);
     sky_free(&a);
     sky_free(&b);
     sky_free(&c);
@@ -140,7 +142,6 @@ static void rain_rate_is_right_on_average_and_fractions_carry(void)
     pelt_rain none = {0};
     pelt__rain_set(r, &none);
     CHECK(pelt__rain_step(r, s.mask, s.index, s.bvh, 1.0f) == 0);
-    pelt__rain_destroy(r);
     sky_free(&s);
 }
 
@@ -154,7 +155,6 @@ static void rain_step_is_bounded(void)
     rain.rate = INFINITY;
     pelt__rain_set(r, &rain);
     CHECK(pelt__rain_step(r, s.mask, s.index, s.bvh, 1.0f) == 0);
-    pelt__rain_destroy(r);
     sky_free(&s);
 }
 
@@ -181,7 +181,6 @@ static void rain_falls_uniformly_over_the_bounds(void)
     CHECK_NEAR(sz / n, 0.5, 0.02);
     CHECK_NEAR(sxx / n, 1.0 / 3.0, 0.02);
     CHECK_NEAR(szz / n, 1.0 / 3.0, 0.02);
-    pelt__rain_destroy(r);
     sky_free(&s);
 }
 
@@ -205,7 +204,6 @@ static void rain_wets_only_what_it_falls_on(void)
         }
     CHECK(roof > 16 * 32 / 2);
     CHECK(floor_ == 0);
-    pelt__rain_destroy(r);
     sky_free(&s);
 }
 
@@ -232,7 +230,6 @@ static void rain_radius_converts_by_the_mean_uv_scale(void)
         CHECK(hypot(u - t[0], v - t[1]) <= 0.05 + 1e-6);
     }
     CHECK(wet > 0);
-    pelt__rain_destroy(r);
     sky_free(&s);
 }
 
@@ -257,9 +254,6 @@ static void rain_set_restarts_the_sequence_and_set_rate_keeps_it(void)
     pelt__rain_step(rc, c.mask, c.index, c.bvh, 1.0f);
     CHECK(memcmp(a.mask->texels, b.mask->texels, texel_bytes(a.mask)) == 0);
     CHECK(memcmp(a.mask->texels, c.mask->texels, texel_bytes(a.mask)) != 0);
-    pelt__rain_destroy(ra);
-    pelt__rain_destroy(rb);
-    pelt__rain_destroy(rc);
     sky_free(&a);
     sky_free(&b);
     sky_free(&c);
@@ -297,7 +291,6 @@ static void random_drops_land_by_area(void)
     }
     CHECK_NEAR((double)big / n, 0.8, 0.03);
     CHECK(big + small == n);
-    pelt__rain_destroy(r);
     sky_free(&s);
 }
 
@@ -325,9 +318,6 @@ static void random_drops_are_seeded_and_leave_the_rain_alone(void)
     pelt__rain_step(fresh, a.mask, a.index, a.bvh, 1.0f);
     pelt__rain_step(rb, b.mask, b.index, b.bvh, 1.0f);
     CHECK(memcmp(a.mask->texels, b.mask->texels, texel_bytes(a.mask)) == 0);
-    pelt__rain_destroy(fresh);
-    pelt__rain_destroy(ra);
-    pelt__rain_destroy(rb);
     pelt__wetness_destroy(scratch);
     sky_free(&a);
     sky_free(&b);

@@ -361,9 +361,7 @@ int main(void)
 {
     gl = gl_test_open(W, H, false);
     if (!gl) return check_skip("no OpenGL context");
-    CHECK(pelt_mesh_torus(1.0f, 0.4f, 78, 60, &torus, NULL) == PELT_OK);
-    CHECK(pelt_mesh_square(2.0f, 16, &square, NULL) == PELT_OK);
-    if (torus && square) {
+    if (gl_test_meshes(&torus, &square)) {
         RUN(wind_leans_fur_downwind);
         RUN(no_cracks_under_strong_wind);
         RUN(turntable_fur_lags_behind_motion);

@@ -85,14 +85,7 @@ static void shells_are_one_instanced_draw(void)
         pelt_view v;
         memset(&v, 0, sizeof v);
         pelt_camera_to_view(&torus_cam, (float)W / H, &v);
-        GLuint q;
-        glGenQueries(1, &q);
-        glBeginQuery(GL_PRIMITIVES_GENERATED, q);
-        pelt_renderer_draw(r, &v, &shells_only);
-        glEndQuery(GL_PRIMITIVES_GENERATED);
-        GLuint prims = 0;
-        glGetQueryObjectuiv(q, GL_QUERY_RESULT, &prims);
-        glDeleteQueries(1, &q);
+        unsigned prims = gl_test_draw_primitives(r, &v, &shells_only);
         pelt_render_stats st = pelt_renderer_get_stats(r);
         CHECK(st.shell_draw_calls == 1);
         CHECK(st.skin_draw_calls == 0);
@@ -782,9 +775,7 @@ int main(void)
 {
     gl = gl_test_open(W, H, false);
     if (!gl) return check_skip("no OpenGL context");
-    CHECK(pelt_mesh_torus(1.0f, 0.4f, 78, 60, &torus, NULL) == PELT_OK);
-    CHECK(pelt_mesh_square(2.0f, 16, &square, NULL) == PELT_OK);
-    if (torus && square) {
+    if (gl_test_meshes(&torus, &square)) {
         RUN(golden_torus_default_fur);
         RUN(golden_square_default_fur);
         RUN(fur_covers_beyond_bare_silhouette);

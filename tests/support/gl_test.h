@@ -69,6 +69,29 @@ static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, 
 }
 
 /* An RGBA8 pixel's largest channel difference from the background, 0..255. */
+/* The meshes most GL tests draw: the Table 1 torus (9,360 triangles) and
+ * a 2 x 2 square of 16 x 16 quads. */
+static inline bool gl_test_meshes(pelt_mesh **torus, pelt_mesh **square)
+{
+    CHECK(pelt_mesh_torus(1.0f, 0.4f, 78, 60, torus, NULL) == PELT_OK);
+    CHECK(pelt_mesh_square(2.0f, 16, square, NULL) == PELT_OK);
+    return *torus && *square;
+}
+
+/* Draws one frame and counts the primitives it generated (a
+ * GL_PRIMITIVES_GENERATED query around pelt_renderer_draw). */
+static inline unsigned gl_test_draw_primitives(pelt_renderer *r, const pelt_view *v, const pelt_draw_desc *d)
+{
+    GLuint q, prims = 0;
+    glGenQueries(1, &q);
+    glBeginQuery(GL_PRIMITIVES_GENERATED, q);
+    pelt_renderer_draw(r, v, d);
+    glEndQuery(GL_PRIMITIVES_GENERATED);
+    glGetQueryObjectuiv(q, GL_QUERY_RESULT, &prims);
+    glDeleteQueries(1, &q);
+    return prims;
+}
+
 static inline int gl_test_off_background(const uint8_t *px)
 {
     int d = 0;
