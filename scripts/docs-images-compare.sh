@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Compares the pictures rendered by scripts/docs-images.sh with the committed
 # ones: every OUTDIR/*.png against the picture of the same name in docs/images/
-# (or in REFDIR), with tests/tools/png_diff. One line per picture; exits 1 if
+# (or in REFDIR), with png_diff (tests/tools/png_diff.c). One line per picture; exits 1 if
 # any picture differs, is missing on either side, or cannot be read.
 #
 #   scripts/docs-images-compare.sh OUTDIR [REFDIR]
@@ -12,7 +12,7 @@
 #   PNG_DIFF        a built png_diff (default: compiled from tests/tools/png_diff.c
 #                   into a temporary directory with gcc)
 #   PNG_DIFF_FLAGS  tolerance flags passed on, e.g. "--max-mean 4 --max-frac 0.03"
-#                   (the golden-image tolerance of tests/test_render.c); default:
+#                   (the golden-image tolerance of tests/gl/test_render.c); default:
 #                   png_diff's own defaults (mean <= 1.0, at most 1% of pixels off by > 32)
 #   ALLOW_MISSING=1 a picture of REFDIR that OUTDIR lacks (e.g. skipped without the
 #                   CGAL archive) is reported but does not fail the comparison

@@ -12,7 +12,7 @@
 #   PELT_SOURCE_DIR  tree whose scenes/ and tests/data/ the commands read
 #                    (default: the checkout this script is in)
 #   CGAL_ARCHIVE     Debian libcgal-demo's mesh archive
-#                    (default /usr/share/doc/libcgal-dev/data.tar.gz, as tests/corpus.h)
+#                    (default /usr/share/doc/libcgal-dev/data.tar.gz, as tests/support/corpus.h)
 #   DOCS_IMAGES      space-separated subset of picture groups to render (default all):
 #                    default bunny_dry elephant bunny_combed elephant_combed
 #                    atlas_elephant atlas_bunny whirl bunny_wet bunny_rain word_in_water

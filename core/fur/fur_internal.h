@@ -15,7 +15,7 @@
 struct pelt_fur {
     pelt_fur_desc desc;      /* every default filled in */
     const pelt_mesh *mesh;
-    uint8_t *texture;        /* fur volume, see core/furtex.h: ringlet_levels
+    uint8_t *texture;        /* fur volume, see core/fur/furtex.h: ringlet_levels
                                 volumes of texture_slices slices, one after
                                 the other */
     unsigned texture_slices; /* layers + 1 */

@@ -1,6 +1,6 @@
 /* Mass-spring fur strands, one per mesh vertex: Silva et al. §3.2.1,
  * Eq. 2 (sum of forces = m p'') and Eq. 3 (hemisphere constraint). See
- * core/strand.h for units and docs/dynamics.md for the model. */
+ * core/fur/strand.h for units and docs/dynamics.md for the model. */
 #include "core/fur/strand.h"
 
 #include "core/base/error.h"

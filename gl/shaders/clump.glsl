@@ -1,5 +1,5 @@
 // Clump displacement: Silva et al. Eq. 5 and Alg. 2 as docs/wetness.md reads them.
-// The C reference is core/clump.c; keep the two in step. No #version line:
+// The C reference is core/wet/clump.c; keep the two in step. No #version line:
 // the renderer concatenates this into the shell fragment shader. Valid as
 // GLSL 3.30 core and GLSL ES 3.00 (needs a float precision in scope on ES).
 

@@ -1,5 +1,5 @@
 // Fur shape of Silva et al. §3.2 (Eq. 1 and 4), the same formulas and
-// argument order as the C references in core/fur_shape.c. No #version: the
+// argument order as the C references in core/fur/fur_shape.c. No #version: the
 // renderer concatenates this into the vertex shader (GLSL 3.30 core and
 // GLSL ES 3.00). h in [0, 1] is the normalised height, h = (1 + n) / N.
 

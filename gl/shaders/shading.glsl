@@ -1,5 +1,5 @@
 // Silva et al. Eq. 6 (Kajiya-Kay) and the shadow factor gamma; mirrored by
-// core/shading.c. E points from the eye towards the shaded point.
+// core/fur/shading.c. E points from the eye towards the shaded point.
 vec2 kajiya_kay(vec3 T, vec3 L, vec3 E, float p)
 {
     float tl = dot(T, L);

@@ -1,4 +1,4 @@
-/* The orbit camera and rays through pixels (core/camera.c). */
+/* The orbit camera and rays through pixels (core/base/camera.c). */
 #include "support/check.h"
 
 #include "pelt/render.h"

@@ -1,4 +1,4 @@
-/* Fur shape references (core/fur_shape.c): Silva et al. Eq. 1 (Bezier bend),
+/* Fur shape references (core/fur/fur_shape.c): Silva et al. Eq. 1 (Bezier bend),
  * Eq. 4 (curl) and the tangent of the displaced curve. */
 #include "support/check.h"
 

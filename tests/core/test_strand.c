@@ -1,4 +1,4 @@
-/* Mass-spring strands (core/strand.c): Silva et al. Eq. 2-3 invariants,
+/* Mass-spring strands (core/fur/strand.c): Silva et al. Eq. 2-3 invariants,
  * rest, wind, inertia, seams and bad input. */
 #include "support/check.h"
 

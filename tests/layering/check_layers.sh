@@ -98,7 +98,7 @@ self_test() {
     local victim
     victim=$(cd "$tmp" && find core/fur -name '*.c' | sort | head -1)
     expect_caught "$victim" '#include <epoxy/gl.h>' "a core file that includes <epoxy/gl.h>" || return 1
-    expect_caught core/base/vec.c '#include "gl/shader.h"' "core/base including gl/" || return 1
+    expect_caught core/base/vec.c '#include "gl/gpu.h"' "core/base including gl/" || return 1
     expect_caught core/wet/mask.c '#include "core/mesh/mesh_internal.h"' \
         "core/wet including core/mesh/mesh_internal.h" || return 1
     printf 'int b(int);\nint a(int x) { return x ? b(x - 1) : 0; }\n' >"$tmp/a.c"

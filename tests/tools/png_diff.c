@@ -7,14 +7,14 @@
  * the sizes match, the mean error <= M and the fraction <= F; 1 when they do
  * not; 2 on bad usage or an image that cannot be read (the message names it).
  *
- * Metric: the same as gl_test_golden() in tests/gl_test.h. Both images are
+ * Metric: the same as gl_test_golden() in tests/support/gl_test.h. Both images are
  * decoded to RGBA8; the mean is taken over the R, G and B channels of every
  * pixel together (sum / (3 * pixels)), alpha is ignored (printed for
  * information only); a pixel is "off" when its largest R/G/B difference is
  * greater than T.
  * Defaults: T = 32, the threshold gl_test_golden() hard-codes (not 16).
  * gl_test.h has no defaults for M and F (every caller passes its own; the
- * golden tests in tests/test_render.c use M = 4.0, F = 0.03, the cross-driver
+ * golden tests in tests/gl/test_render.c use M = 4.0, F = 0.03, the cross-driver
  * tolerance of docs/testing.md), so M = 1.0 and F = 0.01 here: tighter, for
  * "the same picture as before" on the same machine.
  *
