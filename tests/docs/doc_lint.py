@@ -73,13 +73,14 @@ def lint(root):
     for f in files:
         if not (f.endswith(TEXT) or os.path.basename(f) == "CMakeLists.txt"):
             continue
-        if f.startswith(("tests/data/", "tests/fuzz/corpus")) or f.startswith("tests/docs/fixture"):
+        # The test data, and this file, whose self-test plants what it must catch.
+        if f.startswith(("tests/data/", "tests/fuzz/corpus")) or f == "tests/docs/doc_lint.py":
             continue
         text = read(root, f)
         if text is None:
             continue
         for n, line in enumerate(text.split("\n"), 1):
-            if f != "tests/docs/doc_lint.py" and "DESIGN.md" in line:
+            if "DESIGN.md" in line:
                 problems.append("%s:%d: names DESIGN.md, which is not in the repository" % (f, n))
             if f.startswith("include/") and re.search(r"\bissue #?\d+|\bthe brief\b", line, re.I):
                 problems.append("%s:%d: says \"issue N\" or \"the brief\" in a public header" % (f, n))
