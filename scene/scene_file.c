@@ -220,7 +220,7 @@ static pelt_status read_list(const ctx *c, const char *key, const cJSON *v, cons
  * inside the embedded desc, its kind, range and whether 0 means default. */
 static bool resolve_param(const key_def *d, key_def *out)
 {
-    const pelt_param *p = pelt_fur_param(d->param);
+    const pelt_param *p = d->lookup ? d->lookup(d->param) : NULL;
     if (!p) return false;
     *out = *d;
     out->off = d->off + p->offset;

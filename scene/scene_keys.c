@@ -11,7 +11,6 @@
 static const char *const shape_names[] = {"torus", "sphere", "square", "file", NULL};
 static const char *const up_names[] = {"file", "+y", "-y", "+x", "-x", "+z", "-z", NULL};
 static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
-static const char *const atlas_names[] = {"auto", "mesh-uvs", "patches", NULL};
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
 static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
@@ -25,7 +24,9 @@ static const char *const tool_names[] = {"comb", "length", "color", "density", N
 #define ENUM(p, f, names) {p, K_ENUM, OFF(f), 0, 0, 0, 0, 0, names, NULL}
 /* A field of the embedded pelt_fur_desc: its range and default are the
  * library's row (pelt/params.h). */
-#define PARAM(p, name) {p, K_PARAM, OFF(fur), 0, 0, 0, 0, 0, NULL, name}
+#define PARAM(p, name) {p, K_PARAM, OFF(fur), 0, 0, 0, 0, 0, NULL, name, pelt_fur_param}
+/* A field of the embedded pelt_atlas_desc, as its row says. */
+#define ATLAS(p, name) {p, K_PARAM, OFF(atlas), 0, 0, 0, 0, 0, NULL, name, pelt_atlas_param}
 
 static const pelt__scene_key scene_keys[] = {
     ENUM("mesh.shape", mesh.shape, shape_names),
@@ -170,10 +171,10 @@ static const pelt__scene_key scene_keys[] = {
     PATH("wetness.mask_image", wetness.mask_image),
     FLT("wetness.mask_image_wetness", wetness.mask_image_wetness, -1, 1, 0),
 
-    ENUM("atlas.mode", atlas.mode, atlas_names),
-    FLT("atlas.texel_density", atlas.texel_density, 0, BIG, 0),
-    VEC("atlas.direction", atlas.direction, 3, -BIG, BIG, 0),
-    FLT("atlas.max_stretch", atlas.max_stretch, 1.1, BIG, F_ZERO_OK),
+    ATLAS("atlas.mode", "mode"),
+    ATLAS("atlas.texel_density", "texel_density"),
+    ATLAS("atlas.direction", "direction"),
+    ATLAS("atlas.max_stretch", "max_stretch"),
     ENUM("atlas.direction_from", atlas_direction_from, direction_names),
 };
 

@@ -4,6 +4,7 @@
 #ifndef PELT_SCENE_KEYS_H
 #define PELT_SCENE_KEYS_H
 
+#include "pelt/params.h"
 #include "pelt/scene.h"
 
 #include <stddef.h>
@@ -45,7 +46,8 @@ typedef struct pelt__scene_key {
     unsigned flags;
     unsigned count;           /* K_VEC */
     const char *const *names; /* K_ENUM; NULL-terminated */
-    const char *param;        /* K_PARAM: the row's name, pelt_fur_param */
+    const char *param;        /* K_PARAM: the row's name ... */
+    const pelt_param *(*lookup)(const char *name); /* ... in this table (pelt_fur_param) */
 } pelt__scene_key;
 
 typedef struct pelt__scene_keys {

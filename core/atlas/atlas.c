@@ -5,6 +5,7 @@
 #include "core/atlas/atlas_cache.h"
 #include "core/atlas/direction_field.h"
 #include "core/base/error.h"
+#include "core/base/params.h"
 #include "core/base/hooks.h"
 #include "core/base/weld.h"
 
@@ -429,17 +430,16 @@ pelt_status pelt_atlas_create(const pelt_mesh *in, const pelt_atlas_desc *desc,
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_atlas_create: the mesh has no triangles");
     if (m.triangle_count > UINT32_MAX / 3)
         return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_atlas_create: %zu triangles are too many", m.triangle_count);
-    if (d.mode < PELT_ATLAS_AUTO || d.mode > PELT_ATLAS_PATCHES)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_atlas_create: mode %d is not auto (0), mesh uvs (1) or patches (2)", d.mode);
-    if (!(d.texel_density >= 0.0f) || !isfinite(d.texel_density))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_atlas_create: texel_density %g must be >= 0", (double)d.texel_density);
-    if (!(d.max_stretch == 0.0f || d.max_stretch >= 1.1f) || !isfinite(d.max_stretch))
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_atlas_create: max_stretch %g must be 0 (default) or >= 1.1", (double)d.max_stretch);
-    if (d.mask_size > 16384)
-        return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_atlas_create: mask_size %u exceeds 16384", d.mask_size);
-    for (int k = 0; k < 3; k++)
-        if (!isfinite(d.direction[k]))
-            return pelt__fail(err, PELT_ERR_INVALID_ARGUMENT, "pelt_atlas_create: direction[%d] is not finite", k);
+    /* Every field in its row's range (core/atlas/atlas_params.c); a zero
+       stands for the row's default, derived ones below. */
+    size_t rows_n;
+    const pelt_param *rows = pelt_atlas_params(&rows_n);
+    pelt_atlas_desc checked = d;
+    pelt__params_defaults(rows, rows_n, &checked);
+    if (checked.mask_size == 0) checked.mask_size = 256;
+    if (checked.texel_density == 0.0f) checked.texel_density = 1.0f;
+    pelt_status pst = pelt__params_check(rows, rows_n, &checked, "pelt_atlas_create:", err);
+    if (pst != PELT_OK) return pst;
     unsigned mask = d.mask_size;
     if (mask == 0) {
         mask = 256;

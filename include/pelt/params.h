@@ -46,6 +46,11 @@ const pelt_param *pelt_fur_params(size_t *count);
  * or NULL. */
 const pelt_param *pelt_fur_param(const char *name);
 
+/* The rows of pelt_atlas_desc (pointers, the cache folder and hooks
+ * excepted), and one of them by name ("max_stretch"), or NULL. */
+const pelt_param *pelt_atlas_params(size_t *count);
+const pelt_param *pelt_atlas_param(const char *name);
+
 /* True when a zero in this field stands for its default. */
 bool pelt_param_zero_is_default(const pelt_param *p);
 

@@ -1,5 +1,6 @@
 /* Atlas: direction field, patches, packing, uv validation and the cache. */
 #include "pelt/atlas.h"
+#include "pelt/params.h"
 
 #include "support/check.h"
 #include "core/atlas/atlas_cache.h"
@@ -693,7 +694,7 @@ static void atlas_rejects_bad_desc_with_named_field(void)
     pelt_atlas *a = NULL;
     pelt_error err = {0};
     CHECK(pelt_atlas_create(m, &d, &a, &err) == PELT_ERR_INVALID_ARGUMENT);
-    CHECK(strstr(err.message, "mode 7") != NULL);
+    CHECK(strstr(err.message, "mode") != NULL && strstr(err.message, "got 7") != NULL);
     d.mode = 0, d.max_stretch = 0.5f;
     CHECK(pelt_atlas_create(m, &d, &a, &err) == PELT_ERR_INVALID_ARGUMENT);
     CHECK(strstr(err.message, "max_stretch") != NULL);
@@ -701,6 +702,25 @@ static void atlas_rejects_bad_desc_with_named_field(void)
     CHECK(pelt_atlas_create(m, &d, &a, &err) == PELT_ERR_INVALID_ARGUMENT);
     CHECK(strstr(err.message, "mask_size 8") != NULL);
     CHECK(a == NULL);
+    /* The rows' ranges (pelt/params.h), each refused by name just outside. */
+    const struct { const char *name; pelt_atlas_desc d; } outside[] = {
+        {"texel_density", {.texel_density = -1.0f}},
+        {"max_patch_faces", {.max_patch_faces = 1000001}},
+        {"smoothing_iterations", {.smoothing_iterations = 1001}},
+        {"mask_size", {.mask_size = 16385}},
+        {"max_stretch", {.max_stretch = 1.05f}},
+    };
+    for (size_t i = 0; i < sizeof outside / sizeof outside[0]; i++) {
+        CHECK(pelt_atlas_create(m, &outside[i].d, &a, &err) == PELT_ERR_INVALID_ARGUMENT && a == NULL);
+        CHECK(strstr(err.message, outside[i].name) != NULL);
+        CHECK(pelt_atlas_param(outside[i].name) != NULL);
+    }
+    size_t rows = 0;
+    const pelt_param *p = pelt_atlas_params(&rows);
+    for (size_t i = 0; i < rows; i++) {
+        if (!pelt_param_zero_is_default(&p[i]) || p[i].derived) continue;
+        CHECK(p[i].def[0] >= p[i].min && p[i].def[0] <= p[i].max); /* defaults in range */
+    }
     pelt_mesh_destroy(m);
 }
 

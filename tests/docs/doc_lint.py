@@ -31,7 +31,7 @@ TEXT = (".md", ".c", ".h", ".glsl", ".sh", ".txt", ".cmake", ".json", ".py", ".i
 
 def tree_files(root):
     try:
-        out = subprocess.run(["git", "-C", root, "ls-files"], capture_output=True, text=True, check=True).stdout
+        out = subprocess.run(["git", "-C", root, "ls-files", "--cached", "--others", "--exclude-standard"], capture_output=True, text=True, check=True).stdout
         files = [f for f in out.split("\n") if f]
         if files:
             return files
