@@ -134,7 +134,6 @@ typedef struct pelt_scene_wetness {
     float mask_image_wetness;
 } pelt_scene_wetness;
 
-
 /* What the mesh file's vertex colours are, besides a possible flow map
  * for the atlas (atlas.direction_from). */
 typedef enum pelt_vertex_colors_use {
@@ -179,7 +178,6 @@ typedef enum pelt_direction_source {
     PELT_DIRECTION_VERTEX_COLORS /* the mesh's vertex colours as a flow map */
 } pelt_direction_source;
 
-
 /* A whole scene. Plain data: copy it freely, but the three arrays
  * (wetness.droplets, animation.wind_keys, groom.strokes) are owned by exactly one copy,
  * which pelt_scene_free releases. */
@@ -189,9 +187,9 @@ typedef struct pelt_scene {
        (docs/scene-format.md): "fur.*" -> layers, length, seed, look.*,
        comb.slant; "dynamics.*" -> dynamics.*; "wetness.mask_size",
        "wetness.clump_*", "wetness.darken" -> wet.*; "texture.scale" ->
-       look.color_scale. Defaults: layers 16, look.texture_size 256 (Table
-       1), look.color_scale 1, wet as pelt_fur_create's; the rest 0 =
-       pelt_fur_create's defaults. */
+       look.color_scale. Left zero by pelt_scene_defaults: pelt_fur_create
+       fills each field from its row (pelt/params.h, Table 1's 16 layers and
+       256 x 256 texture among them). */
     pelt_fur_desc fur;
     /* One of the curl looks of Silva Fig. 7: "straight", "wavy",
        "few-large-curls", "many-small-curls" (also spelt "large_curls",
