@@ -2,6 +2,8 @@
  * (set through pelt_scene_set, so flags and scene files validate alike). */
 #include "apps/cli.h"
 
+#include "pelt/params.h"
+
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -76,8 +78,7 @@ static const flag flags[] = {
     {"--gravity", NULL, "X,Y,Z", FLAG_VEC3, "forces.gravity", "gravity (default 0,-9.81,0)"},
     {"--curl-frequency", NULL, "W", FLAG_KEY, "fur.curl_frequency", "curl frequency omega (Silva Eq. 4)"},
     {"--curl-radius", NULL, "K", FLAG_KEY, "fur.curl_radius", "curl radius K_alpha in world units (Silva Eq. 4)"},
-    {"--preset", NULL, "NAME", FLAG_KEY, "fur.preset", "straight, wavy, few-large-curls, many-small-curls",
-     "straight wavy few-large-curls many-small-curls"},
+    {"--preset", NULL, "NAME", FLAG_KEY, "fur.preset", NULL, NULL}, /* help: the library's curl looks */
     {"--drops", NULL, "N", FLAG_KEY, "wetness.drops.count", "N random droplets at the start"},
     {"--rain", NULL, "RATE", FLAG_KEY, "wetness.rain.rate", "droplets per second"},
     {"--dry-rate", NULL, "R", FLAG_KEY, "wetness.dry_rate", "wetness lost per second"},
@@ -125,6 +126,18 @@ bool cli_scene_flag(size_t i, cli_flag_doc *out)
     if (i >= FLAG_COUNT) return false;
     const flag *f = &flags[i];
     *out = (cli_flag_doc){f->name, f->alias, f->metavar, f->help, f->values};
+    if (f->key && strcmp(f->key, "fur.preset") == 0) {
+        /* The curl looks' names come from the library's one list. */
+        static char help[160], words[160];
+        size_t h = 0, w = 0;
+        for (int k = 0; pelt_curl_preset_names[k]; k++) {
+            h += (size_t)snprintf(help + h, sizeof help - h, "%s%s", k ? ", " : "a curl look: ",
+                                  pelt_curl_preset_names[k]);
+            w += (size_t)snprintf(words + w, sizeof words - w, "%s%s", k ? " " : "", pelt_curl_preset_names[k]);
+        }
+        out->help = help;
+        out->values = words;
+    }
     return true;
 }
 
