@@ -1,16 +1,17 @@
 /* The passes of one frame (Lengyel et al. 2001 §2.3, Silva et al. §4), one
- * file each: gl/skin_pass.c, gl/shell_pass.c. renderer.c binds the shared
- * objects of gl/gpu.h (VAO, textures, uniform blocks), runs the passes in
- * order, then resets GL state as pelt/render.h states.
+ * file each: gl/skin_pass.c, gl/shell_pass.c, ... renderer.c plans the
+ * frame (core/fur/frame_plan.c), binds the shared objects of gl/gpu.h (VAO,
+ * textures, uniform blocks), runs its table of passes in order, then resets
+ * GL state as pelt/render.h states.
  *
- * To add a pass (fins, shadow maps, level of detail): its shaders as
- * gl/shaders/NAME_vs.glsl and NAME_fs.glsl (listed in PELT_SHADERS of
- * CMakeLists.txt, declared in gl/programs.h), a gl/NAME_pass.c with
- * create / draw / destroy as below (build its program with
- * pelt__gl_program_create, set its own state and its own few uniforms in
- * draw, count its draw calls in the stats), its struct in pelt_renderer
- * and its call in pelt_renderer_draw in frame order. A new attribute,
- * texture unit or uniform block gets its number in shaders/bindings.glsl. */
+ * To add a pass: its shaders as gl/shaders/NAME_vs.glsl and NAME_fs.glsl
+ * (listed in PELT_SHADERS of CMakeLists.txt, declared in gl/programs.h), a
+ * gl/NAME_pass.c with create / draw / destroy as below (build its program
+ * with pelt__gl_program_create, set its own state and its own few uniforms
+ * in draw, count its draw calls in the stats), its state in pelt_renderer
+ * and a row in renderer.c's pass table, run when the frame plan says so. A
+ * new attribute, texture unit or uniform block gets its number in
+ * shaders/bindings.glsl. */
 #ifndef PELT_GL_PASSES_H
 #define PELT_GL_PASSES_H
 
