@@ -52,10 +52,11 @@ bool cli_atlas_flag(size_t i, cli_flag_doc *out);
 
 #define CLI_MAX_DROPS 64
 
-/* Options shared by render and bench, parsed into a scene. */
+/* Options shared by render, bench and compare, parsed into a scene. */
 typedef struct cli_options {
     pelt_scene scene;
     const char *output;    /* -o FILE or pattern with %d / %0Nd */
+    bool output_set;       /* -o was given (compare writes a picture only then) */
     const char *mask_out;  /* --mask-out FILE */
     const char *groom_out; /* --save-groom FILE */
     unsigned warmup;       /* bench */
@@ -67,6 +68,7 @@ typedef struct cli_options {
     bool bench_brush;      /* bench --brush */
     bool bench_floor;      /* bench --floor */
     bool bench_dolly;      /* bench --dolly */
+    float fur_px;          /* compare --fur-px; 0: from the camera */
     bool quiet;
 } cli_options;
 
@@ -117,6 +119,7 @@ int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_atlas(int argc, char **argv);
+int cmd_compare(int argc, char **argv);    /* apps/cmd_compare.c */
 int cmd_view(int argc, char **argv);       /* apps/cmd_view.c */
 bool cli_view_flag(size_t i, cli_flag_doc *out); /* render's flags and the viewer's */
 int cmd_completion(int argc, char **argv); /* apps/completion.c */

@@ -35,6 +35,7 @@ typedef enum flag_kind {
     FLAG_BRUSH,
     FLAG_FLOOR,
     FLAG_DOLLY,
+    FLAG_FUR_PX,
     FLAG_QUIET
 } flag_kind;
 
@@ -115,6 +116,9 @@ static const flag flags[] = {
      "bench: also time the frame with a one-fetch shell shader, with and without the fins, alternated (the floor)"},
     {"--dolly", NULL, NULL, FLAG_DOLLY, NULL,
      "bench: time the frame as the camera backs away to 16x its distance (level of detail)"},
+    {"--fur-px", NULL, "PX", FLAG_FUR_PX, NULL,
+     "compare: the fur's length in pixels at the outline, for the stripe energy "
+     "(default: from the camera, the fur length and the mean groomed length)"},
     {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
 };
 
@@ -227,6 +231,7 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     }
     case FLAG_OUTPUT:
         o->output = value;
+        o->output_set = true;
         return true;
     case FLAG_MASK_OUT:
         o->mask_out = value;
@@ -276,6 +281,17 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     case FLAG_DROPLETS:
         o->bench_droplets = true;
         return true;
+    case FLAG_FUR_PX: {
+        char *end;
+        errno = 0;
+        float v = strtof(value, &end);
+        if (end == value || *end || errno || !isfinite(v) || !(v > 0.0f) || v > 4096.0f) {
+            cli_error(cmd, "--fur-px '%s': expected a number of pixels in (0, 4096]", value);
+            return false;
+        }
+        o->fur_px = v;
+        return true;
+    }
     case FLAG_QUIET:
         o->quiet = true;
         return true;
