@@ -258,7 +258,7 @@ double pelt__stripe_energy(const uint8_t *rgba, unsigned w, unsigned h, const fl
     if (f > 0.5) f = 1.0 - f;
     if (folded) *folded = f;
     size_t n = fur_px >= 1.0f && fur_px < STRIPE_MAX_SAMPLES ? (size_t)fur_px : 0;
-    if (!isfinite(frequency) || n < 4 || f * (double)n < 1.5) return NAN;
+    if (!isfinite(frequency) || n < 4 || f * (double)n < 2.0) return NAN;
     double x[STRIPE_MAX_SAMPLES];
     double total = 0.0;
     size_t profiles = 0;

@@ -47,7 +47,7 @@ void pelt__silhouette_profile(const uint8_t *rgba, unsigned w, unsigned h, const
  * outline's normals through the fur band, averaged over the normals:
  * each profile starts at a skin pixel of the outline and runs fur_px
  * pixels out. `frequency` is folded into [0, 0.5] (what pixels can hold);
- * NaN when the folded frequency makes fewer than 1.5 cycles over the
+ * NaN when the folded frequency makes fewer than 2 cycles over the
  * profile, or no profile fits in the picture. *folded gets the frequency
  * measured (may be NULL). */
 double pelt__stripe_energy(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
