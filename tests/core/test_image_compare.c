@@ -214,6 +214,49 @@ static void compare_images_measures_shells_against_strands(void)
     CHECK(strstr(err.message, "22x22") != NULL);
 }
 
+/* An allocator that refuses every allocation after the first `budget`,
+ * and counts what is still out. */
+typedef struct budget {
+    int budget, live;
+} budget;
+
+static void *budget_alloc(size_t size, void *user)
+{
+    budget *b = user;
+    if (b->budget-- <= 0) return NULL;
+    b->live++;
+    return malloc(size);
+}
+
+static void budget_free(void *ptr, void *user)
+{
+    budget *b = user;
+    if (ptr) b->live--;
+    free(ptr);
+}
+
+static void compare_images_fails_cleanly_without_memory(void)
+{
+    static uint8_t skin[W * H * 4], shells[W * H * 4];
+    disc(skin, 48, 40, 20, 200);
+    disc(shells, 48, 40, 23, 200);
+    int ok_at = -1;
+    for (int n = 0; n < 16 && ok_at < 0; n++) {
+        budget b = {n, 0};
+        pelt_compare_desc d = {.shells = {shells, W, H}, .strands = {shells, W, H},
+                               .skin = {skin, W, H}, .fur_px = 10.0f, .layers = 4,
+                               .allocator = {budget_alloc, budget_free, &b}};
+        memcpy(d.background, bg, 3);
+        pelt_compare_result r;
+        pelt_error err = {0};
+        pelt_status st = pelt_compare_images(&d, &r, &err);
+        CHECK(st == PELT_OK || (st == PELT_ERR_OUT_OF_MEMORY && strstr(err.message, "memory")));
+        CHECK(b.live == 0);
+        if (st == PELT_OK) ok_at = n;
+    }
+    CHECK(ok_at > 0); /* it does allocate, through the hooks, and then succeeds */
+}
+
 int main(void)
 {
     RUN(identical_pictures_have_ssim_1_and_mae_0);
@@ -223,5 +266,6 @@ int main(void)
     RUN(striped_rim_has_more_stripe_energy_than_smooth);
     RUN(mean_luminance_uses_bt601_weights_and_the_mask);
     RUN(compare_images_measures_shells_against_strands);
+    RUN(compare_images_fails_cleanly_without_memory);
     return check_summary();
 }
