@@ -10,30 +10,6 @@
 /* The difference picture shows |shells - strands| this many times over. */
 #define DIFF_GAIN 4
 
-/* The fur's length in pixels where it stands across the view at the
- * camera's target: length x mean groomed length x the model's scale x
- * pixels per world unit at the camera's distance. */
-static float fur_length_px(cli_session *s)
-{
-    pelt_fur *fur = pelt_scene_instance_fur(s->instance);
-    pelt_view v = pelt_scene_instance_view(s->instance);
-    pelt_camera cam = pelt_scene_instance_camera(s->instance);
-    double sum = 0.0;
-    size_t hairy = 0, n = pelt_fur_vertex_count(fur);
-    for (size_t i = 0; i < n; i++) {
-        pelt_groom_value g = pelt_fur_get_groom(fur, i);
-        if (g.density > 0.0f) {
-            sum += g.length;
-            hairy++;
-        }
-    }
-    double groom = hairy ? sum / (double)hairy : 1.0;
-    double scale = sqrt((double)v.model[0] * v.model[0] + (double)v.model[1] * v.model[1] +
-                        (double)v.model[2] * v.model[2]);
-    double px_per_unit = 0.5 * v.height * v.proj[5] / cam.distance;
-    return (float)(pelt_fur_get_desc(fur).length * groom * scale * px_per_unit);
-}
-
 /* Draws the instance's current state with `draw` and reads it into out. */
 static void draw_into(cli_session *s, const pelt_draw_desc *draw, uint8_t *out)
 {
@@ -78,7 +54,7 @@ static void print_bands(const char *name, const double *v)
     printf("\n");
 }
 
-static void print_result(const pelt_compare_result *r, float fur_px, unsigned layers)
+static void print_result(const pelt_compare_result *r, unsigned layers)
 {
     printf("ssim %.4f\n", r->ssim);
     printf("mae %.3f\n", r->mae);
@@ -87,8 +63,8 @@ static void print_result(const pelt_compare_result *r, float fur_px, unsigned la
     printf("\n");
     print_bands("silhouette_shells", r->silhouette_shells);
     print_bands("silhouette_strands", r->silhouette_strands);
-    printf("fur_px %.2f\n", (double)fur_px);
-    printf("stripe_frequency %.4f\n", layers / (double)fur_px);
+    printf("fur_px %.2f\n", (double)r->fur_px);
+    printf("stripe_frequency %.4f\n", r->fur_px > 0.0f ? layers / (double)r->fur_px : NAN);
     printf("stripe_frequency_measured %.4f\n", r->stripe_frequency);
     printf("stripe_shells %.4g\n", r->stripe_shells);
     printf("stripe_strands %.4g\n", r->stripe_strands);
@@ -154,10 +130,9 @@ int cmd_compare(int argc, char **argv)
         d.no_skin = false;
         d.no_shells = d.no_fins = true;
         draw_into(&s, &d, skin);
-        float fur_px = o.fur_px > 0.0f ? o.fur_px : fur_length_px(&s);
         unsigned layers = pelt_fur_get_desc(pelt_scene_instance_fur(s.instance)).layers;
         pelt_compare_desc cd = {.shells = {shells, w, h}, .strands = {strands, w, h},
-                                .skin = {skin, w, h}, .fur_px = fur_px, .layers = layers};
+                                .skin = {skin, w, h}, .fur_px = o.fur_px, .layers = layers};
         for (int c = 0; c < 3; c++) cd.background[c] = to_byte(s.background[c]);
         pelt_compare_result r;
         pelt_error err = {0};
@@ -165,7 +140,7 @@ int cmd_compare(int argc, char **argv)
             cli_error("compare", "%s", err.message);
             rc = 1;
         } else {
-            print_result(&r, fur_px, layers);
+            print_result(&r, layers);
             if (o.output_set && !write_side(o.output, shells, strands, w, h)) rc = 1;
             else if (o.output_set && !o.quiet)
                 fprintf(stderr, "pelt compare: wrote %s (shells | strands | difference x%d)\n",

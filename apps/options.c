@@ -117,8 +117,8 @@ static const flag flags[] = {
     {"--dolly", NULL, NULL, FLAG_DOLLY, NULL,
      "bench: time the frame as the camera backs away to 16x its distance (level of detail)"},
     {"--fur-px", NULL, "PX", FLAG_FUR_PX, NULL,
-     "compare: the fur's length in pixels at the outline, for the stripe energy "
-     "(default: from the camera, the fur length and the mean groomed length)"},
+     "compare: how far the fur reaches past the skin's outline in pixels, for the stripe energy "
+     "(default: where the strands cover half of the pixels at that distance)"},
     {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
 };
 

@@ -206,6 +206,23 @@ void pelt__silhouette_profile(const uint8_t *rgba, unsigned w, unsigned h, const
         coverage[k] = count[k] ? (double)hit[k] / (double)count[k] : NAN;
 }
 
+float pelt__fur_extent(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
+                       const uint8_t background[3])
+{
+    /* Pixel counts of the bands [d, d + 1) and how many of them are fur. */
+    static const size_t bands = PELT__MAX_FUR_PX;
+    uint32_t count[PELT__MAX_FUR_PX] = {0}, hit[PELT__MAX_FUR_PX] = {0};
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+        if (!(dist[i] >= 1.0f) || dist[i] >= (float)bands) continue;
+        size_t d = (size_t)dist[i];
+        count[d]++;
+        hit[d] += pelt__pixel_differs(rgba + i * 4, background);
+    }
+    for (size_t d = 1; d < bands; d++)
+        if (count[d] && 2 * (uint64_t)hit[d] < count[d]) return (float)(d - 1);
+    return 0.0f;
+}
+
 /* ---- Stripe energy -------------------------------------------------------- */
 
 /* Luminance at a point between pixel centres (bilinear); false outside. */
@@ -221,7 +238,7 @@ static bool luma_at(const uint8_t *rgba, unsigned w, unsigned h, double x, doubl
     return true;
 }
 
-#define STRIPE_MAX_SAMPLES 1024
+#define STRIPE_MAX_SAMPLES PELT__MAX_FUR_PX
 
 /* One profile's power at `freq`: the luminance x_t at t = 1..n pixels out,
  * its least-squares line removed (the fur thins out along the profile),
@@ -350,12 +367,15 @@ pelt_status pelt_compare_images(const pelt_compare_desc *desc, pelt_compare_resu
         } else {
             pelt__silhouette_profile(a->rgba, w, h, dist, desc->background, out->silhouette_shells);
             pelt__silhouette_profile(b->rgba, w, h, dist, desc->background, out->silhouette_strands);
-            if (desc->fur_px > 0.0f && desc->layers > 0) {
-                double freq = desc->layers / (double)desc->fur_px;
+            out->fur_px = desc->fur_px > 0.0f
+                              ? desc->fur_px
+                              : pelt__fur_extent(b->rgba, w, h, dist, desc->background);
+            if (out->fur_px > 0.0f && desc->layers > 0) {
+                double freq = desc->layers / (double)out->fur_px;
                 out->stripe_shells = pelt__stripe_energy(a->rgba, w, h, dist, nearest,
-                                                         desc->fur_px, freq, &out->stripe_frequency);
+                                                         out->fur_px, freq, &out->stripe_frequency);
                 out->stripe_strands = pelt__stripe_energy(b->rgba, w, h, dist, nearest,
-                                                          desc->fur_px, freq, NULL);
+                                                          out->fur_px, freq, NULL);
                 if (isnan(out->stripe_shells)) out->stripe_frequency = NAN;
                 out->stripe_energy_ratio = out->stripe_shells / out->stripe_strands;
             }

@@ -43,6 +43,14 @@ void pelt__silhouette_profile(const uint8_t *rgba, unsigned w, unsigned h, const
                               const uint8_t background[3],
                               double coverage[PELT_COMPARE_BANDS]);
 
+/* How far the fur reaches past the outline, in whole pixels: the last d
+ * such that at each distance [1, 2), ..., [d, d + 1) at least half of the
+ * pixels differ from the background; 0 when [1, 2) is not covered so, or
+ * when no band below PELT__MAX_FUR_PX falls below one half. */
+#define PELT__MAX_FUR_PX 1024
+float pelt__fur_extent(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
+                       const uint8_t background[3]);
+
 /* Power at `frequency` (cycles per pixel) of the luminance along the
  * outline's normals through the fur band, averaged over the normals:
  * each profile starts at a skin pixel of the outline and runs fur_px

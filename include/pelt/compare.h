@@ -30,8 +30,9 @@ typedef struct pelt_compare_desc {
      * profile and no stripe energy (NaN in the result). */
     pelt_image skin;
     uint8_t background[3];  /* the clear colour, 0..255 */
-    /* The fur's length in pixels at the outline and the shell count: the
-     * shells' spacing is fur_px / layers pixels. fur_px 0: no stripe energy. */
+    /* How far the fur reaches past the outline in pixels, and the shell
+     * count: the shells' spacing is fur_px / layers pixels. fur_px 0: where
+     * the strand picture's coverage outside the skin falls below one half. */
     float fur_px;
     unsigned layers;
     pelt_allocator allocator; /* scratch inside the call; zero = malloc/free */
@@ -45,6 +46,7 @@ typedef struct pelt_compare_result {
     float silhouette_px[PELT_COMPARE_BANDS];         /* each band's outer edge, pixels */
     double silhouette_shells[PELT_COMPARE_BANDS];    /* coverage in each band, 0..1 */
     double silhouette_strands[PELT_COMPARE_BANDS];
+    float fur_px;              /* the fur_px used (given or measured; 0: none) */
     double stripe_frequency;   /* cycles per pixel measured (layers / fur_px, folded) */
     double stripe_shells, stripe_strands; /* power at that frequency across the rim */
     double stripe_energy_ratio;           /* stripe_shells / stripe_strands */

@@ -164,6 +164,19 @@ static void striped_rim_has_more_stripe_energy_than_smooth(void)
     CHECK(isnan(pelt__stripe_energy(img, W, H, dist, nearest, 15.0f, 16.0 / 15.0, NULL)));
 }
 
+static void fur_extent_is_the_last_half_covered_distance(void)
+{
+    static uint8_t img[W * H * 4], mask[W * H];
+    static float dist[W * H];
+    rim(img, mask, 4.0, 0.0); /* skin x < 20, fur x = 20..59: 40 px */
+    CHECK(pelt__distance_outside(mask, W, H, dist, NULL, NULL));
+    CHECK(pelt__fur_extent(img, W, H, dist, bg) == 40.0f);
+    /* Fur on only the top third of the rows: under half at every distance. */
+    for (unsigned y = H / 3; y < H; y++)
+        for (unsigned x = 20; x < W; x++) memcpy(img + (y * W + x) * 4, bg, 3);
+    CHECK(pelt__fur_extent(img, W, H, dist, bg) == 0.0f);
+}
+
 static void mean_luminance_uses_bt601_weights_and_the_mask(void)
 {
     static uint8_t img[W * H * 4], mask[W * H];
@@ -264,6 +277,7 @@ int main(void)
     RUN(distance_transform_is_exact_euclidean);
     RUN(disc_grown_by_3_px_covers_1_and_2_not_8);
     RUN(striped_rim_has_more_stripe_energy_than_smooth);
+    RUN(fur_extent_is_the_last_half_covered_distance);
     RUN(mean_luminance_uses_bt601_weights_and_the_mask);
     RUN(compare_images_measures_shells_against_strands);
     RUN(compare_images_fails_cleanly_without_memory);
