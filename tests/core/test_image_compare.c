@@ -63,6 +63,67 @@ static void ssim_of_two_flat_pictures_is_the_luminance_term(void)
     CHECK(isnan(pelt__image_ssim(a, b, 21, 21, NULL, &oom)) && !oom);
 }
 
+/* SSIM straight from Wang et al.'s definition: for every 11x11 window of
+ * the 2x2-averaged luminance, the weighted moments summed in two
+ * dimensions at once (the module filters along x, then along y). */
+static double ssim_by_definition(const uint8_t *a, const uint8_t *b, int w, int h)
+{
+    int hw = w / 2, hh = h / 2;
+    static double la[64 * 64], lb[64 * 64];
+    for (int y = 0; y < hh; y++)
+        for (int x = 0; x < hw; x++) {
+            double sa = 0, sb = 0;
+            for (int k = 0; k < 4; k++) {
+                int i = ((2 * y + k / 2) * w + 2 * x + k % 2) * 4;
+                sa += pelt__luma(a + i);
+                sb += pelt__luma(b + i);
+            }
+            la[y * hw + x] = sa / 4;
+            lb[y * hw + x] = sb / 4;
+        }
+    double g[11][11], gs = 0;
+    for (int i = 0; i < 11; i++)
+        for (int j = 0; j < 11; j++) gs += g[i][j] = exp(-((i - 5) * (i - 5) + (j - 5) * (j - 5)) / 4.5);
+    double c1 = 6.5025, c2 = 58.5225, total = 0;
+    int windows = 0;
+    for (int y = 0; y + 11 <= hh; y++)
+        for (int x = 0; x + 11 <= hw; x++) {
+            double ma = 0, mb = 0, va = 0, vb = 0, cab = 0;
+            for (int i = 0; i < 11; i++)
+                for (int j = 0; j < 11; j++) {
+                    double wt = g[i][j] / gs, pa = la[(y + i) * hw + x + j], pb = lb[(y + i) * hw + x + j];
+                    ma += wt * pa;
+                    mb += wt * pb;
+                }
+            for (int i = 0; i < 11; i++)
+                for (int j = 0; j < 11; j++) {
+                    double wt = g[i][j] / gs, pa = la[(y + i) * hw + x + j] - ma, pb = lb[(y + i) * hw + x + j] - mb;
+                    va += wt * pa * pa;
+                    vb += wt * pb * pb;
+                    cab += wt * pa * pb;
+                }
+            total += (2 * ma * mb + c1) * (2 * cab + c2) / ((ma * ma + mb * mb + c1) * (va + vb + c2));
+            windows++;
+        }
+    return total / windows;
+}
+
+static void ssim_equals_its_definition_on_noise(void)
+{
+    enum { w = 70, h = 52 };
+    static uint8_t a[w * h * 4], b[w * h * 4];
+    uint32_t s = 12345u;
+    for (size_t i = 0; i < sizeof a; i++) {
+        s = s * 1664525u + 1013904223u;
+        a[i] = (uint8_t)(s >> 24);
+        b[i] = (uint8_t)(a[i] / 2 + 40 + ((s >> 8) & 31)); /* related, not equal */
+    }
+    bool oom;
+    double seen = pelt__image_ssim(a, b, w, h, NULL, &oom);
+    CHECK_NEAR(seen, ssim_by_definition(a, b, w, h), 1e-5);
+    CHECK(seen > 0.05 && seen < 0.95);
+}
+
 static void distance_transform_is_exact_euclidean(void)
 {
     enum { w = 41, h = 33 };
@@ -274,6 +335,7 @@ int main(void)
 {
     RUN(identical_pictures_have_ssim_1_and_mae_0);
     RUN(ssim_of_two_flat_pictures_is_the_luminance_term);
+    RUN(ssim_equals_its_definition_on_noise);
     RUN(distance_transform_is_exact_euclidean);
     RUN(disc_grown_by_3_px_covers_1_and_2_not_8);
     RUN(striped_rim_has_more_stripe_energy_than_smooth);
