@@ -10,6 +10,15 @@
 /* The difference picture shows |shells - strands| this many times over. */
 #define DIFF_GAIN 4
 
+/* The reference picture's passes, and its name on the `reference` line.
+ * Until the renderer draws strands this build has none: the reference is
+ * the shells without their fins, and the line says so. */
+static const char *reference_draw(pelt_draw_desc *d)
+{
+    d->no_fins = true;
+    return "shells-without-fins";
+}
+
 /* Draws the instance's current state with `draw` and reads it into out. */
 static void draw_into(cli_session *s, const pelt_draw_desc *draw, uint8_t *out)
 {
@@ -124,7 +133,7 @@ int cmd_compare(int argc, char **argv)
         pelt_draw_desc d = s.draw;
         draw_into(&s, &d, shells);
         d = s.draw;
-        d.no_fins = true; /* TODO strands */
+        const char *reference = reference_draw(&d);
         draw_into(&s, &d, strands);
         d = s.draw;
         d.no_skin = false;
@@ -140,6 +149,7 @@ int cmd_compare(int argc, char **argv)
             cli_error("compare", "%s", err.message);
             rc = 1;
         } else {
+            printf("reference %s\n", reference);
             print_result(&r, layers);
             if (o.output_set && !write_side(o.output, shells, strands, w, h)) rc = 1;
             else if (o.output_set && !o.quiet)

@@ -18,7 +18,7 @@ if [ $rc -ne 0 ] && grep -qi "context\|EGL" "$d/err.txt"; then
 fi
 check compare_runs $rc "exit $rc: $(cat "$d/err.txt")"
 missing=""
-for k in ssim mae silhouette_px silhouette_shells silhouette_strands stripe_energy_ratio \
+for k in reference ssim mae silhouette_px silhouette_shells silhouette_strands stripe_energy_ratio \
          luminance_shells luminance_strands fur_px; do
   [ -n "$(field $k "$res")" ] || missing="$missing $k"
 done
