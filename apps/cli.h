@@ -89,6 +89,9 @@ typedef struct cli_session {
     float background[4];
     pelt_draw_desc draw;           /* the scene's passes (draw.*) */
     uint8_t *pixels;               /* width * height * 4 */
+    unsigned samples;              /* the strand reference: drawn at samples x the size */
+    uint8_t *big;                  /* then read here and box-filtered into pixels */
+    unsigned width, height;        /* the output's size */
     bool shadows;                  /* the light's shadows are on (shadows.enabled) */
 } cli_session;
 
@@ -97,6 +100,9 @@ typedef struct cli_session {
  * Warnings print as "pelt CMD: warning: ...". */
 bool cli_session_open(const char *cmd, const pelt_scene *scene, cli_session *s);
 void cli_session_close(cli_session *s);
+/* Reads the drawn frame into s->pixels (box-filtered down from the strand
+ * reference's larger framebuffer). */
+void cli_session_read(cli_session *s);
 /* Whether the scene turned the light's shadows on. */
 bool cli_session_has_shadows(const cli_session *s);
 

@@ -10,13 +10,12 @@
 /* The difference picture shows |shells - strands| this many times over. */
 #define DIFF_GAIN 4
 
-/* The reference picture's passes, and its name on the `reference` line.
- * Until the renderer draws strands this build has none: the reference is
- * the shells without their fins, and the line says so. */
+/* The reference picture's passes, and its name on the `reference` line:
+ * the same hairs drawn as geometry. */
 static const char *reference_draw(pelt_draw_desc *d)
 {
-    d->no_fins = true;
-    return "shells-without-fins";
+    d->mode = PELT_DRAW_STRANDS;
+    return "strands";
 }
 
 /* Draws the instance's current state with `draw` and reads it into out. */
@@ -131,11 +130,13 @@ int cmd_compare(int argc, char **argv)
     }
     if (rc == 0) {
         pelt_draw_desc d = s.draw;
+        d.mode = PELT_DRAW_SHELLS; /* whatever render.mode the scene names */
         draw_into(&s, &d, shells);
         d = s.draw;
         const char *reference = reference_draw(&d);
         draw_into(&s, &d, strands);
         d = s.draw;
+        d.mode = PELT_DRAW_SHELLS;
         d.no_skin = false;
         d.no_shells = d.no_fins = true;
         draw_into(&s, &d, skin);

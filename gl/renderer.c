@@ -23,6 +23,7 @@ struct pelt_renderer {
     pelt__shell_pass shells;
     pelt__shadow_pass shadow;
     pelt__ground_pass ground;
+    pelt__strands_pass strands;
     pelt_shadow_desc shadow_desc; /* resolved (core/fur/shadow_map.h) */
     pelt_ground_desc ground_desc;
     const pelt_mesh *source; /* the mesh as given: its positions place the ground */
@@ -61,6 +62,7 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
     if (st == PELT_OK) st = pelt__shadow_pass_create(&r->shadow, &hooks, err);
     if (st == PELT_OK) st = pelt__ground_pass_create(&r->ground, &hooks, err);
     if (st == PELT_OK) st = pelt__gpu_mesh_create(&r->mesh, mesh, fur, &hooks, err);
+    pelt__strands_pass_create(&r->strands, fur, &hooks);
     if (st == PELT_OK) {
         pelt__gpu_fur_create(&r->textures, fur);
         pelt__gpu_blocks_create(&r->blocks);
@@ -82,6 +84,7 @@ void pelt_renderer_destroy(pelt_renderer *r)
     pelt__fin_pass_destroy(&r->fins);
     pelt__shadow_pass_destroy(&r->shadow);
     pelt__ground_pass_destroy(&r->ground);
+    pelt__strands_pass_destroy(&r->strands);
     pelt__skin_pass_destroy(&r->skin);
     pelt__gpu_blocks_destroy(&r->blocks);
     pelt__gpu_fur_destroy(&r->textures);
@@ -324,8 +327,14 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
         pelt__ground_pass_draw(&r->ground, &frame, disc, r->ground_desc.color);
     }
     if (!draw->no_skin) pelt__skin_pass_draw(&r->skin, &frame);
-    if (!draw->no_fins) pelt__fin_pass_draw(&r->fins, &frame);
-    if (!draw->no_shells && draw->skin_in_vertex_stage && r->mesh.skinned) {
+    if (draw->mode == PELT_DRAW_STRANDS) { /* the strand reference in place of fins and shells */
+        pelt__strands_pass_draw(&r->strands, &frame);
+    } else if (!draw->no_fins) {
+        pelt__fin_pass_draw(&r->fins, &frame);
+    }
+    if (draw->mode == PELT_DRAW_STRANDS) {
+        /* drawn above */
+    } else if (!draw->no_shells && draw->skin_in_vertex_stage && r->mesh.skinned) {
         stats.upload_bytes += pelt__gpu_mesh_upload_bones(&r->mesh, r->fur);
         glActiveTexture(GL_TEXTURE0 + PELT_UNIT_BONES);
         glBindTexture(GL_TEXTURE_2D, r->mesh.bone_texture);

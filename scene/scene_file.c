@@ -101,6 +101,7 @@ void pelt_scene_defaults(pelt_scene *s)
     s->atlas.direction[1] = -1.0f;
 
     s->draw.skin = s->draw.fins = s->draw.shells = true;
+    s->draw.strand_samples = 4;
     s->groom.length_range[1] = 1.0f;
     s->groom.density_range[1] = 1.0f;
     s->groom.flow_strength = 1.0f;
@@ -164,6 +165,7 @@ static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
 static const char *const shading_names[] = {"kajiya-kay", "lengyel-table", NULL};
 static const char *const lod_names[] = {"auto", "off", "fixed", NULL};
+static const char *const render_mode_names[] = {"shells", "strands", NULL};
 static const char *const strand_curl_names[] = {"helix", "wave", NULL};
 static const char *const curl_phase_names[] = {"ringlets", "coherent", NULL};
 /* The curl looks of Silva Fig. 7; the table of values is pelt_fur_curl_look.
@@ -244,6 +246,8 @@ static const key_def scene_keys[] = {
     {"draw.fins", K_BOOL, OFF(draw.fins), 0, 0, 0, 0, 0, NULL},
     {"draw.shells", K_BOOL, OFF(draw.shells), 0, 0, 0, 0, 0, NULL},
     {"draw.fins_unfaded", K_BOOL, OFF(draw.fins_unfaded), 0, 0, 0, 0, 0, NULL},
+    ENUM("render.mode", draw.mode, render_mode_names),
+    UINT_("render.strand_samples", draw.strand_samples, 1, 8, 0),
     PATH("fur.length_map", groom.length_map),
     RANGE("fur.length_range", groom.length_range[0], groom.length_range[1], 0, PELT_GROOM_MAX_LENGTH),
     PATH("fur.density_map", groom.density_map),

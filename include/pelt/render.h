@@ -24,6 +24,17 @@ typedef struct pelt_renderer_desc {
     pelt_hooks hooks;
 } pelt_renderer_desc;
 
+/* What draws the fur (pelt_draw_desc.mode). */
+typedef enum pelt_draw_mode {
+    PELT_DRAW_SHELLS = 0, /* shells and fins (Lengyel et al. 2001), the default */
+    /* The strand reference (docs/reference.md): every hair of the fur
+       texture as opaque geometry along the curve the shells follow at its
+       root; seconds a frame on llvmpipe, for stills. Hairs are thinner
+       than a pixel: draw into a framebuffer several times the output's
+       size (or multisampled) and downsample for coverage. */
+    PELT_DRAW_STRANDS = 1
+} pelt_draw_mode;
+
 /* Per-frame choices of one pelt_renderer_draw. Zero-initialised (or a NULL
  * pointer) draws everything. */
 typedef struct pelt_draw_desc {
@@ -53,6 +64,9 @@ typedef struct pelt_draw_desc {
        bind pose and the bones of the last pelt_mesh_pose, instead of
        reading the pose made once on the CPU (pelt_fur_set_pose). */
     bool skin_in_vertex_stage;
+    /* Shells and fins (0, the default) or the strand reference, which
+       draws every hair in place of both (no_fins and no_shells unused). */
+    pelt_draw_mode mode;
 } pelt_draw_desc;
 
 /* What the last pelt_renderer_draw did. */
@@ -64,6 +78,8 @@ typedef struct pelt_render_stats {
     unsigned shadow_draw_calls; /* the light's maps: 2 (skin depth, all shells'
                                    opacity in one instanced draw), else 0 */
     unsigned ground_draw_calls; /* 1 when the ground was drawn */
+    unsigned strand_draw_calls; /* 1 when the strand reference was drawn */
+    size_t strands;            /* hairs the strand reference drew */
     size_t fins;               /* fins (mesh edges) that draw submitted; the
                                   faded-out ones collapse in the vertex stage */
     unsigned fin_rows;         /* quads up each fin: as few as follow the bent

@@ -137,6 +137,13 @@ typedef struct pelt_scene_wetness {
 typedef struct pelt_scene_draw {
     bool skin, fins, shells;
     bool fins_unfaded;   /* every fin at full opacity (Lengyel Fig. 4e) */
+    /* render.mode: what draws the fur, pelt_draw_mode's values (pelt/render.h):
+       0 "shells" (shells and fins, default), 1 "strands" (the strand reference). */
+    int mode;
+    /* render.strand_samples: the strand reference is drawn at this many
+       times the output's width and height, then box-filtered down (hair
+       coverage), default 4 (docs/reference.md measures it). */
+    unsigned strand_samples;
 } pelt_scene_draw;
 
 /* What the mesh file's vertex colours are, besides a possible flow map
