@@ -52,10 +52,11 @@ bool cli_atlas_flag(size_t i, cli_flag_doc *out);
 
 #define CLI_MAX_DROPS 64
 
-/* Options shared by render and bench, parsed into a scene. */
+/* Options shared by render, bench and compare, parsed into a scene. */
 typedef struct cli_options {
     pelt_scene scene;
     const char *output;    /* -o FILE or pattern with %d / %0Nd */
+    bool output_set;       /* -o was given (compare writes a picture only then) */
     const char *mask_out;  /* --mask-out FILE */
     const char *groom_out; /* --save-groom FILE */
     unsigned warmup;       /* bench */
@@ -67,6 +68,7 @@ typedef struct cli_options {
     bool bench_brush;      /* bench --brush */
     bool bench_floor;      /* bench --floor */
     bool bench_dolly;      /* bench --dolly */
+    float fur_px;          /* compare --fur-px; 0: from the camera */
     bool quiet;
 } cli_options;
 
@@ -87,6 +89,9 @@ typedef struct cli_session {
     float background[4];
     pelt_draw_desc draw;           /* the scene's passes (draw.*) */
     uint8_t *pixels;               /* width * height * 4 */
+    unsigned samples;              /* the strand reference: drawn at samples x the size */
+    uint8_t *big;                  /* then read here and box-filtered into pixels */
+    unsigned width, height;        /* the output's size */
     bool shadows;                  /* the light's shadows are on (shadows.enabled) */
 } cli_session;
 
@@ -95,6 +100,9 @@ typedef struct cli_session {
  * Warnings print as "pelt CMD: warning: ...". */
 bool cli_session_open(const char *cmd, const pelt_scene *scene, cli_session *s);
 void cli_session_close(cli_session *s);
+/* Reads the drawn frame into s->pixels (box-filtered down from the strand
+ * reference's larger framebuffer). */
+void cli_session_read(cli_session *s);
 /* Whether the scene turned the light's shadows on. */
 bool cli_session_has_shadows(const cli_session *s);
 
@@ -117,6 +125,7 @@ int cmd_render(int argc, char **argv);
 int cmd_bench(int argc, char **argv);
 int cmd_info(int argc, char **argv);
 int cmd_atlas(int argc, char **argv);
+int cmd_compare(int argc, char **argv);    /* apps/cmd_compare.c */
 int cmd_view(int argc, char **argv);       /* apps/cmd_view.c */
 bool cli_view_flag(size_t i, cli_flag_doc *out); /* render's flags and the viewer's */
 int cmd_completion(int argc, char **argv); /* apps/completion.c */

@@ -121,7 +121,7 @@ int cmd_render(int argc, char **argv)
     for (unsigned i = 0; i < frames && rc == 0; i++) {
         if (i > 0) pelt_scene_instance_advance(s.instance, 1.0f / fps);
         cli_session_draw(&s);
-        pelt_headless_read_rgba8(s.gl, s.pixels);
+        cli_session_read(&s);
         if (video) {
             if (!cli_video_write(&v, s.pixels)) rc = 1;
         } else {

@@ -19,6 +19,17 @@ const cli_command cli_commands[] = {
      "minimum and maximum milliseconds per frame for each part of the frame.\n"
      "Takes the flags of render.",
      cli_scene_flag, cmd_bench, "*.json", NULL, false},
+    {"compare", "[SCENE.json] [flags]", "the shell picture against the strand reference, measured",
+     "Renders the scene twice from the same state (the same fur, the same frame):\n"
+     "with shells and fins, and as the strand reference (the same hairs drawn as\n"
+     "geometry), plus the skin alone for its outline. Prints one figure a line:\n"
+     "ssim (luminance at half size, 1 = the same), mae (mean R, G, B error, 0..255),\n"
+     "silhouette_px and the fur's coverage in those bands outside the skin for\n"
+     "shells and strands, stripe_energy_ratio (the shells' spacing across the rim,\n"
+     "shells over strands), luminance_shells and luminance_strands. -o writes\n"
+     "shells | strands | difference (x4) as one PNG. Takes the flags of render;\n"
+     "an animation compares its last frame. docs/reference.md says how to read it.",
+     cli_scene_flag, cmd_compare, "*.json", NULL, false},
     {"view", "[SCENE.json] [flags]", "the scene in a window: orbit, comb, wet, dry, blow, live",
      "Opens the scene of render (the same file and flags) in a window with an OpenGL\n"
      "3.3 core context; the fur moves with the real frame time. Left drag uses the\n"

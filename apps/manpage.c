@@ -47,7 +47,7 @@ static void flag_tag(FILE *f, const cli_flag_doc *d)
 }
 
 /* One section per flag table, named after the commands that take it
- * ("RENDER AND BENCH FLAGS"). */
+ * ("RENDER, BENCH AND COMPARE FLAGS"). */
 static void flag_sections(FILE *f)
 {
     for (const cli_command *c = cli_commands; c->name; c++) {
@@ -57,9 +57,12 @@ static void flag_sections(FILE *f)
             if (b->flags == c->flags) seen = true;
         if (seen) continue;
         fputs(".SH \"", f);
+        size_t sharing = 0, k = 0; /* "A FLAGS", "A AND B FLAGS", "A, B AND C FLAGS" */
+        for (const cli_command *b = c; b->name; b++) sharing += b->flags == c->flags;
         for (const cli_command *b = c; b->name; b++) {
             if (b->flags != c->flags) continue;
-            if (b != c) fputs(" AND ", f);
+            if (k > 0) fputs(k + 1 == sharing ? " AND " : ", ", f);
+            k++;
             for (const char *p = b->name; *p; p++) fputc(*p >= 'a' && *p <= 'z' ? *p - 32 : *p, f);
         }
         fputs(" FLAGS\"\n", f);
@@ -75,6 +78,7 @@ static const char *const examples[] = {
     "pelt render scenes/rain.json \\-o rain.mp4",
     "pelt render \\-\\-turntable 90 \\-\\-frames 48 \\-\\-fps 24 \\-o spin_%04d.png",
     "pelt render \\-\\-wind 25,0,0 \\-\\-set fur.length=0.15 \\-o windy.gif",
+    "pelt compare scenes/reference/torus.json \\-o side.png",
     "pelt bench \\-\\-layers 16",
     "pelt view scenes/rain.json",
     "xvfb\\-run \\-a pelt view \\-\\-script input.txt \\-\\-screenshot\\-at 2:shot.png",

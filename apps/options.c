@@ -37,6 +37,7 @@ typedef enum flag_kind {
     FLAG_BRUSH,
     FLAG_FLOOR,
     FLAG_DOLLY,
+    FLAG_FUR_PX,
     FLAG_QUIET
 } flag_kind;
 
@@ -87,6 +88,10 @@ static const flag flags[] = {
     {"--fins", NULL, NULL, FLAG_SWITCH, "draw.fins=true",
      "draw the fins, textured quads on the edges near the silhouette (default)"},
     {"--no-fins", NULL, NULL, FLAG_SWITCH, "draw.fins=false", "no fins: shells alone"},
+    {"--strands", NULL, NULL, FLAG_SWITCH, "render.mode=strands",
+     "the strand reference: every hair as geometry in place of shells and fins (a still, seconds a frame)"},
+    {"--strand-samples", NULL, "K", FLAG_KEY, "render.strand_samples",
+     "the strand reference drawn at K x the size and averaged down (default 4)"},
     {"--fin-length", NULL, "X", FLAG_KEY, "fins.length",
      "fin hair height as a multiple of the fur length (default 1)"},
     {"--fin-density", NULL, "TEXELS", FLAG_KEY, "fins.density",
@@ -116,6 +121,9 @@ static const flag flags[] = {
      "bench: also time the frame with a one-fetch shell shader, with and without the fins, alternated (the floor)"},
     {"--dolly", NULL, NULL, FLAG_DOLLY, NULL,
      "bench: time the frame as the camera backs away to 16x its distance (level of detail)"},
+    {"--fur-px", NULL, "PX", FLAG_FUR_PX, NULL,
+     "compare: how far the fur reaches past the skin's outline in pixels, for the stripe energy "
+     "(default: where the strands cover half of the pixels at that distance)"},
     {"--quiet", "-q", NULL, FLAG_QUIET, NULL, "no progress output"},
 };
 
@@ -240,6 +248,7 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     }
     case FLAG_OUTPUT:
         o->output = value;
+        o->output_set = true;
         return true;
     case FLAG_MASK_OUT:
         o->mask_out = value;
@@ -289,6 +298,17 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     case FLAG_DROPLETS:
         o->bench_droplets = true;
         return true;
+    case FLAG_FUR_PX: {
+        char *end;
+        errno = 0;
+        float v = strtof(value, &end);
+        if (end == value || *end || errno || !isfinite(v) || !(v > 0.0f) || v > 4096.0f) {
+            cli_error(cmd, "--fur-px '%s': expected a number of pixels in (0, 4096]", value);
+            return false;
+        }
+        o->fur_px = v;
+        return true;
+    }
     case FLAG_QUIET:
         o->quiet = true;
         return true;

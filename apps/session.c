@@ -20,13 +20,17 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
     s->cmd = cmd;
     memcpy(s->background, sc->output.background, sizeof s->background);
     s->draw = sc->draw;
+    /* The strand reference's hairs are opaque and thinner than a pixel:
+     * drawn at samples x the size, averaged down for coverage. */
+    s->samples = s->draw.mode == PELT_DRAW_STRANDS && sc->strand_samples > 1 ? sc->strand_samples : 1;
+    s->width = sc->output.width, s->height = sc->output.height;
     pelt_error err = {0};
     pelt_scene_instance_desc idesc = {.hooks.logger = {print_warning, (void *)cmd}};
     if (pelt_scene_instantiate(sc, &idesc, &s->instance, &err) != PELT_OK) {
         cli_error(cmd, "%s", err.message);
         return false;
     }
-    pelt_headless_desc hd = {sc->output.width, sc->output.height, sc->output.msaa, false};
+    pelt_headless_desc hd = {sc->output.width * s->samples, sc->output.height * s->samples, sc->output.msaa, false};
     if (pelt_headless_create(&hd, &s->gl, &err) != PELT_OK ||
         pelt_renderer_create(pelt_scene_instance_mesh(s->instance),
                              pelt_scene_instance_fur(s->instance), NULL, &s->renderer,
@@ -43,7 +47,8 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
     pelt_renderer_set_ground(s->renderer, &sc->ground);
     s->shadows = sc->shadows.enabled;
     s->pixels = malloc((size_t)sc->output.width * sc->output.height * 4);
-    if (!s->pixels) {
+    if (s->samples > 1) s->big = malloc((size_t)hd.width * hd.height * 4);
+    if (!s->pixels || (s->samples > 1 && !s->big)) {
         cli_error(cmd, "out of memory for a %ux%u image", sc->output.width, sc->output.height);
         cli_session_close(s);
         return false;
@@ -59,7 +64,27 @@ void cli_session_close(cli_session *s)
     pelt_headless_destroy(s->gl);
     pelt_scene_instance_destroy(s->instance);
     free(s->pixels);
+    free(s->big);
     memset(s, 0, sizeof *s);
+}
+
+void cli_session_read(cli_session *s)
+{
+    if (s->samples <= 1) {
+        pelt_headless_read_rgba8(s->gl, s->pixels);
+        return;
+    }
+    pelt_headless_read_rgba8(s->gl, s->big);
+    const unsigned k = s->samples, bw = s->width * k;
+    for (unsigned y = 0; y < s->height; y++)
+        for (unsigned x = 0; x < s->width; x++)
+            for (unsigned c = 0; c < 4; c++) {
+                unsigned sum = 0;
+                for (unsigned j = 0; j < k; j++)
+                    for (unsigned i = 0; i < k; i++)
+                        sum += s->big[(((size_t)y * k + j) * bw + (size_t)x * k + i) * 4 + c];
+                s->pixels[((size_t)y * s->width + x) * 4 + c] = (uint8_t)((sum + k * k / 2) / (k * k));
+            }
 }
 
 void cli_session_drop_at(cli_session *s, const cli_options *o)

@@ -83,6 +83,30 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f);
 void pelt__fin_pass_destroy(pelt__fin_pass *p);
 
+/* The strand reference (core/fur/strand_ref.h, docs/reference.md): every
+ * hair of the fur texture's tile over the surface as an opaque,
+ * camera-facing ribbon, ONE draw from a buffer texture the CPU fills each
+ * frame. Its storage is made the first time a frame draws strands (as the
+ * shells' variants build on first use), never for a frame of shells. */
+#define PELT__STRAND_FEATURES (PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE | PELT__SHELL_SHADOW_MAP)
+typedef struct pelt__strands_pass {
+    GLuint variants[PELT__STRAND_FEATURES + 1];
+    bool failed[PELT__STRAND_FEATURES + 1];
+    GLuint buffer, texture; /* the hairs (RGBA32F buffer texture, PELT_UNIT_STRANDS) */
+    pelt_hooks hooks;
+    const pelt_fur *fur;
+    void *tile;    /* the tile's strands (pelt__furtex_strand) */
+    size_t tile_count;
+    float *hairs;  /* staging, PELT__STRAND_TEXELS * 4 floats a hair */
+    size_t capacity; /* hairs with every strand kept */
+    bool made, broken;
+} pelt__strands_pass;
+
+void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const pelt_hooks *hooks);
+/* Draws every hair; depth tested and written, opaque. */
+void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f);
+void pelt__strands_pass_destroy(pelt__strands_pass *p);
+
 typedef struct pelt__shell_program {
     GLuint program;
     GLint shells, shells_next; /* uniform locations (shell_vs.glsl) */

@@ -27,6 +27,8 @@ extern const char pelt__shader_shadow_depth_fs[];
 extern const char pelt__shader_ground_vs[];
 extern const char pelt__shader_ground_fs[];
 extern const char pelt__shader_skin_blend[];
+extern const char pelt__shader_strand_vs[];
+extern const char pelt__shader_strand_fs[];
 
 /* Compiles and links a program. Each stage is a NULL-terminated list of
  * at most 12 source pieces, concatenated after the version header (GLSL

@@ -23,6 +23,7 @@ struct pelt_renderer {
     pelt__shell_pass shells;
     pelt__shadow_pass shadow;
     pelt__ground_pass ground;
+    pelt__strands_pass strands;
     pelt_shadow_desc shadow_desc; /* resolved (core/fur/shadow_map.h) */
     pelt_ground_desc ground_desc;
     pelt__ground_cache ground_cache; /* the mesh's lowest point for the model's y row */
@@ -59,6 +60,7 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
     if (st == PELT_OK) st = pelt__shadow_pass_create(&r->shadow, &hooks, err);
     if (st == PELT_OK) st = pelt__ground_pass_create(&r->ground, &hooks, err);
     if (st == PELT_OK) st = pelt__gpu_mesh_create(&r->mesh, mesh, fur, &hooks, err);
+    pelt__strands_pass_create(&r->strands, fur, &hooks);
     if (st == PELT_OK) {
         pelt__gpu_fur_create(&r->textures, fur, &fs);
         pelt__gpu_blocks_create(&r->blocks);
@@ -80,6 +82,7 @@ void pelt_renderer_destroy(pelt_renderer *r)
     pelt__fin_pass_destroy(&r->fins);
     pelt__shadow_pass_destroy(&r->shadow);
     pelt__ground_pass_destroy(&r->ground);
+    pelt__strands_pass_destroy(&r->strands);
     pelt__skin_pass_destroy(&r->skin);
     pelt__gpu_blocks_destroy(&r->blocks);
     pelt__gpu_fur_destroy(&r->textures);
@@ -149,6 +152,7 @@ static bool want_ground(const pelt__frame_plan *p) { return p->ground; }
 static bool want_skin(const pelt__frame_plan *p) { return p->skin; }
 static bool want_fins(const pelt__frame_plan *p) { return p->fins; }
 static bool want_shells(const pelt__frame_plan *p) { return p->shells; }
+static bool want_strands(const pelt__frame_plan *p) { return p->strands; }
 
 static void run_light(pelt_renderer *r, const pelt__pass_frame *f, const pelt__frame_plan *p)
 {
@@ -165,6 +169,12 @@ static void run_skin(pelt_renderer *r, const pelt__pass_frame *f, const pelt__fr
 {
     (void)p;
     pelt__skin_pass_draw(&r->skin, f);
+}
+
+static void run_strands(pelt_renderer *r, const pelt__pass_frame *f, const pelt__frame_plan *p)
+{
+    (void)p;
+    pelt__strands_pass_draw(&r->strands, f);
 }
 
 static void run_fins(pelt_renderer *r, const pelt__pass_frame *f, const pelt__frame_plan *p)
@@ -193,6 +203,7 @@ static const pass_row passes[] = {
     {"light", want_light, run_light},    /* the light's maps first: the others receive them */
     {"ground", want_ground, run_ground},
     {"skin", want_skin, run_skin},       /* opaque, depth write */
+    {"strands", want_strands, run_strands}, /* the strand reference, in place of fins and shells */
     {"fins", want_fins, run_fins},
     {"shells", want_shells, run_shells}, /* blended inner to outer, last */
 };
@@ -211,6 +222,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
         .cull_shells = draw->debug.cull_shells,
         .one_height = draw->first_layer || draw->layer_count,
         .gpu_skin = draw->debug.skin_in_vertex_stage,
+        .strands = draw->mode == PELT_DRAW_STRANDS,
     };
     const pelt__frame_setup setup = {r->shadow_desc, r->shadow.size, r->ground_desc, r->mesh.skinned};
     pelt__frame_plan plan;

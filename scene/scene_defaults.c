@@ -64,6 +64,7 @@ void pelt_scene_defaults(pelt_scene *s)
     s->wetness.mask_image_wetness = 1.0f;
 
 
+    s->strand_samples = 4;
     s->groom.length_range[1] = 1.0f;
     s->groom.density_range[1] = 1.0f;
     s->groom.flow_strength = 1.0f;

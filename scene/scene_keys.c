@@ -13,6 +13,7 @@ static const char *const up_names[] = {"file", "+y", "-y", "+x", "-x", "+z", "-z
 static const char *const pattern_names[] = {"none", "spots", "stripes", "noise", NULL};
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
 static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
+static const char *const render_mode_names[] = {"shells", "strands", NULL};
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
 #define OFF(field) offsetof(pelt_scene, field)
 #define UINT_(p, f, lo, hi, fl) {p, K_UINT, OFF(f), 0, lo, hi, fl, 0, NULL}
@@ -89,6 +90,8 @@ static const pelt__scene_key scene_keys[] = {
     {"draw.fins", K_NOT, OFF(draw.no_fins), 0, 0, 0, 0, 0, NULL},
     {"draw.shells", K_NOT, OFF(draw.debug.no_shells), 0, 0, 0, 0, 0, NULL},
     {"draw.fins_unfaded", K_BOOL, OFF(draw.fins_unfaded), 0, 0, 0, 0, 0, NULL},
+    ENUM("render.mode", draw.mode, render_mode_names),
+    UINT_("render.strand_samples", strand_samples, 1, 8, 0),
     PATH("fur.length_map", groom.length_map),
     RANGE("fur.length_range", groom.length_range[0], groom.length_range[1], 0, PELT_GROOM_MAX_LENGTH),
     PATH("fur.density_map", groom.density_map),

@@ -9,6 +9,7 @@
 #include "core/base/vec.h"
 #include "core/fur/fur_internal.h"
 #include "core/fur/fur_shape.h"
+#include "core/fur/vertex_strand.h"
 
 #include <math.h>
 #include <string.h>
@@ -27,14 +28,8 @@ static void put(float *t, pelt_vec3 a, float w)
     t[0] = a.x, t[1] = a.y, t[2] = a.z, t[3] = w;
 }
 
-/* A fin vertex's strand: what shell_vs.glsl works out before displacing. */
-typedef struct fin_strand {
-    pelt_vec3 p, n, u, v, tip, shear;
-    float L, K, omega, rho;
-} fin_strand;
-
-static fin_strand strand_at(const pelt_fur *f, const pelt_mesh_data *m, const float *tangents, bool wet, float slant,
-                            size_t i)
+fin_strand pelt__fur_vertex_strand(const pelt_fur *f, const pelt_mesh_data *m, const float *tangents, bool wet,
+                                   float slant, float length_scale, size_t i)
 {
     const pelt_fur_desc *fd = &f->desc;
     const pelt__groom_vertex *g = &f->groom.v[i];
@@ -47,7 +42,7 @@ static fin_strand strand_at(const pelt_fur *f, const pelt_mesh_data *m, const fl
     st.v = v3_scale(v3_cross(st.n, st.u), ti[3]);
     pelt_vec3 comb = m->comb ? v3_load(m->comb + 3 * i) : v3_load(ti);
     st.rho = wet ? rho_at(pelt__water_mask(f->water), m->uvs[2 * i], m->uvs[2 * i + 1]) : 0.0f;
-    float s = g->length * fd->fins.length;
+    float s = g->length * length_scale;
     st.L = fd->length * s;
     st.K = pelt__fur_vertex_curl_radius(fd) * s;
     st.omega = fd->look.curl_frequency;
@@ -56,8 +51,7 @@ static fin_strand strand_at(const pelt_fur *f, const pelt_mesh_data *m, const fl
     return st;
 }
 
-/* beta + phi + comb at h, as shell_vs.glsl. */
-static pelt_vec3 strand_offset(const fin_strand *st, float h)
+pelt_vec3 pelt__fur_vertex_strand_offset(const fin_strand *st, float h)
 {
     return v3_add(v3_add(pelt__fur_bend(st->n, st->L, st->tip, h), pelt__fur_curl(st->u, st->v, st->omega, st->K, st->rho, h)),
                   pelt__fur_comb(st->shear, st->L, 1.0f, h));
@@ -67,10 +61,10 @@ static pelt_vec3 strand_offset(const fin_strand *st, float h)
  * points at h = 1/4, 1/2, 3/4. */
 static float strand_bow(const fin_strand *st)
 {
-    pelt_vec3 tip = strand_offset(st, 1.0f);
+    pelt_vec3 tip = pelt__fur_vertex_strand_offset(st, 1.0f);
     float tt = v3_dot(tip, tip), bow = 0.0f;
     for (int k = 1; k < 4; k++) {
-        pelt_vec3 o = strand_offset(st, 0.25f * (float)k);
+        pelt_vec3 o = pelt__fur_vertex_strand_offset(st, 0.25f * (float)k);
         float t = tt > 0.0f ? fminf(fmaxf(v3_dot(o, tip) / tt, 0.0f), 1.0f) : 0.0f;
         float d = v3_len(v3_sub(o, v3_scale(tip, t)));
         bow = d > bow ? d : bow;
@@ -131,7 +125,7 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
     if (d->row_error > 0.0f && most > 1) {
         float bow = 0.0f;
         for (size_t c = 0; c < l->fin_vertex_count; c++) {
-            fin_strand st = strand_at(f, &m, tangents, wet, slant, l->fin_vertices[c]);
+            fin_strand st = pelt__fur_vertex_strand(f, &m, tangents, wet, slant, f->desc.fins.length, l->fin_vertices[c]);
             float b = strand_bow(&st);
             bow = b > bow ? b : bow;
         }
@@ -145,10 +139,10 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
         size_t i = l->fin_vertices[c];
         float *t = vertices + c * 4 * PELT__FIN_VERTEX_TEXELS;
         const pelt__groom_vertex *g = &f->groom.v[i];
-        fin_strand st = strand_at(f, &m, tangents, wet, slant, i);
+        fin_strand st = pelt__fur_vertex_strand(f, &m, tangents, wet, slant, f->desc.fins.length, i);
         for (unsigned r = 0; r <= n_rows; r++) {
             float h = (float)r / (float)n_rows;
-            put(t + 8 * r, v3_add(st.p, strand_offset(&st, h)), 1.0f);
+            put(t + 8 * r, v3_add(st.p, pelt__fur_vertex_strand_offset(&st, h)), 1.0f);
             put(t + 8 * r + 4,
                 pelt__fur_tangent_combed(st.n, st.L, st.tip, st.u, st.v, st.shear, st.omega, st.K, st.rho, 1.0f, h),
                 0.0f);

@@ -185,4 +185,5 @@ void pelt__frame_plan_make(const pelt_fur *fur, const pelt_view *view, const pel
     out->fins = sw->fins;
     out->shells = sw->shells;
     out->gpu_skin = sw->shells && sw->gpu_skin && setup->skinned_mesh;
+    if (sw->strands) out->strands = true, out->fins = out->shells = out->gpu_skin = false;
 }

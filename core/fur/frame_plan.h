@@ -66,6 +66,7 @@ typedef struct pelt__frame_switches {
     int cull_shells;    /* pelt_draw_desc's: 0 with the fins, 1 always, -1 never */
     bool one_height;    /* a range of layers is inspected: the finest shells */
     bool gpu_skin;      /* skin the shells in the vertex stage */
+    bool strands;       /* the strand reference in place of fins and shells */
 } pelt__frame_switches;
 
 /* The renderer's state the plan reads. */
@@ -93,6 +94,7 @@ typedef struct pelt__frame_plan {
     float disc[4];                 /* centre x, plane height, centre z, radius */
     unsigned shell_features;       /* PELT__SHELL_* of the shells and fins */
     bool skin, fins, shells;       /* the passes that run */
+    bool strands;                  /* the strand reference (docs/reference.md) */
     bool gpu_skin;                 /* the shells skin in the vertex stage */
 } pelt__frame_plan;
 

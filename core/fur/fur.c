@@ -105,6 +105,22 @@ static void compute_fur_uvs(const pelt_mesh_data *m, float tiling, float *out, f
     }
 }
 
+pelt__furtex_desc pelt__fur_texture_desc(const pelt_fur_desc *d)
+{
+    pelt__furtex_desc td = {d->look.texture_size, d->layers, d->seed, d->look.density, d->look.strand_radius,
+                            d->look.taper, d->look.strand_curl, d->look.strand_curl_turns,
+                            d->look.strand_curl_shape == PELT_STRAND_CURL_WAVE, 0.0f, 0.0f};
+    /* Ringlets (docs/method.md): Silva's curl drawn strand by strand into
+     * the texture, K_alpha in texels (the texture tiles `tiling` times per
+     * world unit), at full, half and no amplitude for the shells to blend
+     * by wetness. */
+    if (pelt__fur_has_ringlets(d)) {
+        td.ringlet_radius = d->look.curl_radius * d->look.tiling * (float)d->look.texture_size;
+        td.ringlet_omega = d->look.curl_frequency;
+    }
+    return td;
+}
+
 pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pelt_fur **out,
                             pelt_error *err)
 {
@@ -124,18 +140,8 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     f->mesh = mesh;
     const pelt_mesh_data mesh_data = pelt_mesh_get_data(mesh);
     f->texture_slices = d.layers + 1;
-    pelt__furtex_desc td = {d.look.texture_size, d.layers, d.seed, d.look.density, d.look.strand_radius,
-                            d.look.taper, d.look.strand_curl, d.look.strand_curl_turns,
-                            d.look.strand_curl_shape == PELT_STRAND_CURL_WAVE, 0.0f, 0.0f};
-    /* Ringlets (docs/method.md): Silva's curl drawn strand by strand into
-     * the texture, K_alpha in texels (the texture tiles `tiling` times per
-     * world unit), at full, half and no amplitude for the shells to blend
-     * by wetness. */
+    pelt__furtex_desc td = pelt__fur_texture_desc(&d);
     f->ringlet_levels = pelt__fur_has_ringlets(&d) ? PELT__RINGLET_LEVELS : 1;
-    if (f->ringlet_levels > 1) {
-        td.ringlet_radius = d.look.curl_radius * d.look.tiling * (float)d.look.texture_size;
-        td.ringlet_omega = d.look.curl_frequency;
-    }
     size_t bytes = pelt__furtex_bytes(&td);
     f->texture = bytes ? pelt__alloc_zero(a, f->ringlet_levels, bytes) : NULL;
     f->fur_uvs = pelt__alloc_zero(a, mesh_data.vertex_count, 2 * sizeof(float));

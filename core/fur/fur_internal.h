@@ -6,6 +6,7 @@
 
 #include "core/mesh/raycast.h"
 #include "core/fur/fins.h"
+#include "core/fur/furtex.h"
 #include "core/fur/groom.h"
 #include "core/fur/lod.h"
 #include "core/fur/strand.h"
@@ -45,6 +46,9 @@ struct pelt_fur {
     uint8_t *fin_texture;    /* RGBA8 fin texture, see pelt__fintex_generate */
     unsigned fin_width, fin_height;
 };
+
+/* The fur texture's strands as the fur draws them (full ringlet amplitude). */
+pelt__furtex_desc pelt__fur_texture_desc(const pelt_fur_desc *d);
 
 /* Fills the zero fields of `d` with defaults for `mesh`. */
 void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh);

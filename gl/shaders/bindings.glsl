@@ -30,6 +30,7 @@
 #define PELT_UNIT_SHADOW_DEPTH 7 // sampler2D DEPTH_COMPONENT24: the skin's depth from the light (gl/shadow_pass.c)
 #define PELT_UNIT_SHADOW_OPACITY 8 // sampler2DArray RGBA16F: the fur's opacity slices, 4 a layer
 #define PELT_UNIT_BONES 9 // sampler2D RGBA32F: the bones' matrices, 3 rows a bone (skinning in the vertex stage)
+#define PELT_UNIT_STRANDS PELT_UNIT_FIN_VERTICES // samplerBuffer RGBA32F: the strand reference's hairs (gl/strands_pass.c); a strands frame draws no fins
 #define PELT_UNIT_COUNT 10 // units 0 .. PELT_UNIT_COUNT - 1 are the renderer's
 
 // Tables: data a pass fetches by index (the fins and their vertices), row
@@ -42,6 +43,8 @@
 #define PELT_FIN_CHUNK 64
 #define PELT_FIN_HEIGHTS 4        // strand points a fin vertex has: core's PELT__FIN_HEIGHTS
 #define PELT_FIN_VERTEX_TEXELS 10 // texels a fin vertex has: core's PELT__FIN_VERTEX_TEXELS
+#define PELT_STRAND_SEGMENTS 8 // quads along a hair of the strand reference: core's PELT__STRAND_SEGMENTS
+#define PELT_STRAND_TEXELS 20  // texels a hair has: core's PELT__STRAND_TEXELS
 
 // Uniform block binding points (gl/uniform_blocks.c, gl/shaders/blocks.glsl).
 #define PELT_BLOCK_FRAME 0 // pelt_frame_block: matrices, eye, light

@@ -5,6 +5,7 @@
 #include "pelt/animation.h"
 #include "pelt/base.h"
 #include "pelt/camera.h"
+#include "pelt/compare.h"
 #include "pelt/dynamics.h"
 #include "pelt/fur.h"
 #include "pelt/groom.h"

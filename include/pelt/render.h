@@ -24,6 +24,17 @@ typedef struct pelt_renderer_desc {
     pelt_hooks hooks;
 } pelt_renderer_desc;
 
+/* What draws the fur (pelt_draw_desc.mode). */
+typedef enum pelt_draw_mode {
+    PELT_DRAW_SHELLS = 0, /* shells and fins (Lengyel et al. 2001), the default */
+    /* The strand reference (docs/reference.md): every hair of the fur
+       texture as opaque geometry along the curve the shells follow at its
+       root; seconds a frame on llvmpipe, for stills. Hairs are thinner
+       than a pixel: draw into a framebuffer several times the output's
+       size (or multisampled) and downsample for coverage. */
+    PELT_DRAW_STRANDS = 1
+} pelt_draw_mode;
+
 /* Per-frame choices of one pelt_renderer_draw. Zero-initialised (or a NULL
  * pointer) draws everything. */
 /* Switches for measuring and inspecting (pelt bench, the tests, the
@@ -60,6 +71,9 @@ typedef struct pelt_draw_desc {
      * (layer_count 0 = through the outermost): for inspecting one height
      * of the fur, and for level of detail. Still one instanced draw. */
     unsigned first_layer, layer_count;
+    /* Shells and fins (0, the default) or the strand reference, which
+       draws every hair in place of both (no_fins and debug.no_shells unused). */
+    pelt_draw_mode mode;
     pelt_draw_debug debug; /* measuring and inspecting; unstable */
 } pelt_draw_desc;
 
@@ -72,6 +86,8 @@ typedef struct pelt_render_stats {
     unsigned shadow_draw_calls; /* the light's maps: 2 (skin depth, all shells'
                                    opacity in one instanced draw), else 0 */
     unsigned ground_draw_calls; /* 1 when the ground was drawn */
+    unsigned strand_draw_calls; /* 1 when the strand reference was drawn */
+    size_t strands;            /* hairs the strand reference drew */
     size_t fins;               /* fins (mesh edges) that draw submitted; the
                                   faded-out ones collapse in the vertex stage */
     unsigned fin_rows;         /* quads up each fin: as few as follow the bent

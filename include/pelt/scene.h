@@ -220,6 +220,10 @@ typedef struct pelt_scene {
        "draw.shells" set no_skin, no_fins and debug.no_shells inverted;
        zero draws everything. */
     pelt_draw_desc draw;
+    /* render.strand_samples: the strand reference (draw.mode, "render.mode")
+       is drawn at this many times the output's width and height, then
+       box-filtered down for hair coverage; default 4 (docs/reference.md). */
+    unsigned strand_samples;
     pelt_scene_groom groom; /* JSON keys "fur.groom", "fur.length_map"...
                                and the top-level "strokes" list */
 } pelt_scene;

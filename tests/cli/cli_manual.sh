@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The manual page and the bash completion say what --help says: every flag
-# `pelt render --help` lists is in pelt(1)'s RENDER AND BENCH FLAGS, and no
+# `pelt render --help` lists is in pelt(1)'s RENDER, BENCH AND COMPARE FLAGS, and no
 # other; the same for view (render's flags and its own) and atlas; every command; the completion offers the same
 # flags, the commands and the scene keys. pelt.1 in the build tree is what
 # this pelt prints. Skips (77) without man (Debian package man-db).
@@ -31,7 +31,7 @@ section_flags() {
     grep -oE '(^|[ ,])--?[a-zA-Z][a-zA-Z0-9-]*' | tr -d ' ,' | words
 }
 
-want=$(help_flags render); got=$(section_flags "RENDER AND BENCH FLAGS")
+want=$(help_flags render); got=$(section_flags "RENDER, BENCH AND COMPARE FLAGS")
 [ -n "$want" ] && [ "$want" = "$got" ]
 check man_has_every_render_flag $? "render --help: $want
 man: $got"

@@ -61,7 +61,7 @@ check installed_pelt_help $? "exit $rc: $log"
 log=$("$pelt" render -q --size 64x48 -o "$out/deb_render.png" 2>&1); rc=$?
 [ $rc -eq 0 ] && [ -s "$out/deb_render.png" ]; check installed_pelt_renders $? "exit $rc: $log"
 man1=$(ls "$root"/usr/share/man/man1/pelt.1* 2>/dev/null | head -1)
-[ -n "$man1" ] && zcat -f "$man1" | grep -q '^\.SH "RENDER AND BENCH FLAGS"'
+[ -n "$man1" ] && zcat -f "$man1" | grep -q '^\.SH "RENDER, BENCH AND COMPARE FLAGS"'
 check manual_page_installed $? "no pelt.1 in usr/share/man/man1"
 comp="$root/usr/share/bash-completion/completions/pelt"
 [ -f "$comp" ] && bash -n "$comp" && grep -q "complete -F _pelt pelt" "$comp"

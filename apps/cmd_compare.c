@@ -1,0 +1,167 @@
+/* pelt compare: the shell picture against the strand reference, from the
+ * same state of the same scene, measured (pelt/compare.h) and, with -o,
+ * side by side: shells | strands | difference. */
+#include "apps/cli.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The difference picture shows |shells - strands| this many times over. */
+#define DIFF_GAIN 4
+
+/* The reference picture's passes, and its name on the `reference` line:
+ * the same hairs drawn as geometry. */
+static const char *reference_draw(pelt_draw_desc *d)
+{
+    d->mode = PELT_DRAW_STRANDS;
+    return "strands";
+}
+
+/* Draws the instance's current state with `draw` and reads it into out. */
+static void draw_into(cli_session *s, const pelt_draw_desc *draw, uint8_t *out)
+{
+    pelt_draw_desc keep = s->draw;
+    s->draw = *draw;
+    cli_session_draw(s);
+    pelt_headless_read_rgba8(s->gl, out);
+    s->draw = keep;
+}
+
+/* shells | strands | |shells - strands| x DIFF_GAIN, one row of three. */
+static bool write_side(const char *path, const uint8_t *a, const uint8_t *b, unsigned w, unsigned h)
+{
+    uint8_t *side = malloc((size_t)w * 3 * h * 4);
+    if (!side) {
+        cli_error("compare", "out of memory for the %ux%u side-by-side picture", 3 * w, h);
+        return false;
+    }
+    for (size_t y = 0; y < h; y++)
+        for (size_t x = 0; x < w; x++) {
+            size_t i = (y * w + x) * 4;
+            uint8_t *row = side + y * w * 3 * 4;
+            memcpy(row + x * 4, a + i, 4);
+            memcpy(row + (w + x) * 4, b + i, 4);
+            uint8_t *d = row + (2 * w + x) * 4;
+            for (int c = 0; c < 3; c++) {
+                int diff = abs((int)a[i + c] - (int)b[i + c]) * DIFF_GAIN;
+                d[c] = (uint8_t)(diff > 255 ? 255 : diff);
+            }
+            d[3] = 255;
+            row[x * 4 + 3] = row[(w + x) * 4 + 3] = 255;
+        }
+    bool ok = cli_write_png("compare", path, side, 3 * w, h);
+    free(side);
+    return ok;
+}
+
+static void print_bands(const char *name, const double *v)
+{
+    printf("%s", name);
+    for (int k = 0; k < PELT_COMPARE_BANDS; k++) printf(" %.4f", v[k]);
+    printf("\n");
+}
+
+static void print_result(const pelt_compare_result *r, unsigned layers)
+{
+    printf("ssim %.4f\n", r->ssim);
+    printf("mae %.3f\n", r->mae);
+    printf("silhouette_px");
+    for (int k = 0; k < PELT_COMPARE_BANDS; k++) printf(" %g", (double)r->silhouette_px[k]);
+    printf("\n");
+    print_bands("silhouette_shells", r->silhouette_shells);
+    print_bands("silhouette_strands", r->silhouette_strands);
+    printf("fur_px %.2f\n", (double)r->fur_px);
+    printf("stripe_frequency %.4f\n", r->fur_px > 0.0f ? layers / (double)r->fur_px : NAN);
+    printf("stripe_frequency_measured %.4f\n", r->stripe_frequency);
+    printf("stripe_shells %.4g\n", r->stripe_shells);
+    printf("stripe_strands %.4g\n", r->stripe_strands);
+    printf("stripe_energy_ratio %.3f\n", r->stripe_energy_ratio);
+    printf("luminance_shells %.2f\n", r->luminance_shells);
+    printf("luminance_strands %.2f\n", r->luminance_strands);
+    fflush(stdout);
+}
+
+static uint8_t to_byte(float v)
+{
+    float c = v < 0.0f ? 0.0f : v > 1.0f ? 1.0f : v;
+    return (uint8_t)lroundf(c * 255.0f);
+}
+
+int cmd_compare(int argc, char **argv)
+{
+    cli_options o;
+    int rc = cli_parse("compare", argc, argv, &o);
+    if (rc) {
+        cli_options_free(&o);
+        return rc == 1 ? 0 : rc;
+    }
+    const pelt_scene *sc = &o.scene;
+    if (sc->ground.enabled) {
+        cli_error("compare", "ground.enabled: the ground would count as fur outside the "
+                  "skin's outline; compare a scene without it");
+        cli_options_free(&o);
+        return 2;
+    }
+    if (o.output_set && strchr(o.output, '%')) {
+        cli_error("compare", "-o '%s': compare writes one picture (shells | strands | "
+                  "difference), not a frame pattern", o.output);
+        cli_options_free(&o);
+        return 2;
+    }
+    cli_session s;
+    if (!cli_session_open("compare", sc, &s)) {
+        cli_options_free(&o);
+        return 1;
+    }
+    cli_session_drop_at(&s, &o);
+    /* An animation compares its last frame, as render would draw it. */
+    unsigned frames = sc->animation.frames ? sc->animation.frames : 1;
+    float fps = sc->animation.fps > 0.0f ? sc->animation.fps : 30.0f;
+    for (unsigned i = 1; i < frames; i++) pelt_scene_instance_advance(s.instance, 1.0f / fps);
+
+    unsigned w = sc->output.width, h = sc->output.height;
+    size_t bytes = (size_t)w * h * 4;
+    uint8_t *shells = malloc(bytes), *strands = malloc(bytes), *skin = malloc(bytes);
+    rc = 0;
+    if (!shells || !strands || !skin) {
+        cli_error("compare", "out of memory for three %ux%u pictures", w, h);
+        rc = 1;
+    }
+    if (rc == 0) {
+        pelt_draw_desc d = s.draw;
+        d.mode = PELT_DRAW_SHELLS; /* whatever render.mode the scene names */
+        draw_into(&s, &d, shells);
+        d = s.draw;
+        const char *reference = reference_draw(&d);
+        draw_into(&s, &d, strands);
+        d = s.draw;
+        d.mode = PELT_DRAW_SHELLS;
+        d.no_skin = false;
+        d.no_shells = d.no_fins = true;
+        draw_into(&s, &d, skin);
+        unsigned layers = pelt_fur_get_desc(pelt_scene_instance_fur(s.instance)).layers;
+        pelt_compare_desc cd = {.shells = {shells, w, h}, .strands = {strands, w, h},
+                                .skin = {skin, w, h}, .fur_px = o.fur_px, .layers = layers};
+        for (int c = 0; c < 3; c++) cd.background[c] = to_byte(s.background[c]);
+        pelt_compare_result r;
+        pelt_error err = {0};
+        if (pelt_compare_images(&cd, &r, &err) != PELT_OK) {
+            cli_error("compare", "%s", err.message);
+            rc = 1;
+        } else {
+            printf("reference %s\n", reference);
+            print_result(&r, layers);
+            if (o.output_set && !write_side(o.output, shells, strands, w, h)) rc = 1;
+            else if (o.output_set && !o.quiet)
+                fprintf(stderr, "pelt compare: wrote %s (shells | strands | difference x%d)\n",
+                        o.output, DIFF_GAIN);
+        }
+    }
+    free(shells);
+    free(strands);
+    free(skin);
+    cli_session_close(&s);
+    cli_options_free(&o);
+    return rc;
+}

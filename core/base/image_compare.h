@@ -1,0 +1,69 @@
+/* The measures of pelt/compare.h, one function each, over RGBA8 pictures
+ * (rows top first). pelt_compare_images calls them; the tests call them
+ * with synthetic pictures. */
+#ifndef PELT_BASE_IMAGE_COMPARE_H
+#define PELT_BASE_IMAGE_COMPARE_H
+
+#include "pelt/compare.h"
+
+/* A pixel "differs from the background" when one of its R, G, B channels
+ * is more than this many levels from it: the coverage of the silhouette
+ * profile, the skin's mask, the subject whose luminance is measured. */
+#define PELT__COVERAGE_THRESHOLD 8
+
+/* No skin pixel in the picture: what pelt__distance_outside writes. */
+#define PELT__FAR 1e30f
+#define PELT__NO_PIXEL UINT32_MAX
+
+/* Luminance of an RGB pixel, 0..255 (ITU-R BT.601 weights, as Wang et
+ * al.'s reference code converts colour to grey). */
+double pelt__luma(const uint8_t *px);
+
+bool pelt__pixel_differs(const uint8_t *px, const uint8_t background[3]);
+
+/* Mean SSIM of two pictures' luminance at half resolution (Wang et al.
+ * 2004): NaN when the half-size picture is smaller than the 11x11 window,
+ * or when the scratch cannot be allocated (*out_of_memory set then). */
+double pelt__image_ssim(const uint8_t *a, const uint8_t *b, unsigned w, unsigned h,
+                        const pelt_allocator *alloc, bool *out_of_memory);
+
+/* Mean absolute difference over the R, G and B channels, 0..255. */
+double pelt__image_mae(const uint8_t *a, const uint8_t *b, unsigned w, unsigned h);
+
+/* The Euclidean distance of every pixel centre to the nearest pixel of
+ * `mask` (non-zero bytes, w*h), 0 on the mask, PELT__FAR without a mask
+ * pixel; `nearest` (may be NULL) gets that pixel's index y*w+x, or
+ * PELT__NO_PIXEL. False when the scratch cannot be allocated. */
+bool pelt__distance_outside(const uint8_t *mask, unsigned w, unsigned h, float *dist,
+                            uint32_t *nearest, const pelt_allocator *alloc);
+
+/* Fraction of the pixels of each distance band (pelt/compare.h) that
+ * differ from the background; NaN for a band with no pixel. */
+void pelt__silhouette_profile(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
+                              const uint8_t background[3],
+                              double coverage[PELT_COMPARE_BANDS]);
+
+/* How far the fur reaches past the outline, in whole pixels: the last d
+ * such that at each distance [1, 2), ..., [d, d + 1) at least half of the
+ * pixels differ from the background; 0 when [1, 2) is not covered so, or
+ * when no band below PELT__MAX_FUR_PX falls below one half. */
+#define PELT__MAX_FUR_PX 1024
+float pelt__fur_extent(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
+                       const uint8_t background[3]);
+
+/* Power at `frequency` (cycles per pixel) of the luminance along the
+ * outline's normals through the fur band, averaged over the normals:
+ * each profile starts at a skin pixel of the outline and runs fur_px
+ * pixels out. `frequency` is folded into [0, 0.5] (what pixels can hold);
+ * NaN when the folded frequency makes fewer than 2 cycles over the
+ * profile, or no profile fits in the picture. *folded gets the frequency
+ * measured (may be NULL). */
+double pelt__stripe_energy(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
+                           const uint32_t *nearest, float fur_px, double frequency,
+                           double *folded);
+
+/* Mean luminance of the pixels where mask (w*h bytes) is non-zero; the
+ * whole picture for a NULL mask; NaN for an empty mask. */
+double pelt__mean_luminance(const uint8_t *rgba, unsigned w, unsigned h, const uint8_t *mask);
+
+#endif

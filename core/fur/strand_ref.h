@@ -1,0 +1,37 @@
+/* The strand reference (docs/reference.md, The strand reference): every
+ * hair of the fur texture's tile (Lengyel et al. 2001 §2.2, furtex.h),
+ * tiled over the surface by the fur uvs as the shells tile it, each along
+ * the curve the shells' layers follow at its root (Silva's beta + phi +
+ * comb of the three vertex strands around it, vertex_strand.h) plus its
+ * own shape in the tile (lean, curl, ringlets). GL-free; the strands pass
+ * (gl/strands_pass.c) draws the curves as camera-facing ribbons. */
+#ifndef PELT_CORE_FUR_STRAND_REF_H
+#define PELT_CORE_FUR_STRAND_REF_H
+
+#include "core/fur/furtex.h"
+#include "pelt/fur.h"
+
+#include <stddef.h>
+
+#define PELT__STRAND_SEGMENTS 8 /* straight pieces along a hair */
+/* Texels of 4 floats a hair: for k = 0 .. PELT__STRAND_SEGMENTS its
+ * point (mesh-local, w the radius in mesh units) and unit tangent (w the
+ * height along the hair, 0 root .. 1 tip); then the surface normal with
+ * the hair's shade in w; then the atlas uv and the hair colour's bytes,
+ * two a float (r 256 + g, b 256 + a). */
+#define PELT__STRAND_TEXELS (2 * (PELT__STRAND_SEGMENTS + 1) + 2)
+
+/* The tile's strands (pelt__furtex_strands of the fur's texture desc):
+ * how many, and into `out` up to `cap` of them. */
+size_t pelt__strand_ref_tile(const pelt_fur *fur, pelt__furtex_strand *out, size_t cap);
+
+/* How many hairs the surface holds with every strand kept (grooming's
+ * density at 1): room enough for pelt__strand_ref_build. */
+size_t pelt__strand_ref_count(const pelt_fur *fur, const pelt__furtex_strand *tile, size_t tile_count);
+
+/* Writes the hairs grooming keeps, PELT__STRAND_TEXELS * 4 floats each,
+ * up to `cap` hairs, and returns how many. No allocation. */
+size_t pelt__strand_ref_build(const pelt_fur *fur, const pelt__furtex_strand *tile, size_t tile_count, float *out,
+                              size_t cap);
+
+#endif

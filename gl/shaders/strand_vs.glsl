@@ -1,0 +1,42 @@
+// The strand reference (gl/strands_pass.c): every hair a ribbon of
+// PELT_STRAND_SEGMENTS quads, 6 vertices a quad, turned to face the eye
+// and as wide as the hair (its radius from root to tapered tip), lit per
+// vertex by the hairs' own model (fur_light.glsl) with the hair's tangent.
+// The hairs' points come from core/fur/strand_ref.c in a buffer texture.
+uniform highp samplerBuffer u_strands; // PELT_UNIT_STRANDS: PELT_STRAND_TEXELS a hair
+
+out vec3 v_color;
+
+void main()
+{
+    const int per_hair = 6 * PELT_STRAND_SEGMENTS;
+    int hair = gl_VertexID / per_hair;
+    int corner = gl_VertexID % per_hair;
+    int seg = corner / 6, k = corner % 6;
+    // Two triangles a quad: (a-, a+, b-), (a+, b+, b-).
+    int point = seg + ((k == 2 || k == 4 || k == 5) ? 1 : 0);
+    float side = (k == 1 || k == 3 || k == 4) ? 1.0 : -1.0;
+    int base = hair * PELT_STRAND_TEXELS;
+    vec4 pr = texelFetch(u_strands, base + 2 * point);
+    vec4 th = texelFetch(u_strands, base + 2 * point + 1);
+    vec4 ns = texelFetch(u_strands, base + 2 * (PELT_STRAND_SEGMENTS + 1));
+    vec4 ex = texelFetch(u_strands, base + 2 * (PELT_STRAND_SEGMENTS + 1) + 1);
+    vec4 hair_color = vec4(floor(ex.z / 256.0), mod(ex.z, 256.0), floor(ex.w / 256.0), mod(ex.w, 256.0)) / 255.0;
+
+    vec4 world = u_model * vec4(pr.xyz, 1.0);
+    vec3 T = normalize(mat3(u_model) * th.xyz);
+    vec3 to_eye = u_eye - world.xyz;
+    vec3 across = cross(T, to_eye);
+    float len = length(across);
+    across = len > 1e-8 ? across / len : normalize(cross(T, vec3(0.0, 1.0, 0.0)) + vec3(1e-4));
+    float scale = length(mat3(u_model)[0]);
+    world.xyz += across * (side * pr.w * scale);
+
+    vec3 mul;
+    float spec;
+    fur_light_terms(T, mat3(u_model) * ns.xyz, world.xyz, th.w, mul, spec);
+    vec3 root = groom_root_color(u_color, hair_color);
+    vec3 tip = groom_tip_color(u_color, u_tip_color, hair_color);
+    v_color = mix(root, tip, th.w) * ns.w * mul + spec * (u_specular * u_light_color);
+    gl_Position = u_view_proj * world;
+}

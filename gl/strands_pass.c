@@ -1,0 +1,108 @@
+/* The strand reference (docs/reference.md, The strand reference): the
+ * ground truth the shells and fins approximate. Each frame the hairs come
+ * from core/fur/strand_ref.c (every strand of the fur texture's tile,
+ * tiled over the fur uvs as the shells tile it, along the shells' curve at
+ * its root) into one buffer texture; ONE draw turns each into a tapered
+ * ribbon facing the eye (strand_vs.glsl), opaque, lit by the hairs' model
+ * and the light's shadow maps. Its fragment stage is its own
+ * (strand_fs.glsl): nothing of the shells' is shared. */
+#include "gl/passes.h"
+
+#include "core/base/hooks.h"
+#include "core/fur/strand_ref.h"
+#include "gl/programs.h"
+
+#include <string.h>
+
+_Static_assert(PELT__STRAND_SEGMENTS == PELT_STRAND_SEGMENTS && PELT__STRAND_TEXELS == PELT_STRAND_TEXELS,
+               "core/fur/strand_ref.h and bindings.glsl agree on a hair's texels");
+
+static void build(pelt__strands_pass *p, unsigned features)
+{
+    char defines[PELT__FEATURE_DEFINES_MAX];
+    pelt__shell_feature_defines(features, defines);
+    const char *vs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_fur_light,
+                        pelt__shader_strand_vs, NULL};
+    const char *fs[] = {pelt__shader_strand_fs, NULL};
+    if (pelt__gl_program_create("strand", vs, fs, &p->hooks, &p->variants[features], NULL) != PELT_OK) {
+        p->failed[features] = true;
+        return;
+    }
+    glUniform1i(glGetUniformLocation(p->variants[features], "u_strands"), PELT_UNIT_STRANDS);
+}
+
+void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const pelt_hooks *hooks)
+{
+    memset(p, 0, sizeof *p);
+    p->hooks = *hooks;
+    p->fur = fur;
+}
+
+/* The tile's strands, room for every hair and the buffer texture: once,
+ * on the first frame of strands. */
+static bool make(pelt__strands_pass *p)
+{
+    p->made = true;
+    p->tile_count = pelt__strand_ref_tile(p->fur, NULL, 0);
+    p->tile = pelt__alloc(&p->hooks.allocator, (p->tile_count ? p->tile_count : 1) * sizeof(pelt__furtex_strand));
+    if (!p->tile) return false;
+    pelt__strand_ref_tile(p->fur, p->tile, p->tile_count);
+    p->capacity = pelt__strand_ref_count(p->fur, p->tile, p->tile_count);
+    size_t bytes = (p->capacity ? p->capacity : 1) * 16 * PELT__STRAND_TEXELS;
+    p->hairs = pelt__alloc(&p->hooks.allocator, bytes);
+    if (!p->hairs) return false;
+    glGenBuffers(1, &p->buffer);
+    glBindBuffer(GL_TEXTURE_BUFFER, p->buffer);
+    glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)bytes, NULL, GL_STREAM_DRAW);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    glGenTextures(1, &p->texture);
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_STRANDS);
+    glBindTexture(GL_TEXTURE_BUFFER, p->texture);
+    glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, p->buffer);
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    return true;
+}
+
+void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
+{
+    if (!p->made && !make(p)) {
+        p->broken = true;
+        pelt__log(&p->hooks.logger, PELT_LOG_ERROR, "out of memory for the strand reference's %zu hairs",
+                  p->capacity);
+    }
+    if (p->broken) return;
+    size_t n = pelt__strand_ref_build(p->fur, p->tile, p->tile_count, p->hairs, p->capacity);
+    if (n == 0) return;
+    glBindBuffer(GL_TEXTURE_BUFFER, p->buffer);
+    glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)(n * 16 * PELT__STRAND_TEXELS), p->hairs);
+    glBindBuffer(GL_TEXTURE_BUFFER, 0);
+    f->stats->upload_bytes += n * 16 * PELT__STRAND_TEXELS;
+
+    unsigned features = f->shell_features & PELT__STRAND_FEATURES;
+    if (!p->variants[features] && !p->failed[features]) build(p, features);
+    if (!p->variants[features]) return;
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_STRANDS);
+    glBindTexture(GL_TEXTURE_BUFFER, p->texture);
+    glUseProgram(p->variants[features]);
+    glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 6 * PELT__STRAND_SEGMENTS));
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    f->stats->strand_draw_calls++;
+    f->stats->strands += n;
+    f->stats->triangles += n * 2 * PELT__STRAND_SEGMENTS;
+}
+
+void pelt__strands_pass_destroy(pelt__strands_pass *p)
+{
+    for (unsigned k = 0; k <= PELT__STRAND_FEATURES; k++)
+        if (p->variants[k]) glDeleteProgram(p->variants[k]);
+    if (p->texture) glDeleteTextures(1, &p->texture);
+    if (p->buffer) glDeleteBuffers(1, &p->buffer);
+    pelt__free(&p->hooks.allocator, p->tile);
+    pelt__free(&p->hooks.allocator, p->hairs);
+    memset(p, 0, sizeof *p);
+}
