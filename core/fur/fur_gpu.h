@@ -11,6 +11,7 @@
 #include "core/fur/fins.h"
 #include "core/fur/lod.h"
 #include "core/fur/shadow_map.h" /* the light's maps (gl/shadow_pass.c, renderer.c) */
+#include "core/fur/strand_ref.h" /* the strand reference (gl/strands_pass.c) */
 
 /* The posed mesh (pelt_fur_set_pose), 10 floats a vertex: position,
  * normal, tangent; NULL before the first pose. *version changes with it. */
