@@ -138,7 +138,7 @@ int cmd_compare(int argc, char **argv)
         d = s.draw;
         d.mode = PELT_DRAW_SHELLS;
         d.no_skin = false;
-        d.no_shells = d.no_fins = true;
+        d.debug.no_shells = d.no_fins = true;
         draw_into(&s, &d, skin);
         unsigned layers = pelt_fur_get_desc(pelt_scene_instance_fur(s.instance)).layers;
         pelt_compare_desc cd = {.shells = {shells, w, h}, .strands = {strands, w, h},

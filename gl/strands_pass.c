@@ -9,7 +9,7 @@
 #include "gl/passes.h"
 
 #include "core/base/hooks.h"
-#include "core/fur/strand_ref.h"
+#include "core/fur/fur_gpu.h"
 #include "gl/programs.h"
 
 #include <string.h>

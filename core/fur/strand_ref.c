@@ -157,7 +157,7 @@ size_t pelt__strand_ref_build(const pelt_fur *f, const pelt__furtex_strand *tile
     const pelt_mesh_data m = pelt_mesh_get_data(f->mesh);
     const float *tangents = pelt_mesh_tangents(f->mesh);
     const pelt__furtex_desc td = pelt__fur_texture_desc(&f->desc);
-    const bool wet = !pelt__rect_empty(f->wetness->wet);
+    const bool wet = !pelt__rect_empty(pelt__water_mask(f->water)->wet);
     const float slant = tanf(f->desc.comb.slant * 3.14159265f / 180.0f);
     const float inv_size = 1.0f / (float)td.size;
     size_t n = 0;
