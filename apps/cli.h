@@ -77,6 +77,9 @@ typedef struct cli_options {
  * prints a message naming the flag and returns 2 for bad input; returns
  * 0 when parsed. */
 int cli_parse(const char *cmd, int argc, char **argv, cli_options *o);
+/* cli_parse for a command's entry point: -1 to go on with *o, else the
+ * command's exit code (0 after --help) with *o already freed. */
+int cli_parse_command(const char *cmd, int argc, char **argv, cli_options *o);
 void cli_options_free(cli_options *o);
 
 /* A scene instance (the library's scene runner) drawn into a headless

@@ -418,11 +418,9 @@ static void bench_dolly(cli_session *s, unsigned frames)
 int cmd_bench(int argc, char **argv)
 {
     cli_options o;
-    int rc = cli_parse("bench", argc, argv, &o);
-    if (rc) {
-        cli_options_free(&o);
-        return rc == 1 ? 0 : rc;
-    }
+    int rc = cli_parse_command("bench", argc, argv, &o);
+    if (rc >= 0) return rc;
+    rc = 0;
     pelt_scene *sc = &o.scene;
     unsigned frames = sc->animation.frames > 1 ? sc->animation.frames : 30;
     cli_session s;

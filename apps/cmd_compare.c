@@ -91,11 +91,8 @@ static uint8_t to_byte(float v)
 int cmd_compare(int argc, char **argv)
 {
     cli_options o;
-    int rc = cli_parse("compare", argc, argv, &o);
-    if (rc) {
-        cli_options_free(&o);
-        return rc == 1 ? 0 : rc;
-    }
+    int rc = cli_parse_command("compare", argc, argv, &o);
+    if (rc >= 0) return rc;
     const pelt_scene *sc = &o.scene;
     if (sc->ground.enabled) {
         cli_error("compare", "ground.enabled: the ground would count as fur outside the "

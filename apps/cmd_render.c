@@ -73,11 +73,8 @@ static bool write_mask(cli_session *s, const char *path)
 int cmd_render(int argc, char **argv)
 {
     cli_options o;
-    int rc = cli_parse("render", argc, argv, &o);
-    if (rc) {
-        cli_options_free(&o);
-        return rc == 1 ? 0 : rc;
-    }
+    int rc = cli_parse_command("render", argc, argv, &o);
+    if (rc >= 0) return rc;
     const pelt_scene *sc = &o.scene;
     unsigned frames = sc->animation.frames ? sc->animation.frames : 1;
     float fps = sc->animation.fps > 0.0f ? sc->animation.fps : 30.0f;

@@ -316,6 +316,14 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     return false;
 }
 
+int cli_parse_command(const char *cmd, int argc, char **argv, cli_options *o)
+{
+    int rc = cli_parse(cmd, argc, argv, o);
+    if (rc == 0) return -1;
+    cli_options_free(o);
+    return rc == 1 ? 0 : rc;
+}
+
 int cli_parse(const char *cmd, int argc, char **argv, cli_options *o)
 {
     memset(o, 0, sizeof *o);

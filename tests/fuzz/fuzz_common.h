@@ -1,5 +1,6 @@
-/* What the fuzz targets share: a quiet logger and one small furry torus,
- * made once per process (libFuzzer calls the target many times). */
+/* What the fuzz targets share: a quiet logger, one small furry torus made
+ * once per process (libFuzzer calls the target many times), and what the
+ * scene targets do with a scene they parsed. */
 #ifndef PELT_FUZZ_COMMON_H
 #define PELT_FUZZ_COMMON_H
 
@@ -9,7 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-static void fuzz_quiet(pelt_log_level level, const char *message, void *user)
+static inline void fuzz_quiet(pelt_log_level level, const char *message, void *user)
 {
     (void)level, (void)message, (void)user;
 }
@@ -17,7 +18,7 @@ static void fuzz_quiet(pelt_log_level level, const char *message, void *user)
 /* A 12 x 8 torus with a 64 x 64 fur texture and mask: small enough that
  * loading a groom or painting an image is fast. Aborts when it cannot be
  * made (that is a broken build, not a finding). */
-static pelt_fur *fuzz_torus_fur(void)
+static inline pelt_fur *fuzz_torus_fur(void)
 {
     static pelt_mesh *mesh;
     static pelt_fur *fur;
@@ -33,6 +34,16 @@ static pelt_fur *fuzz_torus_fur(void)
         abort();
     }
     return fur;
+}
+
+/* What the scene targets do with a scene they got: its wind and model at
+ * time t (pelt_scene_wind_at, pelt_scene_model_at), then free it. */
+static inline void fuzz_use_scene(pelt_scene *s, float t)
+{
+    float wind[3], model[16];
+    pelt_scene_wind_at(s, t, wind);
+    pelt_scene_model_at(s, t, model);
+    pelt_scene_free(s);
 }
 
 #endif

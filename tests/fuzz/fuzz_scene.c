@@ -1,5 +1,5 @@
 /* Fuzz target: scene JSON through pelt_scene_parse. */
-#include <pelt/pelt.h>
+#include "fuzz_common.h"
 
 #include <stdint.h>
 #include <stdlib.h>
@@ -14,10 +14,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     pelt_scene s;
     pelt_error err = {0};
     if (pelt_scene_parse(text, "fuzz/scene.json", &s, &err) == PELT_OK) {
-        float wind[3], model[16];
-        pelt_scene_wind_at(&s, 1.5f, wind);
-        pelt_scene_model_at(&s, 1.5f, model);
-        pelt_scene_free(&s);
+        fuzz_use_scene(&s, 1.5f);
     }
     free(text);
     return 0;

@@ -1,7 +1,7 @@
 /* Fuzz target: --set values through pelt_scene_set. Each line of the input
  * is one KEY=VALUE (as after --set), applied in turn to one scene; a line
  * without '=' sets the key numbered by its first byte to the rest. */
-#include <pelt/pelt.h>
+#include "fuzz_common.h"
 
 #include <stdint.h>
 #include <stdlib.h>
@@ -31,10 +31,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         line = next;
     }
-    float wind[3], model[16];
-    pelt_scene_wind_at(&s, 2.0f, wind);
-    pelt_scene_model_at(&s, 2.0f, model);
-    pelt_scene_free(&s);
+    fuzz_use_scene(&s, 2.0f);
     free(text);
     return 0;
 }
