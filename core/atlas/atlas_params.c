@@ -4,9 +4,10 @@
 #include "pelt/atlas.h"
 #include "pelt/params.h"
 
+#include "core/base/params.h"
+
 #include <float.h>
 #include <stddef.h>
-#include <string.h>
 
 #define FMAX ((double)FLT_MAX)
 #define OFF(f) offsetof(pelt_atlas_desc, f)
@@ -37,7 +38,5 @@ const pelt_param *pelt_atlas_params(size_t *count)
 
 const pelt_param *pelt_atlas_param(const char *name)
 {
-    for (size_t i = 0; name && i < ATLAS_PARAM_COUNT; i++)
-        if (strcmp(atlas_params[i].name, name) == 0) return &atlas_params[i];
-    return NULL;
+    return pelt__params_find(atlas_params, ATLAS_PARAM_COUNT, name);
 }

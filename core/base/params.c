@@ -13,6 +13,13 @@
 
 #define FMAX ((double)FLT_MAX)
 
+const pelt_param *pelt__params_find(const pelt_param *rows, size_t count, const char *name)
+{
+    for (size_t i = 0; name && i < count; i++)
+        if (strcmp(rows[i].name, name) == 0) return &rows[i];
+    return NULL;
+}
+
 bool pelt_param_zero_is_default(const pelt_param *p)
 {
     return p->derived || p->def[0] != 0.0 || p->def[1] != 0.0 || p->def[2] != 0.0;

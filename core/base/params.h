@@ -7,6 +7,9 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+/* The row named `name` among count rows, or NULL. */
+const pelt_param *pelt__params_find(const pelt_param *rows, size_t count, const char *name);
+
 /* Puts each row's default where the field is zero (every float of a
  * colour zero); rows whose default is derived are left to the caller. */
 void pelt__params_defaults(const pelt_param *rows, size_t count, void *desc);

@@ -5,10 +5,7 @@
 #include "core/fur/fur_params.h"
 
 #include <float.h>
-#include <math.h>
 #include <stddef.h>
-#include <stdio.h>
-#include <string.h>
 
 #define FMAX ((double)FLT_MAX)
 #define OPEN PELT_PARAM_MIN_OPEN
@@ -86,8 +83,6 @@ const pelt_param *pelt_fur_params(size_t *count)
 
 const pelt_param *pelt_fur_param(const char *name)
 {
-    for (size_t i = 0; name && i < FUR_PARAM_COUNT; i++)
-        if (strcmp(fur_params[i].name, name) == 0) return &fur_params[i];
-    return NULL;
+    return pelt__params_find(fur_params, FUR_PARAM_COUNT, name);
 }
 
