@@ -7,6 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The least multisampling of the strand reference: 4 is what every GL 3.3
+ * implementation must offer (GL_MAX_SAMPLES >= 4). */
+enum { STRAND_MSAA = 4 };
+
 static void print_warning(pelt_log_level level, const char *message, void *user)
 {
     const char *cmd = user;
@@ -30,7 +34,11 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
         cli_error(cmd, "%s", err.message);
         return false;
     }
-    pelt_headless_desc hd = {sc->output.width * s->samples, sc->output.height * s->samples, sc->output.msaa, false};
+    /* ... and multisampled (at least STRAND_MSAA samples) so that doubling the
+     * supersampling changes the picture by less than 1/255 (docs/reference.md). */
+    unsigned msaa = sc->output.msaa;
+    if (s->draw.mode == PELT_DRAW_STRANDS && msaa < STRAND_MSAA) msaa = STRAND_MSAA;
+    pelt_headless_desc hd = {sc->output.width * s->samples, sc->output.height * s->samples, msaa, false};
     if (pelt_headless_create(&hd, &s->gl, &err) != PELT_OK ||
         pelt_renderer_create(pelt_scene_instance_mesh(s->instance),
                              pelt_scene_instance_fur(s->instance), NULL, &s->renderer,

@@ -66,6 +66,13 @@ static bool make_framebuffer(pelt_headless *c, pelt_error *err)
     GLenum color_format = c->desc.float_target ? GL_RGBA32F : GL_RGBA8;
     GLsizei w = (GLsizei)c->desc.width, h = (GLsizei)c->desc.height;
     GLsizei samples = (GLsizei)c->desc.samples;
+    GLint max_samples = 0;
+    glGetIntegerv(GL_MAX_SAMPLES, &max_samples);
+    if (samples > max_samples) {
+        pelt__fail(err, PELT_ERR_GL, "%u multisample samples asked for; this context has at most %d",
+                   c->desc.samples, (int)max_samples);
+        return false;
+    }
 
     glGenFramebuffers(1, &c->fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, c->fbo);
