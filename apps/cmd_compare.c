@@ -71,6 +71,8 @@ static void print_result(const pelt_compare_result *r, unsigned layers)
     printf("\n");
     print_bands("silhouette_shells", r->silhouette_shells);
     print_bands("silhouette_strands", r->silhouette_strands);
+    printf("extent_shells_px %.0f\n", (double)r->extent_shells_px);
+    printf("extent_strands_px %.0f\n", (double)r->extent_strands_px);
     printf("fur_px %.2f\n", (double)r->fur_px);
     printf("stripe_frequency %.4f\n", r->fur_px > 0.0f ? layers / (double)r->fur_px : NAN);
     printf("stripe_frequency_measured %.4f\n", r->stripe_frequency);

@@ -367,9 +367,9 @@ pelt_status pelt_compare_images(const pelt_compare_desc *desc, pelt_compare_resu
         } else {
             pelt__silhouette_profile(a->rgba, w, h, dist, desc->background, out->silhouette_shells);
             pelt__silhouette_profile(b->rgba, w, h, dist, desc->background, out->silhouette_strands);
-            out->fur_px = desc->fur_px > 0.0f
-                              ? desc->fur_px
-                              : pelt__fur_extent(b->rgba, w, h, dist, desc->background);
+            out->extent_shells_px = pelt__fur_extent(a->rgba, w, h, dist, desc->background);
+            out->extent_strands_px = pelt__fur_extent(b->rgba, w, h, dist, desc->background);
+            out->fur_px = desc->fur_px > 0.0f ? desc->fur_px : out->extent_strands_px;
             if (out->fur_px > 0.0f && desc->layers > 0) {
                 double freq = desc->layers / (double)out->fur_px;
                 out->stripe_shells = pelt__stripe_energy(a->rgba, w, h, dist, nearest,

@@ -47,6 +47,10 @@ typedef struct pelt_compare_result {
     double silhouette_shells[PELT_COMPARE_BANDS];    /* coverage in each band, 0..1 */
     double silhouette_strands[PELT_COMPARE_BANDS];
     float fur_px;              /* the fur_px used (given or measured; 0: none) */
+    /* Each picture's own reach past the outline, measured as fur_px 0 is
+     * (the last whole distance where at least half the pixels are fur):
+     * the two agree on the fur's extent when these are close. */
+    float extent_shells_px, extent_strands_px;
     double stripe_frequency;   /* cycles per pixel measured (layers / fur_px, folded) */
     double stripe_shells, stripe_strands; /* power at that frequency across the rim */
     double stripe_energy_ratio;           /* stripe_shells / stripe_strands */
