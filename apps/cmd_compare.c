@@ -75,7 +75,7 @@ static void print_result(const pelt_compare_result *r, unsigned layers)
     printf("extent_strands_px %.0f\n", (double)r->extent_strands_px);
     printf("fur_px %.2f\n", (double)r->fur_px);
     printf("stripe_frequency %.4f\n", r->fur_px > 0.0f ? layers / (double)r->fur_px : NAN);
-    printf("stripe_frequency_measured %.4f\n", r->stripe_frequency);
+    printf("stripe_band %.4f 0.5\n", r->stripe_frequency);
     printf("stripe_shells %.4g\n", r->stripe_shells);
     printf("stripe_strands %.4g\n", r->stripe_strands);
     printf("stripe_energy_ratio %.3f\n", r->stripe_energy_ratio);

@@ -239,6 +239,7 @@ static bool luma_at(const uint8_t *rgba, unsigned w, unsigned h, double x, doubl
 }
 
 #define STRIPE_MAX_SAMPLES PELT__MAX_FUR_PX
+#define STRIPE_BAND_LOW 0.25
 
 /* One profile's power at `freq`: the luminance x_t at t = 1..n pixels out,
  * its least-squares line removed (the fur thins out along the profile),
@@ -268,29 +269,33 @@ static double profile_power(const double *x, size_t n, double freq)
 }
 
 double pelt__stripe_energy(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
-                           const uint32_t *nearest, float fur_px, double frequency,
-                           double *folded)
+                           const uint32_t *nearest, float fur_px, double low)
 {
-    double f = frequency - floor(frequency);
-    if (f > 0.5) f = 1.0 - f;
-    if (folded) *folded = f;
-    size_t n = fur_px >= 1.0f && fur_px < STRIPE_MAX_SAMPLES ? (size_t)fur_px : 0;
-    if (!isfinite(frequency) || n < 4 || f * (double)n < 2.0) return NAN;
+    size_t n = fur_px >= 1.0f && 2.0f * fur_px < STRIPE_MAX_SAMPLES ? (size_t)fur_px : 0;
+    if (n < 4 || !(low >= 0.0) || low > 0.5) return NAN;
+    /* The band's periodogram bins, k / 2n cycles per pixel; at least two
+     * cycles over the profile (a slower wave is the fur's own shading). */
+    size_t k_lo = (size_t)ceil(low * 2.0 * (double)n);
+    if (k_lo < 2) k_lo = 2;
     double x[STRIPE_MAX_SAMPLES];
     double total = 0.0;
     size_t profiles = 0;
     /* One profile per pixel at the band's outer edge, d in [fur_px, fur_px + 1):
-     * along the line from its nearest skin pixel through it (the normal). */
+     * along the line from it through its nearest skin pixel (the normal), on
+     * through the fur seen at a grazing angle just inside the outline, where
+     * shells show as stripes: 2 n samples, fur_px out to fur_px in. */
     for (size_t i = 0; i < (size_t)w * h; i++) {
         if (!(dist[i] >= fur_px && dist[i] < fur_px + 1.0f) || nearest[i] == PELT__NO_PIXEL)
             continue;
         double fx = (double)(nearest[i] % w), fy = (double)(nearest[i] / w);
         double ux = ((double)(i % w) - fx) / dist[i], uy = ((double)(i / w) - fy) / dist[i];
         bool inside = true;
-        for (size_t t = 0; t < n && inside; t++)
-            inside = luma_at(rgba, w, h, fx + ux * (t + 1.0), fy + uy * (t + 1.0), &x[t]);
+        for (size_t t = 0; t < 2 * n && inside; t++) {
+            double along = (double)n - (double)t; /* n pixels out .. n - 1 in */
+            inside = luma_at(rgba, w, h, fx + ux * along, fy + uy * along, &x[t]);
+        }
         if (!inside) continue;
-        total += profile_power(x, n, f);
+        for (size_t k = k_lo; k <= n; k++) total += profile_power(x, 2 * n, (double)k / (2.0 * n));
         profiles++;
     }
     return profiles ? total / (double)profiles : NAN;
@@ -371,11 +376,18 @@ pelt_status pelt_compare_images(const pelt_compare_desc *desc, pelt_compare_resu
             out->extent_strands_px = pelt__fur_extent(b->rgba, w, h, dist, desc->background);
             out->fur_px = desc->fur_px > 0.0f ? desc->fur_px : out->extent_strands_px;
             if (out->fur_px > 0.0f && desc->layers > 0) {
-                double freq = desc->layers / (double)out->fur_px;
+                /* The band: from the shells' own spacing (folded into what
+                 * pixels hold) or 0.25 cycles a pixel, whichever is lower,
+                 * up to 0.5: rows 2 to 4 pixels apart are what shells
+                 * closer than the pixels alias into. */
+                double f = desc->layers / (double)out->fur_px;
+                f -= floor(f);
+                if (f > 0.5) f = 1.0 - f;
+                out->stripe_frequency = f < STRIPE_BAND_LOW ? f : STRIPE_BAND_LOW;
                 out->stripe_shells = pelt__stripe_energy(a->rgba, w, h, dist, nearest,
-                                                         out->fur_px, freq, &out->stripe_frequency);
+                                                         out->fur_px, out->stripe_frequency);
                 out->stripe_strands = pelt__stripe_energy(b->rgba, w, h, dist, nearest,
-                                                          out->fur_px, freq, NULL);
+                                                          out->fur_px, out->stripe_frequency);
                 if (isnan(out->stripe_shells)) out->stripe_frequency = NAN;
                 out->stripe_energy_ratio = out->stripe_shells / out->stripe_strands;
             }

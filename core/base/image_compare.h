@@ -51,16 +51,17 @@ void pelt__silhouette_profile(const uint8_t *rgba, unsigned w, unsigned h, const
 float pelt__fur_extent(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
                        const uint8_t background[3]);
 
-/* Power at `frequency` (cycles per pixel) of the luminance along the
- * outline's normals through the fur band, averaged over the normals:
- * each profile starts at a skin pixel of the outline and runs fur_px
- * pixels out. `frequency` is folded into [0, 0.5] (what pixels can hold);
- * NaN when the folded frequency makes fewer than 2 cycles over the
- * profile, or no profile fits in the picture. *folded gets the frequency
- * measured (may be NULL). */
+/* The stripe energy: the power of the luminance along the outline's
+ * normals across the grazing rim, between `low` and 0.5 cycles per pixel,
+ * averaged over the normals. Each profile runs from fur_px pixels outside
+ * the outline, through its nearest skin pixel, to fur_px pixels inside
+ * (where the fur is seen at a grazing angle and shells show as rows), its
+ * least-squares line removed, under a Hann window; its periodogram's bins
+ * k / (2 fur_px) in [low, 0.5] are summed (never below two cycles over the
+ * profile). NaN when fur_px < 4, low is outside [0, 0.5] or no profile
+ * fits in the picture. */
 double pelt__stripe_energy(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
-                           const uint32_t *nearest, float fur_px, double frequency,
-                           double *folded);
+                           const uint32_t *nearest, float fur_px, double low);
 
 /* Mean luminance of the pixels where mask (w*h bytes) is non-zero; the
  * whole picture for a NULL mask; NaN for an empty mask. */

@@ -51,8 +51,10 @@ typedef struct pelt_compare_result {
      * (the last whole distance where at least half the pixels are fur):
      * the two agree on the fur's extent when these are close. */
     float extent_shells_px, extent_strands_px;
-    double stripe_frequency;   /* cycles per pixel measured (layers / fur_px, folded) */
-    double stripe_shells, stripe_strands; /* power at that frequency across the rim */
+    /* The stripe band's low edge, cycles per pixel: the shells' spacing
+     * layers / fur_px folded into [0, 0.5], or 0.25 if that is lower. */
+    double stripe_frequency;
+    double stripe_shells, stripe_strands; /* power in [stripe_frequency, 0.5] across the rim */
     double stripe_energy_ratio;           /* stripe_shells / stripe_strands */
     double luminance_shells, luminance_strands; /* mean luminance of the subject, 0..255 */
 } pelt_compare_result;

@@ -178,9 +178,9 @@ static void disc_grown_by_3_px_covers_1_and_2_not_8(void)
     CHECK(cov[3] == 0.0);
 }
 
-/* Skin on the left (x < 20), fur from x = 20 to 60 whose luminance is
- * `amp` * cos at the given period along x (the outline's normal), over a
- * falling ramp (the fur thinning out). */
+/* Skin on the left (x < 20), fur over it and out to x = 60 whose
+ * luminance is `amp` * cos at the given period along x (the outline's
+ * normal), over a falling ramp (the fur thinning out). */
 static void rim(uint8_t *rgba, uint8_t *mask, double period, double amp)
 {
     fill(rgba, W, H, bg[0], bg[1], bg[2]);
@@ -188,11 +188,9 @@ static void rim(uint8_t *rgba, uint8_t *mask, double period, double amp)
         for (unsigned x = 0; x < W; x++) {
             uint8_t *p = rgba + (y * W + x) * 4;
             mask[y * W + x] = x < 20;
-            if (x < 20) {
-                memset(p, 90, 3);
-            } else if (x < 60) {
+            if (x < 60) {
                 double t = x - 19.0;
-                double v = 200.0 - 3.0 * t + amp * cos(2.0 * 3.14159265358979 * t / period);
+                double v = 150.0 - 2.0 * t + amp * cos(2.0 * 3.14159265358979 * t / period);
                 memset(p, (uint8_t)lround(v), 3);
             }
         }
@@ -203,26 +201,28 @@ static void striped_rim_has_more_stripe_energy_than_smooth(void)
     static uint8_t img[W * H * 4], mask[W * H];
     static float dist[W * H];
     static uint32_t nearest[W * H];
-    const float fur_px = 32.0f;
-    const unsigned layers = 8; /* a stripe every 4 px */
-    rim(img, mask, 4.0, 30.0);
+    const float fur_px = 16.0f; /* 16 px out to 15 px in: x = 35 .. 4 */
+    rim(img, mask, 4.0, 30.0); /* a stripe every 4 px: 0.25 cycles a pixel */
     CHECK(pelt__distance_outside(mask, W, H, dist, nearest, NULL));
-    double folded = -1.0;
-    double striped = pelt__stripe_energy(img, W, H, dist, nearest, fur_px, layers / fur_px, &folded);
-    CHECK_NEAR(folded, 0.25, 1e-12);
+    double striped = pelt__stripe_energy(img, W, H, dist, nearest, fur_px, 0.25);
     rim(img, mask, 4.0, 0.0);
-    double smooth = pelt__stripe_energy(img, W, H, dist, nearest, fur_px, layers / fur_px, NULL);
-    CHECK(striped > 100.0 * smooth);
-    /* A Hann-windowed cosine of amplitude A at its own frequency: (A/2)^2. */
-    CHECK_NEAR(striped, 15.0 * 15.0, 15.0 * 15.0 * 0.15);
-    /* Stripes at another frequency hardly count. */
+    double smooth = pelt__stripe_energy(img, W, H, dist, nearest, fur_px, 0.25);
+    CHECK(striped > 20.0 * smooth);
+    /* Rows 2 px apart (1-pixel alternating rows) count the same way. */
+    rim(img, mask, 2.0, 30.0);
+    double rows = pelt__stripe_energy(img, W, H, dist, nearest, fur_px, 0.25);
+    CHECK(rows > 20.0 * smooth);
+    /* A cosine of amplitude A over part of the profile: at most (A/2)^2
+     * times the Hann window's 1.5 (main bin and its two neighbours). */
+    CHECK(striped < 1.5 * 15.0 * 15.0);
+    /* Slow waves below the band hardly count. */
     rim(img, mask, 9.0, 30.0);
-    CHECK(pelt__stripe_energy(img, W, H, dist, nearest, fur_px, layers / fur_px, NULL) < 0.1 * striped);
-    /* 1.25 cycles per pixel folds to 0.25; 16 shells in 15 px fold to
-     * about one cycle over the profile: not measurable. */
-    CHECK(pelt__stripe_energy(img, W, H, dist, nearest, fur_px, 1.25, &folded) >= 0.0);
-    CHECK_NEAR(folded, 0.25, 1e-12);
-    CHECK(isnan(pelt__stripe_energy(img, W, H, dist, nearest, 15.0f, 16.0 / 15.0, NULL)));
+    CHECK(pelt__stripe_energy(img, W, H, dist, nearest, fur_px, 0.25) < 0.25 * striped);
+    /* ... unless the band reaches down to them. */
+    CHECK(pelt__stripe_energy(img, W, H, dist, nearest, fur_px, 0.1) > 0.25 * striped);
+    /* Too short a profile or a band outside what pixels hold: not measured. */
+    CHECK(isnan(pelt__stripe_energy(img, W, H, dist, nearest, 3.0f, 0.25)));
+    CHECK(isnan(pelt__stripe_energy(img, W, H, dist, nearest, fur_px, 0.6)));
 }
 
 static void fur_extent_is_the_last_half_covered_distance(void)
@@ -267,7 +267,7 @@ static void compare_images_measures_shells_against_strands(void)
     CHECK(r.silhouette_shells[3] == 0.0 && r.silhouette_strands[3] == 1.0);
     CHECK(r.luminance_shells > r.luminance_strands);
     CHECK(isfinite(r.stripe_shells) && isfinite(r.stripe_strands));
-    CHECK_NEAR(r.stripe_frequency, 0.4, 1e-9);
+    CHECK_NEAR(r.stripe_frequency, 0.25, 1e-9); /* 4 layers / 10 px = 0.4, above the band's 0.25 */
     /* The same picture twice. */
     d.strands = d.shells;
     CHECK(pelt_compare_images(&d, &r, &err) == PELT_OK);
