@@ -306,11 +306,12 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
 
 /* Variants of the same frame drawn alternately, so the machine's noise hits
  * them alike: with and without fins (their share of the frame), with and
- * without the inter-fur shadows, the floor shader, and with the light's
- * shadows on: without them and the light pass alone. */
+ * without the inter-fur shadows, every shell everywhere (no view budget),
+ * the floor shader, and with the light's shadows on: without them and the
+ * light pass alone. */
 static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
 {
-    enum { FULL, NO_FINS, NO_INTER, FLOOR, FLOOR_FINS, NO_LIGHT, LIGHT_ONLY, SKIN_ONLY, VARIANTS };
+    enum { FULL, NO_FINS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, NO_LIGHT, LIGHT_ONLY, SKIN_ONLY, VARIANTS };
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
     pelt_draw_desc v[VARIANTS];
@@ -320,6 +321,7 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     v[NO_FINS].no_fins = true;
     v[NO_FINS].debug.cull_shells = 1;
     v[NO_INTER].debug.no_inter_shadow = true;
+    v[FLAT].debug.flat_shells = true;
     /* The floor: the skin and the same shells with a one-fetch shader. */
     v[FLOOR].no_fins = true;
     v[FLOOR].debug.cull_shells = 1;
@@ -333,7 +335,7 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     v[SKIN_ONLY].no_fins = v[SKIN_ONLY].debug.no_shells = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
-    bool run[VARIANTS] = {true, true, true, with_floor, with_floor && fins, light, light, true};
+    bool run[VARIANTS] = {true, true, true, true, with_floor, with_floor && fins, light, light, true};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -344,6 +346,7 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     print_stats("as drawn", st[FULL]);
     print_stats("no fins", st[NO_FINS]);
     print_stats("no inter-sh.", st[NO_INTER]);
+    print_stats("flat shells", st[FLAT]);
     if (with_floor) print_stats("floor", st[FLOOR]);
     if (run[FLOOR_FINS]) print_stats("floor + fins", st[FLOOR_FINS]);
     if (light) {
@@ -355,6 +358,8 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
                     st[SKIN_ONLY].median, with_floor ? st[FLOOR].median : 0.0);
     if (fins)
         printf("  fins: %.1f%% of the frame's draw\n", 100.0 * (1.0 - st[NO_FINS].median / st[FULL].median));
+    printf("  the view's shell budget: the frame takes %.2fx as long as with every shell everywhere\n",
+           st[FULL].median / st[FLAT].median);
     if (with_floor)
         printf("  the frame takes %.2fx the floor (skin + the same shells with a one-fetch shader)\n",
                st[FULL].median / st[FLOOR].median);

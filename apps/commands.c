@@ -8,7 +8,7 @@
 const cli_command cli_commands[] = {
     {"render", "[SCENE.json] [flags]",
      "render a scene (default: the Table 1 torus) to PNG or video",
-     "Renders the scene (default: the paper's Table 1 torus, 16 layers, 800x600)\n"
+     "Renders the scene (default: the paper's Table 1 torus, 800x600)\n"
      "headless to a PNG, a PNG sequence (-o out_%04d.png) or a video: -o out.mp4,\n"
      "out.webm or out.gif pipes the frames into ffmpeg (Debian package ffmpeg).\n"
      "Flags override keys of the scene file. On a terminal an animation shows\n"

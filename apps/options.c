@@ -55,7 +55,7 @@ static const flag flags[] = {
      "out.mp4/.webm/.gif through ffmpeg (default pelt.png)"},
     {"--mesh", NULL, "FILE|torus|sphere|square", FLAG_MESH, NULL, "mesh file (OBJ, PLY, OFF, STL, glTF...) or a procedural shape",
      "torus sphere square"},
-    {"--layers", NULL, "N", FLAG_KEY, "fur.layers", "shell layers (default 16)"},
+    {"--layers", NULL, "N", FLAG_KEY, "fur.layers", "shell layers edge-on; half of them face-on (default 32)"},
     {"--length", NULL, "L", FLAG_KEY, "fur.length", "fur length in world units (default 3% of the mesh diagonal)"},
     {"--density", NULL, "D", FLAG_KEY, "fur.density", "strands per fur-texture tile (default 3000)"},
     {"--texture-size", NULL, "N", FLAG_KEY, "fur.texture_size", "fur texture size (default 256)"},

@@ -32,7 +32,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
                         pelt__shader_fur_light, pelt__shader_fur_shape, pelt__shader_clump,
                         pelt__shader_shell_lod, pelt__shader_skin_blend, pelt__shader_shell_vs, NULL};
     const char *fs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_clump,
-                        pelt__shader_shell_fs, NULL};
+                        pelt__shader_shell_lod, pelt__shader_shell_fs, NULL};
     const char *floor_fs[] = {pelt__shader_shell_floor_fs, NULL};
     pelt_status st = pelt__gl_program_create(floor ? "shell floor" : "shell", vs, floor ? floor_fs : fs, hooks,
                                              &sp->program, err);
@@ -42,6 +42,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     }
     sp->shells = glGetUniformLocation(sp->program, "u_shells");
     sp->shells_next = glGetUniformLocation(sp->program, "u_shells_next");
+    sp->shell_view = glGetUniformLocation(sp->program, "u_shell_view");
     sp->no_inter_shadow = glGetUniformLocation(sp->program, "u_no_inter_shadow");
     return PELT_OK;
 }
@@ -86,6 +87,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
     glUseProgram(sp->program);
     glUniform4fv(sp->shells, 1, shells);
     glUniform2fv(sp->shells_next, 1, next);
+    glUniform2fv(sp->shell_view, 1, lod->shell_view);
     glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
     size_t triangles = lod->full_mesh ? f->mesh->triangle_count : f->mesh->level_triangles[lod->mesh_level];
     const void *offset = (const void *)(lod->full_mesh ? 0 : f->mesh->level_offset[lod->mesh_level]);

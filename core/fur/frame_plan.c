@@ -63,6 +63,13 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     l.mesh_level = pelt__lod_pick(c, ppu, fl.mesh_error_pixels, fl.mesh_edge_pixels);
     float fur_px = fd->length * ppu;
     if (!sw->one_height) pelt__lod_shell_choice(fd->layers, fur_px, fl.shell_pixels, &l.shell_level, &l.shell_blend);
+    /* Where the fur is seen face-on a vertex needs fewer shells: it blends
+     * towards the next level as far as its foreshortened spacing allows. */
+    if (!sw->one_height && !sw->flat_shells && l.shell_level + 1 < shell_levels && fd->length > 0.0f) {
+        float px_per_unit_at_w1 = v->proj[5] * 0.5f * (float)v->height * scale;
+        l.shell_view[0] = fd->length * px_per_unit_at_w1 * (float)(1u << l.shell_level) / (float)fd->layers;
+        l.shell_view[1] = fl.shell_pixels;
+    }
     /* A fin's strip follows the bent and curled strand to within a pixel:
      * on llvmpipe a fin costs its triangles as much as its pixels. */
     l.fin_row_error = ppu > 0.0f && isfinite(ppu) ? 1.0f / ppu : 0.0f;

@@ -18,6 +18,10 @@ typedef struct pelt__frame_lod {
     unsigned mesh_level;  /* else this geometric level's triangles and fins */
     unsigned shell_level; /* Lengyel §2.4: ceil(N / 2^level) shells ... */
     float shell_blend;    /* ... blending this far towards the next level */
+    /* The view's shell budget (pelt__lod_view_blend, the shells' u_shell_view):
+       [0] the level's spacing seen side-on, pixels x clip w per unit of groom
+       length (0: off), [1] the spacing aimed at, pixels. */
+    float shell_view[2];
     float fin_row_error;  /* the chord error a fin's rows may show, mesh units
                              (0: always PELT_FIN_ROWS rows) */
     bool cull;            /* back-facing shells culled (closed meshes) */
@@ -67,6 +71,7 @@ typedef struct pelt__frame_switches {
     bool one_height;    /* a range of layers is inspected: the finest shells */
     bool gpu_skin;      /* skin the shells in the vertex stage */
     bool strands;       /* the strand reference in place of fins and shells */
+    bool flat_shells;   /* no view budget: the level's shells everywhere */
 } pelt__frame_switches;
 
 /* The renderer's state the plan reads. */

@@ -22,9 +22,10 @@ static const char *const shadings[] = {"kajiya-kay", "lengyel-table", NULL};
 static const char *const lod_modes[] = {"auto", "off", "fixed", NULL};
 
 /* The ranges are what the library can draw; the defaults are the papers'
- * (Silva Table 1: 16 layers, a 256 x 256 texture and mask). */
+ * (Silva Table 1: a 256 x 256 texture and mask, 16 layers where the fur is
+ * seen face-on: 32 drawn edge-on, where 16 alias into stripes). */
 static const pelt_param fur_params[] = {
-    UINT_("layers", layers, 1, 256, 16),
+    UINT_("layers", layers, 1, 256, 32),
     DERIVED("length", length, 0, FMAX, OPEN, "3% of the mesh's bounding-box diagonal"),
     {"seed", PELT_PARAM_SEED, OFF(seed), 1, 0, 4294967295.0, 0, {1, 0, 0}, NULL, NULL},
     UINT_("look.texture_size", look.texture_size, 8, 4096, 256),
@@ -68,7 +69,7 @@ static const pelt_param fur_params[] = {
     ENUM("lod.mode", lod.mode, lod_modes),
     UINT_("lod.shell_level", lod.shell_level, 0, 8, 0),
     UINT_("lod.mesh_level", lod.mesh_level, 0, 11, 0),
-    FLT("lod.shell_pixels", lod.shell_pixels, 0, 64, OPEN, 1),
+    FLT("lod.shell_pixels", lod.shell_pixels, 0, 64, OPEN, 0.5),
     FLT("lod.mesh_error_pixels", lod.mesh_error_pixels, 0, 64, OPEN, 0.5),
     FLT("lod.mesh_edge_pixels", lod.mesh_edge_pixels, 0, 1024, OPEN, 8),
 };

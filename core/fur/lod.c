@@ -349,6 +349,19 @@ void pelt__lod_shell_uniforms(unsigned layers, unsigned level, float blend, unsi
     next[1] = (float)pelt__lod_shell_count(layers, level + 1);
 }
 
+float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px)
+{
+    float c = fminf(fabsf(n_dot_v), 1.0f);
+    float spacing = fmaxf(side_px * sqrtf(1.0f - c * c), 1e-6f);
+    return fminf(fmaxf(log2f(target_px / spacing), 0.0f), 1.0f);
+}
+
+void pelt__lod_view_texel(float w, float rgba[4])
+{
+    float gain = 1.0f + w * (1.0f - rgba[3]);
+    for (int k = 0; k < 4; k++) rgba[k] *= gain;
+}
+
 float pelt__lod_shell_instance(const float shells[4], const float next[2], float layers, float i, float slices[3],
                                float *alpha)
 {

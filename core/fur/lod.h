@@ -92,6 +92,25 @@ void pelt__lod_shell_uniforms(unsigned layers, unsigned level, float blend, unsi
 float pelt__lod_shell_instance(const float shells[4], const float next[2], float layers, float i, float slices[3],
                                float *alpha);
 
+/* The view's shell budget (docs/lod.md): fur seen face-on shows its
+ * shells' spacing foreshortened by sin(theta), theta between the fur's
+ * normal and the direction to the eye, so a vertex seen face-on needs
+ * fewer shells than one seen edge-on, where shells closer than the pixels
+ * alias into stripes. side_px is the drawn level's spacing in pixels were
+ * the fur at this vertex seen side-on, n_dot_v = cos(theta). Returns how
+ * far the vertex goes towards half the shells,
+ *   w = clamp(log2(target_px / (side_px sin(theta))), 0, 1):
+ * the level's odd shells (from the outside) fade by 1 - w and each even
+ * shell stands for itself and the faded one below it, its premultiplied
+ * texel composited over itself by w (pelt__lod_view_texel): the hair of
+ * neighbouring slices is nearly the same, and it costs no second fetch.
+ * Mirrors shell_view_blend() in gl/shaders/shell_lod.glsl. */
+float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px);
+
+/* An even shell's premultiplied texel under weight w: over itself,
+ * rgba (1 + w (1 - a)). Mirrors shell_view_texel() (shell_lod.glsl). */
+void pelt__lod_view_texel(float w, float rgba[4]);
+
 /* Writes the coarser levels' slices (pelt__lod_shell_extra_slices of
  * size x size RGBA8, premultiplied) from the volume's N + 1 slices. */
 void pelt__lod_shell_composite(const uint8_t *volume, unsigned size, unsigned layers, uint8_t *extra);

@@ -10,7 +10,8 @@ in float v_spec;
 in vec2 v_shadow_step;
 flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
-flat in float v_alpha;
+in float v_alpha;
+in float v_view;
 
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
@@ -43,6 +44,8 @@ vec4 shell_hair(vec2 fur_uv, float offset)
 // defines them all.
 void main()
 {
+    // A shell the view's budget leaves out here (face-on): no fetch.
+    if (v_alpha < 1.0 / 255.0) discard;
     vec2 d = vec2(0.0);
     float rho = 0.0;
 #ifdef PELT_WET
@@ -66,7 +69,7 @@ void main()
 #else
     hair = shell_hair(fur_uv, 0.0);
 #endif
-    hair *= v_alpha;
+    hair = shell_view_texel(v_view, hair) * v_alpha;
     hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
     if (!groom_keeps(hair.b, v_density)) discard;
 #ifdef PELT_WET

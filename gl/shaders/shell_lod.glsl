@@ -4,6 +4,20 @@
 // next level's composite, the odd ones fade out. shells and next are the
 // shell pass's uniforms (pelt__lod_shell_uniforms). Mirrors
 // pelt__lod_shell_instance (core/fur/lod.c).
+// The view's shell budget: pelt__lod_view_blend and pelt__lod_view_texel
+// (core/fur/lod.c).
+float shell_view_blend(float side_px, float n_dot_v, float target_px)
+{
+    float c = min(abs(n_dot_v), 1.0);
+    float spacing = max(side_px * sqrt(1.0 - c * c), 1e-6);
+    return clamp(log2(target_px / spacing), 0.0, 1.0);
+}
+
+vec4 shell_view_texel(float w, vec4 hair)
+{
+    return hair * (1.0 + w * (1.0 - hair.a));
+}
+
 float shell_instance(float i, vec4 shells, vec2 next, float N, out vec3 slices, out float alpha)
 {
     float j = shells.x - 1.0 - i;

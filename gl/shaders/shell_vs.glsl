@@ -18,6 +18,9 @@ layout(location = PELT_ATTR_HAIR_COLOR) in vec4 a_hair_color; // rgb, weight ove
 uniform vec4 u_shells;     // x: shells from the first to the outermost, y: step 2^k,
                            // z: slice of instance 0, w: blend towards the next level
 uniform vec2 u_shells_next; // the next level: x: its first slice, y: its shell count
+uniform vec2 u_shell_view;  // the view's budget (shell_view_blend): x: the level's spacing
+                            // side-on in pixels times clip w, per unit of groom length
+                            // (0: off), y: the spacing it aims at, pixels
 uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
 
 // The lean shader (docs/lod.md): what varies slowly over a triangle is
@@ -32,21 +35,37 @@ out float v_spec;       // fur_light_terms' specular weight
 out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
 flat out float v_clump_profile; // Silva Eq. 5's f(h), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
-flat out float v_alpha;  // the shell's opacity: fades as its level leaves
+out float v_alpha;      // the shell's opacity: fades as its level leaves, and
+                        // where the view's budget leaves it out (face-on)
+out float v_view;       // the view's budget: how far an even shell stands for two
 #ifdef PELT_LIGHT_PASS
 out float v_light_depth; // the light pass (gl/shadow_pass.c): depth from the light
 #endif
 
 void main()
 {
-    float layer = shell_instance(float(gl_InstanceID), u_shells, u_shells_next, u_layers, v_slices, v_alpha);
-    float h = (1.0 + layer) / u_layers;
     vec3 position = a_position, normal = a_normal;
     vec4 tangent = a_tangent;
 #ifdef PELT_GPU_SKIN
     skin_vertex(position, normal, tangent);
 #endif
     vec3 n = normalize(normal);
+    float layer = shell_instance(float(gl_InstanceID), u_shells, u_shells_next, u_layers, v_slices, v_alpha);
+    v_view = 0.0;
+#ifndef PELT_LIGHT_PASS
+    if (u_shell_view.x > 0.0) {
+        // Face-on, the shells' spacing is foreshortened: the odd shells
+        // (from the outside) fade and the even ones stand for them.
+        vec3 root = (u_model * vec4(position, 1.0)).xyz;
+        float w_clip = max((u_view_proj * vec4(root, 1.0)).w, 1e-6);
+        float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip,
+                                   dot(normalize(mat3(u_model) * n), normalize(u_eye - root)), u_shell_view.y);
+        bool odd = mod(u_shells.x - 1.0 - float(gl_InstanceID), 2.0) > 0.5;
+        v_alpha *= odd ? 1.0 - w : 1.0;
+        v_view = odd ? 0.0 : w;
+    }
+#endif
+    float h = (1.0 + layer) / u_layers;
     vec3 u = normalize(tangent.xyz);
     vec3 v = cross(n, u) * tangent.w;
     float rho = 0.0; // wetness straightens the curl; a dry frame reads no mask

@@ -154,7 +154,11 @@ typedef struct pelt_fur_lod {
     unsigned mesh_level;     /* FIXED: simplified mesh level, 0 = full (clamped
                                 to the levels the mesh has) */
     float shell_pixels;      /* AUTO: the finest shell level whose spacing on
-                                screen is at least this many pixels, default 1 */
+                                screen, seen side-on, is at least this many
+                                pixels; where the fur is seen face-on each
+                                vertex blends towards the next level as far
+                                as its foreshortened spacing stays within it
+                                (the view's budget, docs/lod.md); default 0.5 */
     float mesh_error_pixels; /* AUTO: the coarsest mesh level whose error on
                                 screen stays within this, default 0.5 ... */
     float mesh_edge_pixels;  /* ... and whose mean edge on screen within this
@@ -163,12 +167,15 @@ typedef struct pelt_fur_lod {
 } pelt_fur_lod;
 
 /* Fur parameters, one home each. A zero field means its documented
- * default; the defaults are the paper's Table 1 set-up (16 layers, 256x256
- * fur texture and wetness mask). These are the only defaults: the strands
+ * default; the defaults are the paper's Table 1 set-up (256x256 fur
+ * texture and wetness mask; its 16 layers where the fur is seen face-on,
+ * twice that edge-on). These are the only defaults: the strands
  * and the texture synthesis take them resolved, and test_fur_defaults
  * checks every default stated here against pelt_fur_get_desc. */
 typedef struct pelt_fur_desc {
-    unsigned layers;         /* shells N, default 16, at most 256 */
+    unsigned layers;         /* shells N where the fur is seen edge-on (half of
+                                them face-on, lod.shell_pixels), default 32,
+                                at most 256 */
     float length;            /* fur length L0 in world units, default 3% of
                                 the mesh's bounding-box diagonal */
     uint32_t seed;           /* texture and dynamics seed, default 1 */

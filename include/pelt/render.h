@@ -61,6 +61,9 @@ typedef struct pelt_draw_debug {
        of the last pelt_mesh_pose, instead of reading the pose made once on
        the CPU (pelt_fur_set_pose). */
     bool skin_in_vertex_stage;
+    /* The same shell count everywhere: no view budget (fewer shells where
+       the fur is seen face-on, docs/lod.md), for measuring what it buys. */
+    bool flat_shells;
 } pelt_draw_debug;
 
 typedef struct pelt_draw_desc {

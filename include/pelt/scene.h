@@ -188,7 +188,7 @@ typedef struct pelt_scene {
        comb.slant; "dynamics.*" -> dynamics.*; "wetness.mask_size",
        "wetness.clump_*", "wetness.darken" -> wet.*; "texture.scale" ->
        look.color_scale. Left zero by pelt_scene_defaults: pelt_fur_create
-       fills each field from its row (pelt/params.h, Table 1's 16 layers and
+       fills each field from its row (pelt/params.h, Table 1's
        256 x 256 texture among them). */
     pelt_fur_desc fur;
     /* One of the curl looks of Silva Fig. 7: "straight", "wavy",
@@ -229,7 +229,7 @@ typedef struct pelt_scene {
 } pelt_scene;
 
 /* Fills *s with the defaults (the paper's Table 1 set-up: torus 78 x 60,
- * 16 layers, 800 x 600, fur texture and mask 256). Does not free: *s may be
+ * 800 x 600, fur texture and mask 256). Does not free: *s may be
  * uninitialised. */
 void pelt_scene_defaults(pelt_scene *s);
 

@@ -35,7 +35,7 @@ check luminance_in_range $? "luminance_shells $(field luminance_shells "$res")"
 [ "$(png_size "$d/side.png")" = "480x120" ]; check side_picture_is_three_wide $? "got $(png_size "$d/side.png")"
 
 res2=$("$pelt" compare $view --fur-px 40 2>/dev/null); rc=$?
-[ $rc -eq 0 ] && [ "$(field fur_px "$res2")" = "40.00" ] && [ "$(field stripe_frequency "$res2")" = "0.4000" ] &&
+[ $rc -eq 0 ] && [ "$(field fur_px "$res2")" = "40.00" ] && [ "$(field stripe_frequency "$res2")" = "0.8000" ] &&
   [ "$(field ssim "$res2")" = "$(field ssim "$res")" ]
 check fur_px_sets_the_stripe_frequency $? "exit $rc: $res2"
 [ ! -e "$d/pelt.png" ] && [ ! -e pelt.png ]; check no_picture_without_o $? "a picture was written"

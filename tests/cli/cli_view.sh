@@ -144,7 +144,7 @@ printf '0 key 1\n0 click %s %s\n0.2 key t\n0.3 screenshot %s\n0.3 key p\n0.4 key
 err=$(view --no-hud -o "$d/key_shot_%d.png" --script "$d/keys.txt" 2>&1); check keys_run $? "$err"
 res=$("$png_diff" "$d/dry.png" "$d/towel.png"); check towel_dries_all $? "$res"
 [ -s "$d/key_shot_0.png" ]; check screenshot_key_writes_the_output $? "no $d/key_shot_0.png"
-grep -q "32 layers" <<<"$err"; check layers_double $? "$err"
+grep -q "64 layers" <<<"$err"; check layers_double $? "$err"
 grep -q "curl straight" <<<"$err"; check curl_preset_cycles $? "$err"
 grep -q "level of detail off" <<<"$err"; check lod_switches_off $? "$err"
 

@@ -5,6 +5,7 @@
 #include "support/check.h"
 
 #include "core/fur/frame_plan.h"
+#include "core/fur/lod.h"
 #include "pelt/camera.h"
 #include "pelt/fur.h"
 #include "pelt/mesh.h"
@@ -78,6 +79,40 @@ static void levels_of_detail_follow_the_distance(pelt_fur *fur, const pelt_mesh 
     pelt_view far = view_at(400.0f);
     pelt__frame_plan_make(fur, &far, &one, &setup, &cache, &p);
     CHECK(p.lod.shell_level == 0 && p.lod.shell_blend == 0.0f);
+}
+
+/* The view's shell budget: on near (a finer level than the coarsest is
+ * drawn); it carries the level's
+ * side-on spacing times clip w (the same at any distance for one level:
+ * divided by each vertex's clip w in the shader, so the plan's figure does
+ * not change with the distance); off when measuring flat shells, when a
+ * range of layers is inspected and at the coarsest level. */
+static void the_view_budget_follows_the_view(pelt_fur *fur, const pelt_mesh *m)
+{
+    (void)m;
+    const pelt__frame_setup setup = setup_with(false, false);
+    pelt__ground_cache cache = {0};
+    pelt__frame_plan p, q;
+    pelt_view near = view_at(3.0f), nearer = view_at(1.5f);
+    pelt__frame_plan_make(fur, &near, &everything, &setup, &cache, &p);
+    CHECK(p.lod.shell_level == 0 && p.lod.shell_view[0] > 0.0f);
+    CHECK(p.lod.shell_view[1] == pelt_fur_get_desc(fur).lod.shell_pixels);
+    CHECK(!(p.shell_features & PELT__SHELL_LOD_BLEND)); /* no second fetch for it */
+    pelt__frame_plan_make(fur, &nearer, &everything, &setup, &cache, &q);
+    if (q.lod.shell_level == p.lod.shell_level)
+        CHECK_NEAR(q.lod.shell_view[0], p.lod.shell_view[0], 1e-4f * p.lod.shell_view[0]);
+    pelt__frame_switches sw = everything;
+    sw.flat_shells = true;
+    pelt__frame_plan_make(fur, &near, &sw, &setup, &cache, &p);
+    CHECK(p.lod.shell_view[0] == 0.0f);
+    sw = everything;
+    sw.one_height = true;
+    pelt__frame_plan_make(fur, &near, &sw, &setup, &cache, &p);
+    CHECK(p.lod.shell_view[0] == 0.0f);
+    pelt_view far = view_at(3000.0f);
+    pelt__frame_plan_make(fur, &far, &everything, &setup, &cache, &p);
+    CHECK(p.lod.shell_level + 1 == pelt__lod_shell_levels(pelt_fur_get_desc(fur).layers));
+    CHECK(p.lod.shell_view[0] == 0.0f);
 }
 
 /* The light's maps run only when they are on, made and not switched off;
@@ -175,8 +210,11 @@ static void run_the_light_frame_holds_the_fur(void) { on_torus((pelt_fur_desc){.
 static void run_the_ground_lies_under_the_mesh(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, the_ground_lies_under_the_mesh); }
 static void run_features_and_passes_follow_the_switches(void) { on_torus((pelt_fur_desc){.look.texture_size = 32, .look.inter_shadow = true}, features_and_passes_follow_the_switches); }
 
+static void run_the_view_budget_follows_the_view(void) { on_torus((pelt_fur_desc){.layers = 32, .look.texture_size = 32}, the_view_budget_follows_the_view); }
+
 int main(void)
 {
+    RUN(run_the_view_budget_follows_the_view);
     RUN(run_levels_of_detail_follow_the_distance);
     RUN(run_the_light_frame_holds_the_fur);
     RUN(run_the_ground_lies_under_the_mesh);

@@ -88,7 +88,7 @@ static void every_row_has_its_default_in_range_and_its_field_in_the_desc(void)
                 CHECK(*(const unsigned *)(const void *)((const unsigned char *)&d + p->offset) == (unsigned)x);
         }
     }
-    CHECK(pelt_fur_param("layers") && pelt_fur_param("layers")->def[0] == 16.0);
+    CHECK(pelt_fur_param("layers") && pelt_fur_param("layers")->def[0] == 32.0);
     CHECK(pelt_fur_param("look.texture_size")->max == 4096.0);
     CHECK(pelt_fur_param("no.such.field") == NULL);
     pelt_fur_destroy(fur);
@@ -155,7 +155,7 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK(diag > 2.8f && diag < 4.1f); /* the torus's box is 2.8 x 0.8 x 2.8 */
     pelt_fur_desc d = pelt_fur_get_desc(fur);
 
-    CHECK(d.layers == 16);
+    CHECK(d.layers == 32);
     CHECK_REL(d.length, 0.03f * diag); /* 3% of the bounding-box diagonal */
     CHECK(d.seed == 1);
 

@@ -116,6 +116,33 @@ static void lod_shell_levels_halve_to_one_shell(void)
 
 /* The choice: spacing at least shell_pixels; the upper half octave blends
  * towards the next level; the blend is continuous across the boundary. */
+/* The view's budget: edge-on every shell, face-on half of them; the
+ * weight grows as the fur turns towards the eye. An even shell's texel at
+ * weight 1 is the texel composited over itself (what it stands for). */
+static void lod_view_blend_follows_the_view(void)
+{
+    CHECK(pelt__lod_view_blend(0.6f, 0.0f, 0.5f) == 0.0f);   /* edge-on, 0.6 px > 0.5 */
+    CHECK(pelt__lod_view_blend(0.6f, 0.95f, 0.5f) == 1.0f);  /* face-on: 0.19 px */
+    CHECK(pelt__lod_view_blend(0.6f, 1.0f, 0.5f) == 1.0f);   /* straight on: no spacing at all */
+    CHECK(pelt__lod_view_blend(0.6f, -0.95f, 0.5f) == 1.0f); /* from behind, the same */
+    float last = 0.0f;
+    for (int k = 0; k <= 100; k++) {
+        float w = pelt__lod_view_blend(0.6f, k / 100.0f, 0.5f);
+        CHECK(w >= last - 1e-6f && w >= 0.0f && w <= 1.0f);
+        last = w;
+    }
+    /* Exactly between: spacing 0.6 sin = 0.5 / sqrt(2) gives a weight of one half. */
+    float s = 0.5f / sqrtf(2.0f) / 0.6f;
+    CHECK_NEAR(pelt__lod_view_blend(0.6f, sqrtf(1.0f - s * s), 0.5f), 0.5f, 1e-4);
+    float t[4] = {0.2f, 0.1f, 0.05f, 0.4f};
+    pelt__lod_view_texel(1.0f, t); /* 0.4 over 0.4: 0.4 + 0.4 * 0.6 */
+    CHECK_NEAR(t[3], 0.64f, 1e-6);
+    CHECK_NEAR(t[0], 0.2f * 1.6f, 1e-6);
+    float u[4] = {0.2f, 0.1f, 0.05f, 0.4f};
+    pelt__lod_view_texel(0.0f, u);
+    CHECK(u[3] == 0.4f && u[0] == 0.2f);
+}
+
 static void lod_shell_choice_blends_without_a_jump(void)
 {
     unsigned level;
@@ -299,6 +326,7 @@ int main(void)
     RUN(lod_pixels_per_unit_follow_the_distance);
     RUN(lod_shell_levels_halve_to_one_shell);
     RUN(lod_shell_choice_blends_without_a_jump);
+    RUN(lod_view_blend_follows_the_view);
     RUN(lod_shell_composite_is_over);
     RUN(lod_fins_closer_than_their_slab_fade);
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);

@@ -421,6 +421,46 @@ static void shell_lod_glsl_matches_c(void)
     CHECK(worst < 1e-5);
 }
 
+/* The view's shell budget (shell_view_blend and shell_view_texel in
+ * shell_lod.glsl) against pelt__lod_view_blend and pelt__lod_view_texel
+ * over side-on spacings, view angles and targets: face-on, grazing and
+ * edge-on, in and out of the clamp; the texel at that weight. */
+static void shell_view_blend_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  float side = 0.05 + 0.05 * floor(gl_FragCoord.x);\n"     /* 0.05 .. 3.2 px */
+        "  float ndv = -1.0 + 2.0 * fract(gl_FragCoord.y / 16.0);\n"
+        "  float target = 0.25 + 0.25 * mod(floor(gl_FragCoord.y / 16.0), 4.0);\n"
+        "  float w = shell_view_blend(side, ndv, target);\n"
+        "  vec4 t = shell_view_texel(w, vec4(0.3, 0.2, 0.1, 0.1) * fract(gl_FragCoord.x / 7.0) * 9.0);\n"
+        "  o = vec4(w, t.rgb);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int inside = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float fx = x + 0.5f, fy = y + 0.5f;
+            float side = 0.05f + 0.05f * floorf(fx);
+            float ndv = -1.0f + 2.0f * (fy / 16.0f - floorf(fy / 16.0f));
+            float target = 0.25f + 0.25f * fmodf(floorf(fy / 16.0f), 4.0f);
+            float r = pelt__lod_view_blend(side, ndv, target);
+            float f = fx / 7.0f - floorf(fx / 7.0f);
+            float t[4] = {0.3f * f * 9.0f, 0.2f * f * 9.0f, 0.1f * f * 9.0f, 0.1f * f * 9.0f};
+            pelt__lod_view_texel(r, t);
+            inside += r > 0.01f && r < 0.99f;
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fabs(g[0] - r));
+            for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(g[1 + k] - t[k]));
+        }
+    printf("  shell_view_blend: worst |GLSL - C| = %.3g, %d samples inside the clamp\n", worst, inside);
+    CHECK(inside > 100);
+    CHECK(worst < 1e-4);
+}
+
 static const char table_main[] =
     "uniform sampler2D u_table;\n"
     "out vec4 o;\n"
@@ -480,6 +520,7 @@ int main(void)
     RUN(groom_glsl_matches_c);
     RUN(inter_shadow_glsl_matches_c);
     RUN(shell_lod_glsl_matches_c);
+    RUN(shell_view_blend_glsl_matches_c);
     RUN(lengyel_table_lookup_matches_the_formula);
     pelt_headless_destroy(gl);
     return check_summary();

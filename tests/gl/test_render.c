@@ -260,7 +260,7 @@ static double covered_radius90(const uint8_t *px)
 static void clumps_grow_thinner_toward_the_tips(void)
 {
     const pelt_camera top = {0.0f, 89.0f, 2.4f, 50.0f, {0, 0, 0}};
-    pelt_fur_desc d = {.wet.clump_tightness = 1.0f, .wet.darken = 1e-6f};
+    pelt_fur_desc d = {.layers = 16, .wet.clump_tightness = 1.0f, .wet.darken = 1e-6f};
     const unsigned layers[] = {1, 4, 7, 10};
     double dry_r[4], wet_r[4];
     for (int k = 0; k < 4; k++) {

@@ -49,7 +49,7 @@ static void default_scene_makes_the_table1_torus(void)
     if (!inst) return;
     CHECK(pelt_mesh_get_stats(pelt_scene_instance_mesh(inst)).triangle_count == 9360);
     pelt_fur_desc fd = pelt_fur_get_desc(pelt_scene_instance_fur(inst));
-    CHECK(fd.layers == 16);
+    CHECK(fd.layers == 32);
     CHECK(fd.wet.mask_size == 256);
     /* A scene that sets nothing gives the library's defaults: the same
        desc as a fur made from a zero desc on the same mesh. */
