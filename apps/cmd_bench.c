@@ -305,13 +305,14 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
 }
 
 /* Variants of the same frame drawn alternately, so the machine's noise hits
- * them alike: with and without fins (their share of the frame), with and
+ * them alike: with and without fins (their share of the frame), the
+ * back-facing shells in their place, with and
  * without the inter-fur shadows, every shell everywhere (no view budget),
  * the floor shader, and with the light's shadows on: without them and the
  * light pass alone. */
 static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
 {
-    enum { FULL, NO_FINS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, NO_LIGHT, LIGHT_ONLY, SKIN_ONLY, VARIANTS };
+    enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, NO_LIGHT, LIGHT_ONLY, SKIN_ONLY, VARIANTS };
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
     pelt_draw_desc v[VARIANTS];
@@ -320,6 +321,10 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
      * culled so the difference is the fins alone. */
     v[NO_FINS].no_fins = true;
     v[NO_FINS].debug.cull_shells = 1;
+    /* The silhouette drawn by the back-facing shells within the fur's
+     * reach of it (fur.lod_back_reach) instead of the fins. */
+    v[BACK_SHELLS].no_fins = true;
+    v[BACK_SHELLS].debug.cull_shells = 0;
     v[NO_INTER].debug.no_inter_shadow = true;
     v[FLAT].debug.flat_shells = true;
     /* The floor: the skin and the same shells with a one-fetch shader. */
@@ -335,7 +340,7 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     v[SKIN_ONLY].no_fins = v[SKIN_ONLY].debug.no_shells = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
-    bool run[VARIANTS] = {true, true, true, true, with_floor, with_floor && fins, light, light, true};
+    bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, light, light, true};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -345,6 +350,7 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor)
     printf("draw variants, alternated (median of %u each):\n", frames);
     print_stats("as drawn", st[FULL]);
     print_stats("no fins", st[NO_FINS]);
+    print_stats("back shells", st[BACK_SHELLS]);
     print_stats("no inter-sh.", st[NO_INTER]);
     print_stats("flat shells", st[FLAT]);
     if (with_floor) print_stats("floor", st[FLOOR]);

@@ -43,6 +43,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     sp->shells = glGetUniformLocation(sp->program, "u_shells");
     sp->shells_next = glGetUniformLocation(sp->program, "u_shells_next");
     sp->shell_view = glGetUniformLocation(sp->program, "u_shell_view");
+    sp->back_reach = glGetUniformLocation(sp->program, "u_back_reach");
     sp->no_inter_shadow = glGetUniformLocation(sp->program, "u_no_inter_shadow");
     return PELT_OK;
 }
@@ -88,6 +89,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
     glUniform4fv(sp->shells, 1, shells);
     glUniform2fv(sp->shells_next, 1, next);
     glUniform2fv(sp->shell_view, 1, lod->shell_view);
+    glUniform1f(sp->back_reach, lod->back_reach);
     glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
     size_t triangles = lod->full_mesh ? f->mesh->triangle_count : f->mesh->level_triangles[lod->mesh_level];
     const void *offset = (const void *)(lod->full_mesh ? 0 : f->mesh->level_offset[lod->mesh_level]);

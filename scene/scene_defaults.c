@@ -63,7 +63,10 @@ void pelt_scene_defaults(pelt_scene *s)
     s->wetness.rain.seed = 1;
     s->wetness.mask_image_wetness = 1.0f;
 
-
+    /* The silhouette: the back-facing shells within the fur's reach of it
+     * show hair crossing the outline as the strand reference does (the
+     * fins draw a smooth, brighter band there): fins off unless asked. */
+    s->draw.no_fins = true;
     s->strand_samples = 4;
     s->groom.length_range[1] = 1.0f;
     s->groom.density_range[1] = 1.0f;

@@ -31,6 +31,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
 {
     pelt__frame_lod l;
     memset(&l, 0, sizeof l);
+    l.back_reach = -1.0f;
     const pelt_fur_lod fl = fd->lod;
     pelt__fur_snapshot fs;
     pelt__fur_gpu_snapshot(fur, &fs);
@@ -42,6 +43,9 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     bool closed = c->closed && c->winding != 0;
     l.cull = closed && (sw->cull_shells > 0 || (sw->cull_shells == 0 && sw->fins));
     l.cull_skin = closed;
+    /* A closed mesh seen without fins: its back-facing shells carry the
+     * silhouette, those far round the back are hidden by the skin. */
+    l.back_reach = closed && !l.cull && sw->cull_shells == 0 ? fl.back_reach : -1.0f;
     l.front_cw = c->winding < 0;
     unsigned shell_levels = pelt__lod_shell_levels(fd->layers);
     if (fl.mode == PELT_LOD_FIXED) {

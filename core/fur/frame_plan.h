@@ -22,6 +22,9 @@ typedef struct pelt__frame_lod {
        [0] the level's spacing seen side-on, pixels x clip w per unit of groom
        length (0: off), [1] the spacing aimed at, pixels. */
     float shell_view[2];
+    /* Back-facing shells drawn within the fur's reach of the silhouette:
+       where N.V >= -back_reach (pelt__lod_back_hidden); negative: all. */
+    float back_reach;
     float fin_row_error;  /* the chord error a fin's rows may show, mesh units
                              (0: always PELT_FIN_ROWS rows) */
     bool cull;            /* back-facing shells culled (closed meshes) */

@@ -72,6 +72,7 @@ static const pelt_param fur_params[] = {
     FLT("lod.shell_pixels", lod.shell_pixels, 0, 64, OPEN, 0.5),
     FLT("lod.mesh_error_pixels", lod.mesh_error_pixels, 0, 64, OPEN, 0.5),
     FLT("lod.mesh_edge_pixels", lod.mesh_edge_pixels, 0, 1024, OPEN, 8),
+    FLT("lod.back_reach", lod.back_reach, 0, 1, 0, 0.3),
 };
 
 #define FUR_PARAM_COUNT (sizeof fur_params / sizeof fur_params[0])

@@ -356,6 +356,8 @@ float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px)
     return fminf(fmaxf(log2f(target_px / spacing), 0.0f), 1.0f);
 }
 
+bool pelt__lod_back_hidden(float n_dot_v, float reach) { return reach >= 0.0f && n_dot_v < -reach; }
+
 void pelt__lod_view_texel(float w, float rgba[4])
 {
     float gain = 1.0f + w * (1.0f - rgba[3]);

@@ -107,6 +107,13 @@ float pelt__lod_shell_instance(const float shells[4], const float next[2], float
  * Mirrors shell_view_blend() in gl/shaders/shell_lod.glsl. */
 float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px);
 
+/* The back-facing shells of a closed mesh seen without fins: the skin
+ * hides them unless they stand near the silhouette, where their hair
+ * crosses the outline. A vertex is left out (moved beyond the far plane)
+ * where n_dot_v < -reach; a negative reach keeps every one. Mirrors
+ * shell_back_hidden() in gl/shaders/shell_lod.glsl. */
+bool pelt__lod_back_hidden(float n_dot_v, float reach);
+
 /* An even shell's premultiplied texel under weight w: over itself,
  * rgba (1 + w (1 - a)). Mirrors shell_view_texel() (shell_lod.glsl). */
 void pelt__lod_view_texel(float w, float rgba[4]);

@@ -13,6 +13,12 @@ float shell_view_blend(float side_px, float n_dot_v, float target_px)
     return clamp(log2(target_px / spacing), 0.0, 1.0);
 }
 
+// pelt__lod_back_hidden (core/fur/lod.c).
+bool shell_back_hidden(float n_dot_v, float reach)
+{
+    return reach >= 0.0 && n_dot_v < -reach;
+}
+
 vec4 shell_view_texel(float w, vec4 hair)
 {
     return hair * (1.0 + w * (1.0 - hair.a));

@@ -21,6 +21,8 @@ uniform vec2 u_shells_next; // the next level: x: its first slice, y: its shell 
 uniform vec2 u_shell_view;  // the view's budget (shell_view_blend): x: the level's spacing
                             // side-on in pixels times clip w, per unit of groom length
                             // (0: off), y: the spacing it aims at, pixels
+uniform float u_back_reach; // back-facing shells drawn only within the fur's reach of the
+                            // silhouette: where N.V >= -u_back_reach (negative: everywhere)
 uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
 
 // The lean shader (docs/lod.md): what varies slowly over a triangle is
@@ -53,13 +55,13 @@ void main()
     float layer = shell_instance(float(gl_InstanceID), u_shells, u_shells_next, u_layers, v_slices, v_alpha);
     v_view = 0.0;
 #ifndef PELT_LIGHT_PASS
+    vec3 root = (u_model * vec4(position, 1.0)).xyz;
+    float n_dot_v = dot(normalize(mat3(u_model) * n), normalize(u_eye - root));
     if (u_shell_view.x > 0.0) {
         // Face-on, the shells' spacing is foreshortened: the odd shells
         // (from the outside) fade and the even ones stand for them.
-        vec3 root = (u_model * vec4(position, 1.0)).xyz;
         float w_clip = max((u_view_proj * vec4(root, 1.0)).w, 1e-6);
-        float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip,
-                                   dot(normalize(mat3(u_model) * n), normalize(u_eye - root)), u_shell_view.y);
+        float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_shell_view.y);
         bool odd = mod(u_shells.x - 1.0 - float(gl_InstanceID), 2.0) > 0.5;
         v_alpha *= odd ? 1.0 - w : 1.0;
         v_view = odd ? 0.0 : w;
@@ -94,6 +96,10 @@ void main()
     v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),
                                         normalize(mat3(u_model) * v), u_inter_shadow_step);
     gl_Position = u_view_proj * world;
+    // Far round the back the skin hides the fur: the vertex goes beyond the
+    // far plane where it stands (its triangles clip away there; a triangle
+    // reaching towards the silhouette keeps its part on this side).
+    if (shell_back_hidden(n_dot_v, u_back_reach)) gl_Position.z = 2.0 * abs(gl_Position.w);
 #endif
     v_root = groom_root_color(u_color, a_hair_color) * light_mul;
     v_tip = groom_tip_color(u_color, u_tip_color, a_hair_color) * light_mul;

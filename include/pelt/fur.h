@@ -164,6 +164,10 @@ typedef struct pelt_fur_lod {
     float mesh_edge_pixels;  /* ... and whose mean edge on screen within this
                                 (strands, groom and light are per vertex),
                                 default 8 */
+    float back_reach;        /* a closed mesh drawn without fins: its
+                                back-facing shells carry the silhouette
+                                where N.V >= -back_reach (further round the
+                                back the skin hides them), default 0.3 */
 } pelt_fur_lod;
 
 /* Fur parameters, one home each. A zero field means its documented

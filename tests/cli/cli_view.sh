@@ -148,19 +148,20 @@ grep -q "64 layers" <<<"$err"; check layers_double $? "$err"
 grep -q "curl straight" <<<"$err"; check curl_preset_cycles $? "$err"
 grep -q "level of detail off" <<<"$err"; check lod_switches_off $? "$err"
 
-# F and S switch the fins and Kenwright's inter-fur shadows: the window
-# then equals render with --no-fins, and with --no-fins --inter-shadow.
+# F and S switch the fins (off by default) and Kenwright's inter-fur
+# shadows: the window then equals render with --fins, and with --fins
+# --inter-shadow.
 # The shadows change the picture by a mean of about 0.9 levels, within
 # png_diff's default tolerance: these compare at a mean of 0.3.
 printf '0.1 key f\n0.1 screenshot %s\n0.2 key s\n0.2 screenshot %s\n0.2 exit\n' \
-  "$d/no_fins.png" "$d/shadows.png" >"$d/passes.txt"
+  "$d/fins.png" "$d/shadows.png" >"$d/passes.txt"
 view --no-hud --script "$d/passes.txt" 2>/dev/null; check passes_run $? ""
-"$pelt" render -q --size $size --no-fins -o "$d/render_no_fins.png"
-"$pelt" render -q --size $size --no-fins --inter-shadow -o "$d/render_shadows.png"
-! "$png_diff" "$d/render.png" "$d/render_no_fins.png" --max-mean 0.3 >/dev/null &&
-  ! "$png_diff" "$d/render_no_fins.png" "$d/render_shadows.png" --max-mean 0.3 >/dev/null
+"$pelt" render -q --size $size --fins -o "$d/render_fins.png"
+"$pelt" render -q --size $size --fins --inter-shadow -o "$d/render_shadows.png"
+! "$png_diff" "$d/render.png" "$d/render_fins.png" --max-mean 0.3 >/dev/null &&
+  ! "$png_diff" "$d/render_fins.png" "$d/render_shadows.png" --max-mean 0.3 >/dev/null
 check fins_and_shadows_change_the_picture $? "render's pictures with and without them are alike"
-res=$("$png_diff" "$d/render_no_fins.png" "$d/no_fins.png" --max-mean 0.3); check key_f_is_no_fins $? "$res"
+res=$("$png_diff" "$d/render_fins.png" "$d/fins.png" --max-mean 0.3); check key_f_is_fins $? "$res"
 res=$("$png_diff" "$d/render_shadows.png" "$d/shadows.png" --max-mean 0.3); check key_s_is_inter_shadow $? "$res"
 
 # O switches the light's shadows on (off in the default scene): the window

@@ -210,11 +210,36 @@ static void run_the_light_frame_holds_the_fur(void) { on_torus((pelt_fur_desc){.
 static void run_the_ground_lies_under_the_mesh(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, the_ground_lies_under_the_mesh); }
 static void run_features_and_passes_follow_the_switches(void) { on_torus((pelt_fur_desc){.look.texture_size = 32, .look.inter_shadow = true}, features_and_passes_follow_the_switches); }
 
+/* The silhouette of a closed mesh: with the fins, the back-facing shells
+ * are culled; without them they are drawn within the fur's reach of the
+ * outline (pelt__lod_back_hidden leaves out the vertices further round). */
+static void back_shells_carry_the_silhouette_without_fins(pelt_fur *fur, const pelt_mesh *m)
+{
+    (void)m;
+    const pelt__frame_setup setup = setup_with(false, false);
+    pelt__ground_cache cache = {0};
+    pelt__frame_plan p;
+    pelt_view near = view_at(3.0f);
+    pelt__frame_plan_make(fur, &near, &everything, &setup, &cache, &p);
+    CHECK(p.lod.cull && p.lod.back_reach < 0.0f);
+    pelt__frame_switches sw = everything;
+    sw.fins = false;
+    pelt__frame_plan_make(fur, &near, &sw, &setup, &cache, &p);
+    CHECK(!p.lod.cull && p.lod.back_reach == pelt_fur_get_desc(fur).lod.back_reach);
+    CHECK(pelt__lod_back_hidden(-0.5f, p.lod.back_reach) && !pelt__lod_back_hidden(-0.1f, p.lod.back_reach));
+    CHECK(!pelt__lod_back_hidden(0.5f, p.lod.back_reach) && !pelt__lod_back_hidden(-0.9f, -1.0f));
+    sw.cull_shells = -1; /* never culled: every back-facing shell */
+    pelt__frame_plan_make(fur, &near, &sw, &setup, &cache, &p);
+    CHECK(!p.lod.cull && p.lod.back_reach < 0.0f);
+}
+
+static void run_back_shells_carry_the_silhouette_without_fins(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, back_shells_carry_the_silhouette_without_fins); }
 static void run_the_view_budget_follows_the_view(void) { on_torus((pelt_fur_desc){.layers = 32, .look.texture_size = 32}, the_view_budget_follows_the_view); }
 
 int main(void)
 {
     RUN(run_the_view_budget_follows_the_view);
+    RUN(run_back_shells_carry_the_silhouette_without_fins);
     RUN(run_levels_of_detail_follow_the_distance);
     RUN(run_the_light_frame_holds_the_fur);
     RUN(run_the_ground_lies_under_the_mesh);
