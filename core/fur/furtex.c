@@ -54,7 +54,7 @@ static strand strands_next(strand_stream *s)
     st.lean_x = pelt__rng_range(&s->shape, -1.0f, 1.0f) * s->radius * 2.0f;
     st.lean_y = pelt__rng_range(&s->shape, -1.0f, 1.0f) * s->radius * 2.0f;
     st.length = pelt__rng_range(&s->shape, 0.6f, 1.0f);
-    st.shade = pelt__rng_range(&s->shape, 0.65f, 1.0f);
+    st.shade = pelt__rng_range(&s->shape, 0.4f, 1.0f);
     st.id = pelt__rng_float(&s->id);
     st.phase = pelt__rng_float(&s->phase) * 6.2831853f;
     return st;
