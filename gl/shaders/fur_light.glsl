@@ -10,29 +10,21 @@ uniform sampler2D u_light_table; // PELT_UNIT_LIGHT_TABLE
 float fur_wetness = 0.0;
 
 // As a factor and a weight, colour = base * mul + spec * u_specular *
-// u_light_color, so the shells and the fins evaluate it per vertex (their
-// lean fragment stage only fetches the hair and multiplies; docs/lod.md
-// says what that costs in the picture). The stages fold mul into the root
-// and tip colours they pass on: fewer varyings to interpolate.
+// u_light_color, in linear light, so the shells and the fins evaluate it
+// per vertex (their lean fragment stage only fetches the hair, multiplies
+// and maps the result to the picture: display_color). docs/lod.md says
+// what that costs in the picture. The stages fold mul into the root and
+// tip colours they pass on: fewer varyings to interpolate.
 void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mul, out float spec)
 {
     vec3 T = normalize(tangent);
+    vec3 N = normalize(normal);
     vec3 L = normalize(u_light_dir);
     vec3 E = normalize(world - u_eye);
     vec2 shine = wet_shine(fur_wetness, u_shininess, u_wet_sharpness, u_wet_gloss);
-    // A program may be built for one model (the passes' variants,
-    // gl/shell_pass.c); else the fur's model is chosen at run time.
-#if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
-    vec2 kk = lengyel_lookup(u_light_table, T, L, normalize(L - E));
-#elif defined(PELT_SHADING_KK) && !defined(PELT_SHADING_TABLE)
-    vec2 kk = kajiya_kay(T, L, E, shine.x);
-#else
-    vec2 kk = u_shading_model > 0.5 ? lengyel_lookup(u_light_table, T, L, normalize(L - E))
-                                    : kajiya_kay(T, L, E, shine.x);
-#endif
     // Hair on the side of the body facing away from the light is in the
-    // body's shadow: Kajiya-Kay alone would light it as brightly.
-    float facing = clamp(dot(normalize(normal), L) * 0.8 + 0.35, 0.0, 1.0);
+    // body's shadow: the hair models alone would light it as brightly.
+    float facing = clamp(dot(N, L) * 0.8 + 0.35, 0.0, 1.0);
     float gamma = shadow_factor(u_shadow, h);
 #ifdef PELT_SHADOW_MAP
     // The light's shadow maps (shadow_map.glsl) darken the direct light;
@@ -40,7 +32,32 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
     facing *= shadow_light(world, u_shadow_slab.z, 1);
     if (u_shadow_map.x > 0.5) gamma = mix(1.0, gamma, u_shadow_slab.w);
 #endif
+    // A program may be built for one model (the passes' variants,
+    // gl/shell_pass.c: Kajiya-Kay, the table, or neither define for
+    // Scheuermann-Marschner); else the fur's model is chosen at run time.
+#if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
+    const float model = 1.0;
+#elif defined(PELT_SHADING_KK) && !defined(PELT_SHADING_TABLE)
+    const float model = 0.0;
+#elif !defined(PELT_SHADING_KK) && !defined(PELT_SHADING_TABLE)
+    const float model = 2.0;
+#else
+    float model = u_shading_model;
+#endif
+    if (model > 1.5) {
+        // Two highlights shifted along the strand, the secondary tinted by
+        // the hair (folded into mul, which multiplies the hair colour),
+        // transmission towards a light behind the fur, and occlusion from
+        // the fur's density in place of gamma (docs/shading.md).
+        vec4 m = hair_lobes(T, N, L, E, shine.x);
+        float occ = fur_occlusion(u_occlusion, h);
+        vec3 lit = (m.x + HAIR_SECONDARY_GAIN * shine.y * m.z * u_specular + HAIR_TT_GAIN * m.w) * facing;
+        mul = occ * (u_ambient + lit * u_light_color);
+        spec = occ * shine.y * m.y * facing;
+        return;
+    }
+    vec2 kk = model > 0.5 ? lengyel_lookup(u_light_table, T, L, normalize(L - E))
+                          : kajiya_kay(T, L, E, shine.x);
     mul = gamma * (u_ambient + kk.x * facing * u_light_color);
     spec = gamma * shine.y * kk.y * facing;
 }
-

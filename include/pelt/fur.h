@@ -24,7 +24,11 @@ typedef enum pelt_color_pattern {
  * K_s (1 - v^2)^(P_s/2), u = T.L, v = T.H, read from a 32x32 texture. */
 typedef enum pelt_shading_model {
     PELT_SHADING_KAJIYA_KAY = 0,
-    PELT_SHADING_LENGYEL_TABLE
+    PELT_SHADING_LENGYEL_TABLE,
+    /* Scheuermann's real-time reading of Marschner et al.: two highlights
+       shifted along the strand, transmission, occlusion from the fur's
+       density (docs/shading.md) */
+    PELT_SHADING_MARSCHNER
 } pelt_shading_model;
 
 /* The shape of the strands simulated into the fur texture (Lengyel et
