@@ -93,7 +93,8 @@ float pelt__tone(float x, float exposure, int tone)
 {
     float v = fmaxf(x * exposure, 0.0f);
     if (tone != 0) return fminf(v, 1.0f);
-    return fminf(pelt__hable(PELT__TONE_BIAS * v) / pelt__hable(PELT__TONE_WHITE), 1.0f);
+    /* f(0) is 0 up to rounding: clamped to [0, 1]. */
+    return fminf(fmaxf(pelt__hable(PELT__TONE_BIAS * v) / pelt__hable(PELT__TONE_WHITE), 0.0f), 1.0f);
 }
 
 float pelt__display(float x, float exposure, int tone) { return pelt__srgb_encode(pelt__tone(x, exposure, tone)); }

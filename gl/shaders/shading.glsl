@@ -57,7 +57,7 @@ vec3 tone_map(vec3 x, float exposure, float tone)
 {
     vec3 v = max(x * exposure, 0.0);
     if (tone > 0.5) return min(v, 1.0);
-    return min(hable(TONE_BIAS * v) / hable(vec3(TONE_WHITE)).x, 1.0);
+    return clamp(hable(TONE_BIAS * v) / hable(vec3(TONE_WHITE)).x, 0.0, 1.0);
 }
 
 vec3 display_color(vec3 x, float exposure, float tone)
