@@ -5,7 +5,7 @@
 
 #include "gl/programs.h"
 
-#include "core/fur/shading.h"
+#include "core/fur/fur_gpu.h"
 
 pelt_status pelt__ground_pass_create(pelt__ground_pass *p, const pelt_hooks *hooks, pelt_error *err)
 {
@@ -32,8 +32,9 @@ void pelt__ground_pass_draw(const pelt__ground_pass *p, const pelt__pass_frame *
     glUseProgram(p->program);
     glUniform4fv(p->ground, 1, disc);
     /* The ground's colour is sRGB; it is lit in linear light. */
-    const pelt_vec3 linear = pelt__srgb_decode3(v3(color[0], color[1], color[2]));
-    glUniform3f(p->color, linear.x, linear.y, linear.z);
+    float linear[3];
+    pelt__fur_gpu_linear_rgb(color, linear);
+    glUniform3fv(p->color, 1, linear);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     f->stats->ground_draw_calls++;
     f->stats->triangles += 2;

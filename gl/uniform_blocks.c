@@ -6,7 +6,6 @@
 
 #include "core/base/vec.h"
 #include "core/fur/fur_gpu.h"
-#include "core/fur/shading.h"
 
 #include <math.h>
 #include <string.h>
@@ -95,22 +94,17 @@ size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v, const
     return sizeof f;
 }
 
-static void decode(float out[3], const float srgb[3])
-{
-    for (int k = 0; k < 3; k++) out[k] = pelt__srgb_decode(srgb[k]);
-}
-
 size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const pelt__fur_snapshot *fs)
 {
     const pelt_fur_desc d = pelt_fur_get_desc(fur);
     pelt__fur_block k;
     memset(&k, 0, sizeof k); /* the padding too: the struct is compared bytewise */
     /* The look's colours are sRGB; the shaders light in linear light. */
-    decode(k.color, d.look.color);
+    pelt__fur_gpu_linear_rgb(d.look.color, k.color);
     k.layers = (float)d.layers;
-    decode(k.tip_color, d.look.tip_color);
+    pelt__fur_gpu_linear_rgb(d.look.tip_color, k.tip_color);
     k.length = d.length;
-    decode(k.specular, d.look.specular);
+    memcpy(k.specular, d.look.specular, sizeof k.specular); /* a gain, not a colour to decode */
     k.shininess = d.look.shininess;
     memcpy(k.fur_per_uv, fs->fur_per_uv, sizeof k.fur_per_uv);
     k.shadow = d.look.shadow;
@@ -123,7 +117,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.wet_sharpness = d.wet.gloss_sharpness;
     k.color_scale = d.look.color_scale;
     k.slant = tanf(d.comb.slant * 3.14159265f / 180.0f); /* Lengyel et al. §3 */
-    decode(k.skin_color, d.look.skin_color);
+    pelt__fur_gpu_linear_rgb(d.look.skin_color, k.skin_color);
     k.tiling = d.look.tiling;
     k.fin_length = d.fins.length;
     k.inter_shadow = d.look.inter_shadow ? d.look.inter_shadow_darkness : 0.0f;
@@ -131,7 +125,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.shading_model = (float)d.look.shading;
     k.ringlets[0] = (float)fs->ringlet_levels;
     k.ringlets[1] = (float)(fs->volume_slices + fs->lod_slices);
-    k.occlusion = pelt__occlusion_depth(d.look.density, d.look.strand_radius, d.look.texture_size);
+    k.occlusion = fs->occlusion_depth;
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

@@ -82,19 +82,14 @@ pelt_vec3 pelt__srgb_decode3(pelt_vec3 c)
     return v3(pelt__srgb_decode(c.x), pelt__srgb_decode(c.y), pelt__srgb_decode(c.z));
 }
 
-/* Hable's filmic curve (GDC 2010), his constants. */
-float pelt__hable(float x)
-{
-    const float a = 0.15f, b = 0.50f, c = 0.10f, d = 0.20f, e = 0.02f, f = 0.30f;
-    return (x * (a * x + c * b) + d * e) / (x * (a * x + b) + d * f) - e / f;
-}
+/* Narkowicz's ACES fit (2015), his constants. */
+float pelt__aces(float x) { return x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f); }
 
 float pelt__tone(float x, float exposure, int tone)
 {
     float v = fmaxf(x * exposure, 0.0f);
     if (tone != 0) return fminf(v, 1.0f);
-    /* f(0) is 0 up to rounding: clamped to [0, 1]. */
-    return fminf(fmaxf(pelt__hable(PELT__TONE_BIAS * v) / pelt__hable(PELT__TONE_WHITE), 0.0f), 1.0f);
+    return fminf(fmaxf(pelt__aces(PELT__TONE_BIAS * v), 0.0f), 1.0f);
 }
 
 float pelt__display(float x, float exposure, int tone) { return pelt__srgb_encode(pelt__tone(x, exposure, tone)); }

@@ -60,17 +60,16 @@ float pelt__srgb_encode(float l); /* l clamped to [0, 1]; l <= 0.0031308 ? 12.92
                                      : 1.055 l^(1 / 2.4) - 0.055 */
 pelt_vec3 pelt__srgb_decode3(pelt_vec3 c);
 
-/* The tone curves (pelt_tone, pelt/render.h): PELT_TONE_FILMIC is Hable's
- * filmic curve (J. Hable, "Uncharted 2: HDR Lighting", GDC 2010):
- *   f(x) = (x (A x + C B) + D E) / (x (A x + B) + D F) - E / F,
- *   A = 0.15, B = 0.50, C = 0.10, D = 0.20, E = 0.02, F = 0.30,
- *   tone(x) = f(PELT__TONE_BIAS x) / f(PELT__TONE_WHITE),
- * which reaches 1 only at x = WHITE / BIAS (far above the brightest the
- * hair models give at exposure 1, tests/core/test_shading.c); 0 for x <= 0.
+/* The tone curves (pelt_tone, pelt/render.h): PELT_TONE_FILMIC is
+ * Narkowicz's fit of the ACES filmic curve (K. Narkowicz, "ACES Filmic Tone
+ * Mapping Curve", 2015), its input scaled by his 0.6:
+ *   f(x) = x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14),
+ *   tone(x) = clamp(f(PELT__TONE_BIAS x), 0, 1),
+ * which reaches 1 only at x = 7.24 / 0.6 = 12.1 (far above the brightest
+ * the hair models give at exposure 1, tests/core/test_shading.c).
  * PELT_TONE_NONE clamps x to [0, 1]. `exposure` multiplies x first. */
-#define PELT__TONE_BIAS 2.0f
-#define PELT__TONE_WHITE 11.2f
-float pelt__hable(float x);
+#define PELT__TONE_BIAS 0.6f
+float pelt__aces(float x);
 float pelt__tone(float x, float exposure, int tone);
 /* What a pixel's channel shows: pelt__srgb_encode(pelt__tone(x, ...)). */
 float pelt__display(float x, float exposure, int tone);

@@ -24,7 +24,7 @@ float shadow_factor(float k_shadow, float h)
 }
 
 // Linear light (docs/shading.md): sRGB colours decoded, lit, exposed, tone
-// mapped and encoded. Mirrors pelt__srgb_decode / _encode, pelt__hable,
+// mapped and encoded. Mirrors pelt__srgb_decode / _encode, pelt__aces,
 // pelt__tone and pelt__display (core/fur/shading.c).
 vec3 srgb_decode(vec3 c)
 {
@@ -42,22 +42,21 @@ vec3 srgb_encode(vec3 l)
     return mix(1.055 * pow(l, vec3(1.0 / 2.4)) - 0.055, 12.92 * l, lessThanEqual(l, vec3(0.0031308)));
 }
 
-// Hable's filmic curve (Uncharted 2, GDC 2010).
-vec3 hable(vec3 x)
-{
-    const float A = 0.15, B = 0.50, C = 0.10, D = 0.20, E = 0.02, F = 0.30;
-    return (x * (A * x + C * B) + D * E) / (x * (A * x + B) + D * F) - E / F;
-}
+// Narkowicz's fit of the ACES filmic curve (2015), its input scaled by
+// his 0.6 (PELT__TONE_BIAS).
+const float TONE_BIAS = 0.6;
 
-const float TONE_BIAS = 2.0;   // PELT__TONE_BIAS
-const float TONE_WHITE = 11.2; // PELT__TONE_WHITE
+vec3 aces(vec3 x)
+{
+    return x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14);
+}
 
 // tone 0: filmic, 1: none (clamp only).
 vec3 tone_map(vec3 x, float exposure, float tone)
 {
     vec3 v = max(x * exposure, 0.0);
     if (tone > 0.5) return min(v, 1.0);
-    return clamp(hable(TONE_BIAS * v) / hable(vec3(TONE_WHITE)).x, 0.0, 1.0);
+    return clamp(aces(TONE_BIAS * v), 0.0, 1.0);
 }
 
 vec3 display_color(vec3 x, float exposure, float tone)

@@ -38,8 +38,8 @@ typedef enum pelt_draw_mode {
 /* The tone curve between the linear light the hair is lit in and the
  * picture (docs/shading.md): both end in the sRGB encoding. */
 typedef enum pelt_tone {
-    /* Hable's filmic curve: a soft toe and shoulder, highlights roll off
-       below white instead of clipping. The default. */
+    /* A filmic curve (Narkowicz's ACES fit): a toe and a shoulder,
+       highlights roll off below white instead of clipping. The default. */
     PELT_TONE_FILMIC = 0,
     PELT_TONE_NONE = 1 /* the exposed colour clamped to [0, 1] */
 } pelt_tone;

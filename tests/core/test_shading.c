@@ -113,13 +113,14 @@ static void tone_curves_are_monotone_and_start_at_black(void)
 }
 
 /* The brightest colour the hair models light at the default look and light
- * (white hair, ambient 0.25, light 1, K_s (0.9, 0.85, 0.8) decoded, fully
+ * (white hair, ambient 0.25, light 1, K_s (0.9, 0.85, 0.8), fully
  * wet: specular gain 2), each lobe at its peak of 1, stays below white
  * after the filmic curve at exposure 1: no clipped highlight. */
 static void white_highlight_stays_below_clipping(void)
 {
-    /* look.specular's and wet.gloss's defaults (tests/core/test_fur_defaults.c). */
-    float ks = pelt__srgb_decode(0.9f), gain = 2.0f;
+    /* look.specular's (a gain, not decoded) and wet.gloss's defaults
+       (tests/core/test_fur_defaults.c). */
+    float ks = 0.9f, gain = 2.0f;
     float marschner = 0.25f + (1.0f + PELT__HAIR_SECONDARY_GAIN * gain * ks + PELT__HAIR_TT_GAIN) + gain * ks;
     float kajiya = 0.25f + 1.0f + gain * ks;
     float brightest = fmaxf(marschner, kajiya);
