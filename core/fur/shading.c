@@ -74,8 +74,12 @@ float pelt__srgb_decode(float c)
 float pelt__srgb_encode(float l)
 {
     l = fminf(fmaxf(l, 0.0f), 1.0f);
-    return l <= 0.0031308f ? 12.92f * l : 1.055f * powf(l, 1.0f / 2.4f) - 0.055f;
+    float s1 = sqrtf(l), s2 = sqrtf(s1), s3 = sqrtf(s2);
+    float fit = 0.662002687f * s1 + 0.684122060f * s2 - 0.323583601f * s3 - 0.0225411470f * l;
+    return l <= 0.0031308f ? 12.92f * l : fit;
 }
+
+float pelt__shade_decode(float c) { return c * (c * (0.305306011f * c + 0.682171111f) + 0.012522878f); }
 
 pelt_vec3 pelt__srgb_decode3(pelt_vec3 c)
 {

@@ -56,8 +56,18 @@ bool pelt__groom_keeps(float id, float density);
  * and lit in linear light; the lit colour is exposed, tone mapped and
  * encoded back to sRGB for the 8-bit image. Per channel: */
 float pelt__srgb_decode(float c); /* c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055)^2.4 */
-float pelt__srgb_encode(float l); /* l clamped to [0, 1]; l <= 0.0031308 ? 12.92 l
-                                     : 1.055 l^(1 / 2.4) - 0.055 */
+/* l clamped to [0, 1]; l <= 0.0031308 ? 12.92 l : 1.055 l^(1 / 2.4) - 0.055,
+ * its power replaced by I. Taylor's fit in square roots ("sRGB
+ * approximations for HLSL", 2012): with s1 = sqrt(l), s2 = sqrt(s1),
+ * s3 = sqrt(s2), 0.662002687 s1 + 0.684122060 s2 - 0.323583601 s3
+ * - 0.0225411470 l, within 0.25 / 255 of the power; three square roots
+ * cost llvmpipe a fraction of one power, on every fragment. */
+float pelt__srgb_encode(float l);
+/* The strand's shade in the fur texture (a brightness in [0.65, 1]),
+ * decoded per fragment by Taylor's cubic fit of the sRGB curve,
+ * c (c (0.305306011 c + 0.682171111) + 0.012522878): within 0.002 of
+ * pelt__srgb_decode, and three multiply-adds. */
+float pelt__shade_decode(float c);
 pelt_vec3 pelt__srgb_decode3(pelt_vec3 c);
 
 /* The tone curves (pelt_tone, pelt/render.h): PELT_TONE_FILMIC is

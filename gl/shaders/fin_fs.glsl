@@ -22,7 +22,7 @@ void main()
     if (!groom_keeps(hair.b, v_density)) discard;
     if (hair.a < 0.05) discard;
     float a = hair.a * v_fade;
-    vec3 base = mix(v_root, v_tip, hair.g) * srgb_decode(hair.r); // linear light
+    vec3 base = mix(v_root, v_tip, hair.g) * shade_decode(hair.r); // linear light
     // Variants as the shells' (gl/fin_pass.c): only what the frame needs.
 #ifdef PELT_COLOR_TEXTURE
     base *= texture(u_color_tex, v_uv * u_color_scale).rgb;

@@ -31,15 +31,19 @@ vec3 srgb_decode(vec3 c)
     return mix(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92, lessThanEqual(c, vec3(0.04045)));
 }
 
-float srgb_decode(float c)
-{
-    return c <= 0.04045 ? c / 12.92 : pow((c + 0.055) / 1.055, 2.4);
-}
-
+// Taylor's fit of the power in square roots (pelt__srgb_encode).
 vec3 srgb_encode(vec3 l)
 {
     l = clamp(l, 0.0, 1.0);
-    return mix(1.055 * pow(l, vec3(1.0 / 2.4)) - 0.055, 12.92 * l, lessThanEqual(l, vec3(0.0031308)));
+    vec3 s1 = sqrt(l), s2 = sqrt(s1), s3 = sqrt(s2);
+    vec3 fit = 0.662002687 * s1 + 0.684122060 * s2 - 0.323583601 * s3 - 0.0225411470 * l;
+    return mix(fit, 12.92 * l, lessThanEqual(l, vec3(0.0031308)));
+}
+
+// The strand's shade, by Taylor's cubic (pelt__shade_decode).
+float shade_decode(float c)
+{
+    return c * (c * (0.305306011 * c + 0.682171111) + 0.012522878);
 }
 
 // Narkowicz's fit of the ACES filmic curve (2015), its input scaled by

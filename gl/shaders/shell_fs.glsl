@@ -106,7 +106,7 @@ void main()
 #endif
     }
     // The strand's shade is an sRGB value like the colours: decoded.
-    vec3 base = mix(v_root, v_tip, hair.g) * srgb_decode(hair.r);
+    vec3 base = mix(v_root, v_tip, hair.g) * shade_decode(hair.r);
 #ifdef PELT_COLOR_TEXTURE
     base *= texture(u_color_tex, (v_uv + d) * u_color_scale).rgb;
 #endif

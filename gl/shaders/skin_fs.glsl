@@ -17,7 +17,7 @@ out vec4 o_color;
 void main()
 {
     vec3 n = normalize(v_normal);
-    float shade = srgb_decode(texture(u_fur, vec3(v_fur_uv, 0.0)).r); // linear light
+    float shade = shade_decode(texture(u_fur, vec3(v_fur_uv, 0.0)).r); // linear light
     vec3 roots = groom_root_color(u_color, v_hair_color) * shade;
     // Variants as the shells' (gl/skin_pass.c): only what the frame needs.
 #ifdef PELT_COLOR_TEXTURE

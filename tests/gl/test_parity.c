@@ -531,7 +531,7 @@ static const char display_main[] =
     "  float x = (c.x + float(W) * c.y) / float(W * H);\n"
     "  vec3 v = vec3(x, x * 6.0, x * 0.02);\n"
     "  vec3 d = srgb_decode(v.xxz);\n"
-    "  o = u_which == 0 ? vec4(d, srgb_decode(v.x))\n"
+    "  o = u_which == 0 ? vec4(d, shade_decode(v.x))\n"
     "    : u_which == 1 ? vec4(srgb_encode(v), 0.0)\n"
     "    : u_which == 2 ? vec4(tone_map(v, 1.7, 0.0), 0.0)\n"
     "    : u_which == 3 ? vec4(tone_map(v, 1.7, 1.0), 0.0)\n"
@@ -542,7 +542,8 @@ static const char display_main[] =
  * display mapping, against core/fur/shading.c. */
 static void display_glsl_matches_c(void)
 {
-    const char *names[] = {"srgb_decode", "srgb_encode", "tone_map filmic", "tone_map none", "display_color"};
+    const char *names[] = {"srgb_decode, shade_decode", "srgb_encode", "tone_map filmic", "tone_map none",
+                           "display_color"};
     for (int which = 0; which < 5; which++) {
         char define[96];
         snprintf(define, sizeof define, "#define u_which %d\n#define W %d\n#define H %d\n", which, W, H);
@@ -561,7 +562,7 @@ static void display_glsl_matches_c(void)
                     if (which == 3) r[k] = pelt__tone(v[k], 1.7f, PELT_TONE_NONE);
                     if (which == 4) r[k] = pelt__display(v[k], 0.8f, PELT_TONE_FILMIC);
                 }
-                if (which == 0) r[3] = pelt__srgb_decode(v[0]);
+                if (which == 0) r[3] = pelt__shade_decode(v[0]);
                 const float *g = out + 4 * (y * W + x);
                 for (int k = 0; k < 4; k++) worst = fmax(worst, fabs(g[k] - r[k]));
             }
