@@ -1,8 +1,10 @@
-// The light on a hair, shared by the shells and the fins: the
-// hair model (Kajiya-Kay, Silva Eq. 6, or Lengyel's §2.4 table; both in
-// shading.glsl) with the displaced strand's tangent T, the body's own
-// shadow on hair facing away from the light, and gamma(h). Reads the
-// uniform blocks, so it comes after blocks.glsl (and shadow_map.glsl).
+// The light on a hair, shared by the shells, the fins and the strand
+// reference, in linear light: the hair model (Kajiya-Kay, Silva Eq. 6,
+// Lengyel's §2.4 table, or Scheuermann's reading of Marschner; all in
+// shading.glsl, docs/shading.md) with the displaced strand's tangent T,
+// the body's own shadow on hair facing away from the light, and gamma(h)
+// (the occlusion from the fur's density for Scheuermann-Marschner). Reads
+// the uniform blocks, so it comes after blocks.glsl (and shadow_map.glsl).
 uniform sampler2D u_light_table; // PELT_UNIT_LIGHT_TABLE
 
 // The wetness under the hair being lit, for its shine (wet_shine): a

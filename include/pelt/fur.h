@@ -68,7 +68,7 @@ typedef struct pelt_fur_look {
     pelt_strand_curl_shape strand_curl_shape; /* default PELT_STRAND_CURL_HELIX */
     float tiling;            /* fur-texture tiles per world unit, default
                                 5 / the mesh's bounding-box diagonal */
-    float color[3];          /* base hair colour (linear RGB), default (0.55, 0.34, 0.18) */
+    float color[3];          /* base hair colour (sRGB, lit in linear light), default (0.55, 0.34, 0.18) */
     float tip_color[3];      /* colour at the tips, default (1, 0.82, 0.58) */
     float skin_color[3];     /* bare skin where grooming thins the hair
                                 (pelt/groom.h density), default (0.78, 0.56, 0.47) */
