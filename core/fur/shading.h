@@ -102,8 +102,8 @@ float pelt__strand_specular(pelt_vec3 t, pelt_vec3 h, float p);
  * times the azimuth that peaks when L and E (from the eye towards the
  * point) project onto the plane across the hair in the same direction:
  *   cos phi = (L.E - (T.L)(T.E)) / max(|T x L||T x E|, 1e-4),
- *   azimuth = max(0, cos phi)^PELT__HAIR_TT_AZIMUTH. */
-#define PELT__HAIR_TT_AZIMUTH 4.0f
+ *   azimuth = max(0, cos phi)^PELT__HAIR_TT_AZIMUTH (2: a broad forward lobe). */
+#define PELT__HAIR_TT_AZIMUTH 2.0f
 float pelt__hair_transmission(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p);
 
 /* The model's constants (gl/shaders/shading.glsl has the same): the
@@ -117,7 +117,12 @@ float pelt__hair_transmission(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p);
 #define PELT__HAIR_SECONDARY_WIDTH 0.5f
 #define PELT__HAIR_SECONDARY_GAIN 0.5f
 #define PELT__HAIR_TT_WIDTH 0.5f
-#define PELT__HAIR_TT_GAIN 1.0f
+#define PELT__HAIR_TT_GAIN 1.5f
+/* The body's shadow on the direct light is clamp(0.8 n.L + 0.35, 0, 1)
+ * (gl/shaders/fur_light.glsl); on the transmission, clamp(0.8 n.L + REACH,
+ * 0, 1): light from behind reaches the hair standing clear of the body up
+ * to the silhouette. */
+#define PELT__HAIR_TT_REACH 0.8f
 
 /* The model's four factors for tangent T, surface normal N, L towards the
  * light, E from the eye towards the point (all unit), exponent p:

@@ -26,14 +26,15 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
     vec2 shine = wet_shine(fur_wetness, u_shininess, u_wet_sharpness, u_wet_gloss);
     // Hair on the side of the body facing away from the light is in the
     // body's shadow: the hair models alone would light it as brightly.
-    float facing = clamp(dot(N, L) * 0.8 + 0.35, 0.0, 1.0);
+    float nl = dot(N, L), seen = 1.0;
     float gamma = shadow_factor(u_shadow, h);
 #ifdef PELT_SHADOW_MAP
     // The light's shadow maps (shadow_map.glsl) darken the direct light;
     // gamma, their cheap stand-in, stays only when asked for.
-    facing *= shadow_light(world, u_shadow_slab.z, 1);
+    seen = shadow_light(world, u_shadow_slab.z, 1);
     if (u_shadow_map.x > 0.5) gamma = mix(1.0, gamma, u_shadow_slab.w);
 #endif
+    float facing = clamp(nl * 0.8 + 0.35, 0.0, 1.0) * seen;
     // A program may be built for one model (the passes' variants,
     // gl/shell_pass.c: Kajiya-Kay, the table, or neither define for
     // Scheuermann-Marschner); else the fur's model is chosen at run time.
@@ -53,7 +54,11 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
         // the fur's density in place of gamma (docs/shading.md).
         vec4 m = hair_lobes(T, N, L, E, shine.x);
         float occ = fur_occlusion(u_occlusion, h);
-        vec3 lit = (m.x + HAIR_SECONDARY_GAIN * shine.y * m.z * u_specular + HAIR_TT_GAIN * m.w) * facing;
+        // Light from behind reaches the hair that stands clear of the
+        // body, up to the silhouette: transmission's body shadow sets in
+        // only where the body lies between (n.L below 0).
+        float behind = clamp(nl * 0.8 + HAIR_TT_REACH, 0.0, 1.0) * seen;
+        vec3 lit = (m.x + HAIR_SECONDARY_GAIN * shine.y * m.z * u_specular) * facing + HAIR_TT_GAIN * m.w * behind;
         mul = occ * (u_ambient + lit * u_light_color);
         spec = occ * shine.y * m.y * facing;
         return;

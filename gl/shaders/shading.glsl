@@ -77,8 +77,9 @@ const float HAIR_SHIFT_SECONDARY = -0.15; // PELT__HAIR_SHIFT_SECONDARY: towards
 const float HAIR_SECONDARY_WIDTH = 0.5;
 const float HAIR_SECONDARY_GAIN = 0.5;
 const float HAIR_TT_WIDTH = 0.5;
-const float HAIR_TT_GAIN = 1.0;
-const float HAIR_TT_AZIMUTH = 4.0;
+const float HAIR_TT_GAIN = 1.5;
+const float HAIR_TT_AZIMUTH = 2.0;
+const float HAIR_TT_REACH = 0.8; // transmission's body shadow: clamp(0.8 n.L + REACH, 0, 1)
 
 vec3 shift_tangent(vec3 T, vec3 N, float shift)
 {
