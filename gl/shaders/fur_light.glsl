@@ -54,6 +54,10 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
         // the fur's density in place of gamma (docs/shading.md).
         vec4 m = hair_lobes(T, N, L, E, shine.x);
         float occ = fur_occlusion(u_occlusion, h);
+#ifdef PELT_SHADOW_MAP
+        // Like gamma, a stand-in for the shadow maps: kept only when asked.
+        if (u_shadow_map.x > 0.5) occ = mix(1.0, occ, u_shadow_slab.w);
+#endif
         // Light from behind reaches the hair that stands clear of the
         // body, up to the silhouette: transmission's body shadow sets in
         // only where the body lies between (n.L below 0).
