@@ -104,7 +104,7 @@ static const flag flags[] = {
     {"--no-shadows", NULL, NULL, FLAG_SWITCH, "shadows.enabled=false", "no shadows from the light (default)"},
     {"--ground", NULL, NULL, FLAG_SWITCH, "ground.enabled=true", "a ground plane under the mesh that receives shadows"},
     {"--shading", NULL, "MODEL", FLAG_KEY, "shading.model",
-     "hair lighting: kajiya-kay (default) or lengyel-table"},
+     "hair lighting: kajiya-kay (default), lengyel-table or marschner"},
     {"--groom", NULL, "FILE", FLAG_KEY, "fur.groom", "a groom file (PLY) to load (docs/grooming.md)"},
     {"--save-groom", NULL, "FILE", FLAG_GROOM_OUT, NULL,
      "write the groom (maps, vertex colours, groom file and strokes applied) as a PLY"},

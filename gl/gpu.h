@@ -106,8 +106,8 @@ void pelt__gpu_fur_destroy(pelt__gpu_fur *g);
 typedef struct pelt__frame_block {
     float model[16], view_proj[16];
     float eye[3], ambient;
-    float light_dir[3], pad0_;
-    float light_color[3], pad1_;
+    float light_dir[3], exposure;
+    float light_color[3], tone; /* pelt_tone */
     float view_dir[3], pad2_;
     float light_matrix[16];
     float shadow_map[4];  /* on, slices, 1 / size, filter radius in texels */
@@ -123,7 +123,7 @@ typedef struct pelt__fur_block {
     float color_scale, slant, wet_gloss, wet_sharpness;
     float skin_color[3], tiling;
     float fin_length, inter_shadow, inter_shadow_step, shading_model;
-    float ringlets[2], pad2_[2];
+    float ringlets[2], occlusion, pad2_;
 } pelt__fur_block;
 
 
@@ -135,7 +135,8 @@ typedef struct pelt__gpu_blocks {
 
 void pelt__gpu_blocks_create(pelt__gpu_blocks *b);
 /* Uploads the per-frame block; returns bytes sent. */
-size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *view, const pelt__frame_shadow *shadow);
+size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *view, const pelt_draw_desc *draw,
+                                  const pelt__frame_shadow *shadow);
 /* Uploads the fur block when the fur's look differs from what was sent;
  * returns bytes sent. */
 size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const pelt__fur_snapshot *fs);

@@ -88,7 +88,9 @@ size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_sna
     const uint8_t *color = fs->color;
     if (color && version != g->color_version) {
         bind(PELT_UNIT_COLOR, GL_TEXTURE_2D, g->color);
-        glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)w, (GLsizei)h, 0, GL_RGBA,
+        /* sRGB texels: GL decodes them to linear light when sampled (and
+           filters after decoding), in GL 3.3 and GLSL ES 3.00 alike. */
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_SRGB8_ALPHA8, (GLsizei)w, (GLsizei)h, 0, GL_RGBA,
                      GL_UNSIGNED_BYTE, color);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);

@@ -5,10 +5,12 @@
 
 #include "gl/programs.h"
 
+#include "core/fur/fur_gpu.h"
+
 pelt_status pelt__ground_pass_create(pelt__ground_pass *p, const pelt_hooks *hooks, pelt_error *err)
 {
     const char *vs[] = {pelt__shader_ground_vs, NULL};
-    const char *fs[] = {pelt__shader_shadow_map, pelt__shader_ground_fs, NULL};
+    const char *fs[] = {pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_ground_fs, NULL};
     pelt_status st = pelt__gl_program_create("ground", vs, fs, hooks, &p->program, err);
     if (st != PELT_OK) return st;
     p->ground = glGetUniformLocation(p->program, "u_ground");
@@ -29,7 +31,10 @@ void pelt__ground_pass_draw(const pelt__ground_pass *p, const pelt__pass_frame *
     glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     glUseProgram(p->program);
     glUniform4fv(p->ground, 1, disc);
-    glUniform3fv(p->color, 1, color);
+    /* The ground's colour is sRGB; it is lit in linear light. */
+    float linear[3];
+    pelt__fur_gpu_linear_rgb(color, linear);
+    glUniform3fv(p->color, 1, linear);
     glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
     f->stats->ground_draw_calls++;
     f->stats->triangles += 2;

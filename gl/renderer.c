@@ -230,7 +230,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     pelt__frame_plan_make(r->fur, view, &sw, &setup, &r->ground_cache, &plan);
 
     pelt_render_stats stats = {0};
-    stats.upload_bytes = r->pending_upload + pelt__gpu_blocks_set_frame(&r->blocks, view, &plan.shadow);
+    stats.upload_bytes = r->pending_upload + pelt__gpu_blocks_set_frame(&r->blocks, view, draw, &plan.shadow);
     r->pending_upload = 0;
     stats.mesh_level = plan.lod.mesh_level;
     stats.mesh_triangles = plan.lod.full_mesh ? r->mesh.triangle_count : r->mesh.level_triangles[plan.lod.mesh_level];

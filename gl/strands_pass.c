@@ -23,7 +23,7 @@ static void build(pelt__strands_pass *p, unsigned features)
     pelt__shell_feature_defines(features, defines);
     const char *vs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_fur_light,
                         pelt__shader_strand_vs, NULL};
-    const char *fs[] = {pelt__shader_strand_fs, NULL};
+    const char *fs[] = {pelt__shader_shading, pelt__shader_strand_fs, NULL};
     if (pelt__gl_program_create("strand", vs, fs, &p->hooks, &p->variants[features], NULL) != PELT_OK) {
         p->failed[features] = true;
         return;

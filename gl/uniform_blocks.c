@@ -16,7 +16,9 @@ OFFSET(pelt__frame_block, view_proj, 64);
 OFFSET(pelt__frame_block, eye, 128);
 OFFSET(pelt__frame_block, ambient, 140);
 OFFSET(pelt__frame_block, light_dir, 144);
+OFFSET(pelt__frame_block, exposure, 156);
 OFFSET(pelt__frame_block, light_color, 160);
+OFFSET(pelt__frame_block, tone, 172);
 OFFSET(pelt__frame_block, view_dir, 176);
 OFFSET(pelt__frame_block, light_matrix, 192);
 OFFSET(pelt__frame_block, shadow_map, 256);
@@ -43,6 +45,7 @@ OFFSET(pelt__fur_block, skin_color, 96);
 OFFSET(pelt__fur_block, tiling, 108);
 OFFSET(pelt__fur_block, fin_length, 112);
 OFFSET(pelt__fur_block, ringlets, 128);
+OFFSET(pelt__fur_block, occlusion, 136);
 _Static_assert(sizeof(pelt__fur_block) == 144, "std140 size of pelt_fur_block");
 #undef OFFSET
 
@@ -68,7 +71,8 @@ static void send(GLuint buffer, const void *data, size_t bytes)
     glBufferSubData(GL_UNIFORM_BUFFER, 0, (GLsizeiptr)bytes, data);
 }
 
-size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v, const pelt__frame_shadow *shadow)
+size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v, const pelt_draw_desc *draw,
+                                  const pelt__frame_shadow *shadow)
 {
     pelt__frame_block f;
     memset(&f, 0, sizeof f);
@@ -78,6 +82,8 @@ size_t pelt__gpu_blocks_set_frame(pelt__gpu_blocks *b, const pelt_view *v, const
     f.ambient = v->light.ambient;
     memcpy(f.light_dir, v->light.direction, sizeof f.light_dir);
     memcpy(f.light_color, v->light.color, sizeof f.light_color);
+    f.exposure = draw->exposure > 0.0f ? draw->exposure : 1.0f;
+    f.tone = draw->tone == PELT_TONE_NONE ? 1.0f : 0.0f;
     /* Forward is minus the third row of the view rotation. */
     pelt_vec3 fwd = v3_norm_or(v3(-v->view[2], -v->view[6], -v->view[10]), v3(0.0f, 0.0f, -1.0f));
     v3_store(f.view_dir, fwd);
@@ -93,11 +99,12 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     const pelt_fur_desc d = pelt_fur_get_desc(fur);
     pelt__fur_block k;
     memset(&k, 0, sizeof k); /* the padding too: the struct is compared bytewise */
-    memcpy(k.color, d.look.color, sizeof k.color);
+    /* The look's colours are sRGB; the shaders light in linear light. */
+    pelt__fur_gpu_linear_rgb(d.look.color, k.color);
     k.layers = (float)d.layers;
-    memcpy(k.tip_color, d.look.tip_color, sizeof k.tip_color);
+    pelt__fur_gpu_linear_rgb(d.look.tip_color, k.tip_color);
     k.length = d.length;
-    memcpy(k.specular, d.look.specular, sizeof k.specular);
+    memcpy(k.specular, d.look.specular, sizeof k.specular); /* a gain, not a colour to decode */
     k.shininess = d.look.shininess;
     memcpy(k.fur_per_uv, fs->fur_per_uv, sizeof k.fur_per_uv);
     k.shadow = d.look.shadow;
@@ -110,7 +117,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.wet_sharpness = d.wet.gloss_sharpness;
     k.color_scale = d.look.color_scale;
     k.slant = tanf(d.comb.slant * 3.14159265f / 180.0f); /* Lengyel et al. §3 */
-    memcpy(k.skin_color, d.look.skin_color, sizeof k.skin_color);
+    pelt__fur_gpu_linear_rgb(d.look.skin_color, k.skin_color);
     k.tiling = d.look.tiling;
     k.fin_length = d.fins.length;
     k.inter_shadow = d.look.inter_shadow ? d.look.inter_shadow_darkness : 0.0f;
@@ -118,6 +125,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.shading_model = (float)d.look.shading;
     k.ringlets[0] = (float)fs->ringlet_levels;
     k.ringlets[1] = (float)(fs->volume_slices + fs->lod_slices);
+    k.occlusion = fs->occlusion_depth;
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

@@ -43,6 +43,7 @@ void pelt_scene_defaults(pelt_scene *s)
     s->output.background[1] = 0.11f;
     s->output.background[2] = 0.13f;
     s->output.background[3] = 1.0f;
+    s->draw.exposure = 1.0f; /* output.exposure; output.tone: filmic (zero) */
 
     s->forces = pelt_forces_default();
 

@@ -29,6 +29,7 @@ _Static_assert(sizeof(pelt_lod_mode) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_strand_curl_shape) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_curl_phase) == sizeof(int), "enum size");
 _Static_assert(sizeof(pelt_draw_mode) == sizeof(int), "enum size");
+_Static_assert(sizeof(pelt_tone) == sizeof(int), "enum size");
 
 typedef pelt__scene_key key_def;
 typedef pelt__scene_keys table;

@@ -14,6 +14,7 @@ static const char *const pattern_names[] = {"none", "spots", "stripes", "noise",
 static const char *const direction_names[] = {"global", "vertex-colors", NULL};
 static const char *const vertex_colors_names[] = {"ignore", "hair", NULL};
 static const char *const render_mode_names[] = {"shells", "strands", NULL};
+static const char *const tone_names[] = {"filmic", "none", NULL}; /* pelt_tone */
 static const char *const tool_names[] = {"comb", "length", "color", "density", NULL};
 #define OFF(field) offsetof(pelt_scene, field)
 #define UINT_(p, f, lo, hi, fl) {p, K_UINT, OFF(f), 0, lo, hi, fl, 0, NULL}
@@ -131,6 +132,8 @@ static const pelt__scene_key scene_keys[] = {
     UINT_("output.height", output.height, 1, 16384, 0),
     UINT_("output.msaa", output.msaa, 0, 16, 0),
     VEC("output.background", output.background, 4, 0, 1, F_ACCEPT3),
+    FLT("output.exposure", draw.exposure, 0.01, 64, 0),
+    ENUM("output.tone", draw.tone, tone_names),
 
     VEC("forces.gravity", forces.gravity, 3, -BIG, BIG, 0),
     VEC("forces.wind", forces.wind, 3, -BIG, BIG, 0),

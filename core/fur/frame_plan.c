@@ -176,7 +176,9 @@ static unsigned shell_features(const pelt_fur *fur, const pelt_fur_desc *fd, con
     if (fd->look.inter_shadow && sw->inter_shadow) f |= PELT__SHELL_INTER_SHADOW;
     if (lod->shell_blend > 0.0f) f |= PELT__SHELL_LOD_BLEND;
     if (fs.color) f |= PELT__SHELL_COLOR_TEXTURE;
-    f |= fd->look.shading == PELT_SHADING_LENGYEL_TABLE ? PELT__SHELL_LIGHT_TABLE : PELT__SHELL_KAJIYA_KAY;
+    /* Neither model bit: Scheuermann-Marschner (gl/shaders/fur_light.glsl). */
+    if (fd->look.shading == PELT_SHADING_LENGYEL_TABLE) f |= PELT__SHELL_LIGHT_TABLE;
+    if (fd->look.shading == PELT_SHADING_KAJIYA_KAY) f |= PELT__SHELL_KAJIYA_KAY;
     if (light_maps) f |= PELT__SHELL_SHADOW_MAP;
     return f;
 }

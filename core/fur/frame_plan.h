@@ -55,8 +55,8 @@ enum {
     PELT__SHELL_INTER_SHADOW = 1 << 1,  /* Kenwright's inter-fur shadows */
     PELT__SHELL_LOD_BLEND = 1 << 2,     /* a second fetch: the next shell level */
     PELT__SHELL_COLOR_TEXTURE = 1 << 3, /* the fur has a colour texture */
-    PELT__SHELL_KAJIYA_KAY = 1 << 4,    /* the hair lighting models */
-    PELT__SHELL_LIGHT_TABLE = 1 << 5,
+    PELT__SHELL_KAJIYA_KAY = 1 << 4,    /* the hair lighting models: one of these, */
+    PELT__SHELL_LIGHT_TABLE = 1 << 5,   /* neither (Scheuermann-Marschner) or both (any) */
     PELT__SHELL_SHADOW_MAP = 1 << 6,    /* the light's shadow maps darken the direct light */
     PELT__SHELL_RINGLETS = 1 << 7,      /* wet ringlets: two curl levels blended (with _WET) */
     PELT__SHELL_GENERIC = (1 << 8) - 1, /* everything, chosen per fragment */

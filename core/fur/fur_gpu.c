@@ -18,6 +18,8 @@ void pelt__fur_gpu_snapshot(const pelt_fur *f, pelt__fur_snapshot *out)
         .volume_lod = f->lod_slices,
         .lod_slices = f->lod_slice_count,
         .ringlet_levels = f->ringlet_levels,
+        .occlusion_depth = pelt__occlusion_depth(f->desc.look.density, f->desc.look.strand_radius,
+                                                 f->desc.look.texture_size),
         .vertex_curl_radius = pelt__fur_vertex_curl_radius(&f->desc),
         .fur_uvs = f->fur_uvs,
         .fur_per_uv = {f->fur_per_uv[0], f->fur_per_uv[1]},
@@ -61,3 +63,8 @@ void pelt__fur_gpu_light_table(const pelt_fur *f, float *out)
     pelt__lengyel_table(f->desc.look.diffuse_power, f->desc.look.shininess, out);
 }
 
+
+void pelt__fur_gpu_linear_rgb(const float srgb[3], float out[3])
+{
+    for (int k = 0; k < 3; k++) out[k] = pelt__srgb_decode(srgb[k]);
+}

@@ -47,6 +47,8 @@ typedef struct pelt__fur_snapshot {
        hold that many sets one after the other (level 0 the full curl), and
        the GPU array takes level k's slice s at k * (slices + lod slices) + s. */
     unsigned ringlet_levels;
+    float occlusion_depth;    /* the fur's optical depth for the hair model's
+                                 occlusion (pelt__occlusion_depth) */
     float vertex_curl_radius; /* Silva's K_alpha for the shells' vertex stage,
                                  0 when the texture holds the curl */
     const float *fur_uvs;     /* fur-texture coordinates in tiles, 2 a vertex */
@@ -70,6 +72,10 @@ typedef struct pelt__fur_snapshot {
     unsigned mask_width, mask_height;
     bool any_wet;             /* false: every texel dry, the shells' dry variant */
 } pelt__fur_snapshot;
+
+/* A colour as the renderer's blocks and uniforms take it: sRGB decoded to
+ * linear light (pelt__srgb_decode, core/fur/shading.h). */
+void pelt__fur_gpu_linear_rgb(const float srgb[3], float out[3]);
 
 /* Fills *out from the fur; cheap (no copy of any array), once a frame or
  * wherever a renderer needs it. */

@@ -18,7 +18,7 @@
 
 static const char *const strand_curl_shapes[] = {"helix", "wave", NULL};
 static const char *const curl_phases[] = {"ringlets", "coherent", NULL};
-static const char *const shadings[] = {"kajiya-kay", "lengyel-table", NULL};
+static const char *const shadings[] = {"kajiya-kay", "lengyel-table", "marschner", NULL};
 static const char *const lod_modes[] = {"auto", "off", "fixed", NULL};
 
 /* The ranges are what the library can draw; the defaults are the papers'

@@ -24,17 +24,20 @@ float pelt__shadow_factor(float k_shadow, float h) { return (k_shadow - 1.0f + h
 
 static float mixf(float a, float b, float t) { return a * (1.0f - t) + b * t; }
 
+/* The groom's colours are sRGB bytes; the look's colours come decoded. */
 pelt_vec3 pelt__groom_root_color(pelt_vec3 color, const float c[4])
 {
-    return v3(mixf(color.x, c[0], c[3]), mixf(color.y, c[1], c[3]), mixf(color.z, c[2], c[3]));
+    pelt_vec3 g = pelt__srgb_decode3(v3(c[0], c[1], c[2]));
+    return v3(mixf(color.x, g.x, c[3]), mixf(color.y, g.y, c[3]), mixf(color.z, g.z, c[3]));
 }
 
 pelt_vec3 pelt__groom_tip_color(pelt_vec3 color, pelt_vec3 tip, const float c[4])
 {
-    const float col[3] = {color.x, color.y, color.z}, tp[3] = {tip.x, tip.y, tip.z};
+    pelt_vec3 g = pelt__srgb_decode3(v3(c[0], c[1], c[2]));
+    const float col[3] = {color.x, color.y, color.z}, tp[3] = {tip.x, tip.y, tip.z}, gc[3] = {g.x, g.y, g.z};
     float r[3];
     for (int k = 0; k < 3; k++)
-        r[k] = mixf(tp[k], fminf(c[k] * tp[k] / fmaxf(col[k], 0.01f), 1.0f), c[3]);
+        r[k] = mixf(tp[k], fminf(gc[k] * tp[k] / fmaxf(col[k], 0.01f), 1.0f), c[3]);
     return v3(r[0], r[1], r[2]);
 }
 
@@ -61,4 +64,85 @@ void pelt__inter_shadow_offset(pelt_vec3 l, pelt_vec3 u, pelt_vec3 v, float step
 {
     out[0] = v3_dot(l, u) * step;
     out[1] = v3_dot(l, v) * step;
+}
+
+float pelt__srgb_decode(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float pelt__srgb_encode(float l)
+{
+    l = fminf(fmaxf(l, 0.0f), 1.0f);
+    float s1 = sqrtf(l), s2 = sqrtf(s1), s3 = sqrtf(s2);
+    float fit = 0.662002687f * s1 + 0.684122060f * s2 - 0.323583601f * s3 - 0.0225411470f * l;
+    return l <= 0.0031308f ? 12.92f * l : fit;
+}
+
+float pelt__shade_decode(float c) { return c * (c * (0.305306011f * c + 0.682171111f) + 0.012522878f); }
+
+pelt_vec3 pelt__srgb_decode3(pelt_vec3 c)
+{
+    return v3(pelt__srgb_decode(c.x), pelt__srgb_decode(c.y), pelt__srgb_decode(c.z));
+}
+
+/* Narkowicz's ACES fit (2015), his constants. */
+float pelt__aces(float x) { return x * (2.51f * x + 0.03f) / (x * (2.43f * x + 0.59f) + 0.14f); }
+
+float pelt__tone(float x, float exposure, int tone)
+{
+    float v = fmaxf(x * exposure, 0.0f);
+    if (tone != 0) return fminf(v, 1.0f);
+    return fminf(fmaxf(pelt__aces(PELT__TONE_BIAS * v), 0.0f), 1.0f);
+}
+
+float pelt__display(float x, float exposure, int tone) { return pelt__srgb_encode(pelt__tone(x, exposure, tone)); }
+
+pelt_vec3 pelt__shift_tangent(pelt_vec3 t, pelt_vec3 n, float shift)
+{
+    return v3_norm_or(v3_add(t, v3_scale(n, shift)), t);
+}
+
+static float smoothstepf(float e0, float e1, float x)
+{
+    float t = fminf(fmaxf((x - e0) / (e1 - e0), 0.0f), 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
+float pelt__strand_specular(pelt_vec3 t, pelt_vec3 h, float p)
+{
+    float u = v3_dot(t, h);
+    return smoothstepf(-1.0f, 0.0f, u) * powf(fmaxf(0.0f, 1.0f - u * u), 0.5f * p);
+}
+
+float pelt__hair_transmission(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p)
+{
+    float tl = v3_dot(t, l), te = v3_dot(t, e);
+    float sin_tl = sqrtf(fmaxf(0.0f, 1.0f - tl * tl));
+    float sin_te = sqrtf(fmaxf(0.0f, 1.0f - te * te));
+    float cone = powf(fmaxf(0.0f, tl * te + sin_tl * sin_te), p);
+    float cos_phi = (v3_dot(l, e) - tl * te) / fmaxf(sin_tl * sin_te, 1e-4f);
+    return cone * powf(fminf(fmaxf(cos_phi, 0.0f), 1.0f), PELT__HAIR_TT_AZIMUTH);
+}
+
+void pelt__hair_lobes(pelt_vec3 t, pelt_vec3 n, pelt_vec3 l, pelt_vec3 e, float p, float out[4])
+{
+    float tl = v3_dot(t, l);
+    /* The half vector between L and the direction towards the eye, -E. */
+    pelt_vec3 h = v3_norm_or(v3_sub(l, e), n);
+    out[0] = sqrtf(fmaxf(0.0f, 1.0f - tl * tl));
+    out[1] = pelt__strand_specular(pelt__shift_tangent(t, n, PELT__HAIR_SHIFT_PRIMARY), h, p);
+    out[2] = pelt__strand_specular(pelt__shift_tangent(t, n, PELT__HAIR_SHIFT_SECONDARY), h,
+                                   p * PELT__HAIR_SECONDARY_WIDTH);
+    out[3] = pelt__hair_transmission(t, l, e, p * PELT__HAIR_TT_WIDTH);
+}
+
+float pelt__fur_occlusion(float depth, float h) { return expf(-depth * (1.0f - h)); }
+
+float pelt__occlusion_depth(float density, float strand_radius, unsigned texture_size)
+{
+    float size = (float)(texture_size ? texture_size : 1u);
+    float c = density * 3.14159265f * strand_radius * strand_radius / (size * size);
+    c = fminf(fmaxf(c, 0.0f), 0.95f);
+    return -PELT__OCCLUSION_SLICES * logf(1.0f - c);
 }

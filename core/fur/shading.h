@@ -42,7 +42,7 @@ void pelt__lengyel_table(float pd, float ps, float out[PELT__LIGHT_TABLE * PELT_
  * tangency. */
 void pelt__inter_shadow_offset(pelt_vec3 l, pelt_vec3 u, pelt_vec3 v, float step, float out[2]);
 
-/* Grooming (Lengyel et al. §3): the hair colour c (rgb, weight c[3]) over
+/* Grooming (Lengyel et al. §3): the hair colour c (sRGB, decoded; weight c[3]) over
  * the look's root colour, and the tip colour brightened by the look's own
  * tip / root ratio (per channel, root at least 0.01, result at most 1). */
 pelt_vec3 pelt__groom_root_color(pelt_vec3 color, const float c[4]);
@@ -51,5 +51,94 @@ pelt_vec3 pelt__groom_tip_color(pelt_vec3 color, pelt_vec3 tip, const float c[4]
 /* Grooming's density keeps a strand of the fur volume when its id is below
  * the density (all of them at density 1). */
 bool pelt__groom_keeps(float id, float density);
+
+/* Linear light (docs/shading.md). Colours are given as sRGB (IEC 61966-2-1)
+ * and lit in linear light; the lit colour is exposed, tone mapped and
+ * encoded back to sRGB for the 8-bit image. Per channel: */
+float pelt__srgb_decode(float c); /* c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055)^2.4 */
+/* l clamped to [0, 1]; l <= 0.0031308 ? 12.92 l : 1.055 l^(1 / 2.4) - 0.055,
+ * its power replaced by I. Taylor's fit in square roots ("sRGB
+ * approximations for HLSL", 2012): with s1 = sqrt(l), s2 = sqrt(s1),
+ * s3 = sqrt(s2), 0.662002687 s1 + 0.684122060 s2 - 0.323583601 s3
+ * - 0.0225411470 l, within 0.25 / 255 of the power; three square roots
+ * cost llvmpipe a fraction of one power, on every fragment. */
+float pelt__srgb_encode(float l);
+/* The strand's shade in the fur texture (a brightness in [0.65, 1]),
+ * decoded per fragment by Taylor's cubic fit of the sRGB curve,
+ * c (c (0.305306011 c + 0.682171111) + 0.012522878): within 0.002 of
+ * pelt__srgb_decode, and three multiply-adds. */
+float pelt__shade_decode(float c);
+pelt_vec3 pelt__srgb_decode3(pelt_vec3 c);
+
+/* The tone curves (pelt_tone, pelt/render.h): PELT_TONE_FILMIC is
+ * Narkowicz's fit of the ACES filmic curve (K. Narkowicz, "ACES Filmic Tone
+ * Mapping Curve", 2015), its input scaled by his 0.6:
+ *   f(x) = x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14),
+ *   tone(x) = clamp(f(PELT__TONE_BIAS x), 0, 1),
+ * which reaches 1 only at x = 7.24 / 0.6 = 12.1 (far above the brightest
+ * the hair models give at exposure 1, tests/core/test_shading.c).
+ * PELT_TONE_NONE clamps x to [0, 1]. `exposure` multiplies x first. */
+#define PELT__TONE_BIAS 0.6f
+float pelt__aces(float x);
+float pelt__tone(float x, float exposure, int tone);
+/* What a pixel's channel shows: pelt__srgb_encode(pelt__tone(x, ...)). */
+float pelt__display(float x, float exposure, int tone);
+
+/* Hair shading beyond Kajiya-Kay: Scheuermann's real-time reading of
+ * Marschner et al. (T. Scheuermann, "Hair Rendering and Shading", GDC
+ * 2004; Marschner et al., "Light Scattering from Human Hair Fibers",
+ * SIGGRAPH 2003). The tangent T is tilted along the surface normal N:
+ * T' = normalize(T + shift N); a positive shift moves the highlight towards
+ * the tip, a negative one towards the root. */
+pelt_vec3 pelt__shift_tangent(pelt_vec3 t, pelt_vec3 n, float shift);
+
+/* A strand's highlight about the half vector H (unit): with u = T.H,
+ *   smoothstep(-1, 0, u) * (1 - u^2)^(p / 2). */
+float pelt__strand_specular(pelt_vec3 t, pelt_vec3 h, float p);
+
+/* Transmission (Marschner's TT lobe): light from behind the hair passes
+ * through it and goes on forwards. On the cone of Kajiya-Kay's highlight,
+ *   cone = max(0, (T.L)(T.E) + |T x L||T x E|)^p,
+ * times the azimuth that peaks when L and E (from the eye towards the
+ * point) project onto the plane across the hair in the same direction:
+ *   cos phi = (L.E - (T.L)(T.E)) / max(|T x L||T x E|, 1e-4),
+ *   azimuth = max(0, cos phi)^PELT__HAIR_TT_AZIMUTH (2: a broad forward lobe). */
+#define PELT__HAIR_TT_AZIMUTH 2.0f
+float pelt__hair_transmission(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p);
+
+/* The model's constants (gl/shaders/shading.glsl has the same): the
+ * primary highlight (light-coloured) shifted towards the tip, the secondary
+ * (tinted by the hair colour, broader: exponent p times WIDTH) towards the
+ * root, as Marschner's R and TRT lobes are by the cuticle's tilt (about
+ * 3 degrees, the secondary 1.5 times as far); their gains, and that of
+ * the transmission (its exponent p times TT_WIDTH). */
+#define PELT__HAIR_SHIFT_PRIMARY 0.1f
+#define PELT__HAIR_SHIFT_SECONDARY -0.15f
+#define PELT__HAIR_SECONDARY_WIDTH 0.5f
+#define PELT__HAIR_SECONDARY_GAIN 0.5f
+#define PELT__HAIR_TT_WIDTH 0.5f
+#define PELT__HAIR_TT_GAIN 1.5f
+/* The body's shadow on the direct light is clamp(0.8 n.L + 0.35, 0, 1)
+ * (gl/shaders/fur_light.glsl); on the transmission, clamp(0.8 n.L + REACH,
+ * 0, 1): light from behind reaches the hair standing clear of the body up
+ * to the silhouette. */
+#define PELT__HAIR_TT_REACH 0.8f
+
+/* The model's four factors for tangent T, surface normal N, L towards the
+ * light, E from the eye towards the point (all unit), exponent p:
+ * out[0] diffuse |T x L| (Kajiya-Kay's), out[1] the primary highlight,
+ * out[2] the secondary, out[3] the transmission. */
+void pelt__hair_lobes(pelt_vec3 t, pelt_vec3 n, pelt_vec3 l, pelt_vec3 e, float p, float out[4]);
+
+/* Occlusion from the fur's own density: light reaching height h in [0, 1]
+ * of the fur crosses the hair above it, exp(-depth (1 - h)). */
+float pelt__fur_occlusion(float depth, float h);
+/* The fur's optical depth from its look: a slice of the fur texture is
+ * covered to c = density pi r^2 / size^2 (strands of radius r texels on a
+ * size^2 tile, at most 0.95), and light crosses PELT__OCCLUSION_SLICES
+ * such slices on its way to the roots: depth = -SLICES ln(1 - c). At the
+ * default look the roots get 0.5, as Silva's gamma(0) at K_shadow = 2. */
+#define PELT__OCCLUSION_SLICES 1.5f
+float pelt__occlusion_depth(float density, float strand_radius, unsigned texture_size);
 
 #endif

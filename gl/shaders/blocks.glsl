@@ -10,7 +10,9 @@ layout(std140) uniform pelt_frame_block {
     vec3 u_eye;
     float u_ambient;     // ambient fraction of the hair colour
     vec3 u_light_dir;    // towards the light, not unit
+    float u_exposure;    // multiplies the linear colour before the tone curve
     vec3 u_light_color;
+    float u_tone;        // the tone curve: 0 filmic, 1 none (clamp only)
     vec3 u_view_dir;     // the camera's forward direction (the infinite viewer)
     // Shadows from the light (shadow_map.glsl, docs/shadows.md).
     mat4 u_light_matrix; // world -> (s, t, depth) on the light's maps
@@ -20,7 +22,7 @@ layout(std140) uniform pelt_frame_block {
 
 // Per fur, uploaded when it changes: the look (Silva et al. Eq. 4-6).
 layout(std140) uniform pelt_fur_block {
-    vec3 u_color;
+    vec3 u_color;            // colours in linear light (decoded from sRGB)
     float u_layers;          // N
     vec3 u_tip_color;
     float u_length;          // L0
@@ -42,7 +44,8 @@ layout(std140) uniform pelt_fur_block {
     float u_fin_length;      // fin hair height, multiple of the strand length
     float u_inter_shadow;    // Kenwright's shadow opacity, 0 = off
     float u_inter_shadow_step; // its step towards the light, fur tiles
-    float u_shading_model;   // 0 Kajiya-Kay, 1 Lengyel's table
+    float u_shading_model;   // 0 Kajiya-Kay, 1 Lengyel's table, 2 Scheuermann-Marschner
     vec2 u_ringlets;         // ringlets: x: the curl's amplitude levels in the
                              // fur volume (1 = none), y: slices between levels
+    float u_occlusion;       // the fur's optical depth (fur_occlusion)
 };

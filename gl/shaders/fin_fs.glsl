@@ -22,7 +22,7 @@ void main()
     if (!groom_keeps(hair.b, v_density)) discard;
     if (hair.a < 0.05) discard;
     float a = hair.a * v_fade;
-    vec3 base = mix(v_root, v_tip, hair.g) * hair.r;
+    vec3 base = mix(v_root, v_tip, hair.g) * shade_decode(hair.r); // linear light
     // Variants as the shells' (gl/fin_pass.c): only what the frame needs.
 #ifdef PELT_COLOR_TEXTURE
     base *= texture(u_color_tex, v_uv * u_color_scale).rgb;
@@ -30,5 +30,5 @@ void main()
 #ifdef PELT_WET
     base *= 1.0 - u_wet_darken * textureLod(u_mask, v_uv, 0.0).a;
 #endif
-    o_color = vec4(base + v_spec * (u_specular * u_light_color), a);
+    o_color = vec4(display_color(base + v_spec * (u_specular * u_light_color), u_exposure, u_tone), a);
 }

@@ -3,7 +3,7 @@
 in vec3 v_world;
 in vec2 v_disc;
 
-uniform vec3 u_ground_color;
+uniform vec3 u_ground_color; // linear (gl/ground_pass.c decodes it)
 
 out vec4 o_color;
 
@@ -14,5 +14,6 @@ void main()
     vec3 L = normalize(u_light_dir);
     float lambert = max(L.y, 0.0);
     if (lambert > 0.0) lambert *= shadow_light(v_world, u_shadow_slab.z, 4);
-    o_color = vec4(u_ground_color * (u_ambient + lambert * u_light_color), 1.0 - smoothstep(0.6, 1.0, r));
+    vec3 lit = u_ground_color * (u_ambient + lambert * u_light_color); // linear light
+    o_color = vec4(display_color(lit, u_exposure, u_tone), 1.0 - smoothstep(0.6, 1.0, r));
 }

@@ -23,17 +23,119 @@ float shadow_factor(float k_shadow, float h)
     return (k_shadow - 1.0 + h) / k_shadow;
 }
 
-// Grooming (Lengyel et al. §3): a vertex's hair colour c.rgb over the
-// look's colour with weight c.a; its tip is brightened by the look's own
-// tip-to-root ratio. Mirrored by pelt__groom_root_color / _tip_color.
+// Linear light (docs/shading.md): sRGB colours decoded, lit, exposed, tone
+// mapped and encoded. Mirrors pelt__srgb_decode / _encode, pelt__aces,
+// pelt__tone and pelt__display (core/fur/shading.c).
+vec3 srgb_decode(vec3 c)
+{
+    return mix(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92, lessThanEqual(c, vec3(0.04045)));
+}
+
+// Taylor's fit of the power in square roots (pelt__srgb_encode).
+vec3 srgb_encode(vec3 l)
+{
+    l = clamp(l, 0.0, 1.0);
+    vec3 s1 = sqrt(l), s2 = sqrt(s1), s3 = sqrt(s2);
+    vec3 fit = 0.662002687 * s1 + 0.684122060 * s2 - 0.323583601 * s3 - 0.0225411470 * l;
+    return mix(fit, 12.92 * l, lessThanEqual(l, vec3(0.0031308)));
+}
+
+// The strand's shade, by Taylor's cubic (pelt__shade_decode).
+float shade_decode(float c)
+{
+    return c * (c * (0.305306011 * c + 0.682171111) + 0.012522878);
+}
+
+// Narkowicz's fit of the ACES filmic curve (2015), its input scaled by
+// his 0.6 (PELT__TONE_BIAS).
+const float TONE_BIAS = 0.6;
+
+vec3 aces(vec3 x)
+{
+    return x * (2.51 * x + 0.03) / (x * (2.43 * x + 0.59) + 0.14);
+}
+
+// tone 0: filmic, 1: none (clamp only).
+vec3 tone_map(vec3 x, float exposure, float tone)
+{
+    vec3 v = max(x * exposure, 0.0);
+    if (tone > 0.5) return min(v, 1.0);
+    return clamp(aces(TONE_BIAS * v), 0.0, 1.0);
+}
+
+vec3 display_color(vec3 x, float exposure, float tone)
+{
+    return srgb_encode(tone_map(x, exposure, tone));
+}
+
+// Hair beyond Kajiya-Kay: Scheuermann's (GDC 2004) reading of Marschner et
+// al. 2003. Mirrors pelt__shift_tangent, pelt__strand_specular,
+// pelt__hair_transmission and pelt__hair_lobes (core/fur/shading.h says
+// what each term is).
+const float HAIR_SHIFT_PRIMARY = 0.1;    // PELT__HAIR_SHIFT_PRIMARY: towards the tip
+const float HAIR_SHIFT_SECONDARY = -0.15; // PELT__HAIR_SHIFT_SECONDARY: towards the root
+const float HAIR_SECONDARY_WIDTH = 0.5;
+const float HAIR_SECONDARY_GAIN = 0.5;
+const float HAIR_TT_WIDTH = 0.5;
+const float HAIR_TT_GAIN = 1.5;
+const float HAIR_TT_AZIMUTH = 2.0;
+const float HAIR_TT_REACH = 0.8; // transmission's body shadow: clamp(0.8 n.L + REACH, 0, 1)
+
+vec3 shift_tangent(vec3 T, vec3 N, float shift)
+{
+    vec3 t = T + shift * N;
+    float len = length(t);
+    return len > 1e-12 ? t / len : T;
+}
+
+float strand_specular(vec3 T, vec3 H, float p)
+{
+    float u = dot(T, H);
+    return smoothstep(-1.0, 0.0, u) * pow(max(0.0, 1.0 - u * u), 0.5 * p);
+}
+
+float hair_transmission(vec3 T, vec3 L, vec3 E, float p)
+{
+    float tl = dot(T, L);
+    float te = dot(T, E);
+    float sin_tl = sqrt(max(0.0, 1.0 - tl * tl));
+    float sin_te = sqrt(max(0.0, 1.0 - te * te));
+    float cone = pow(max(0.0, tl * te + sin_tl * sin_te), p);
+    float cos_phi = (dot(L, E) - tl * te) / max(sin_tl * sin_te, 1e-4);
+    return cone * pow(clamp(cos_phi, 0.0, 1.0), HAIR_TT_AZIMUTH);
+}
+
+// (diffuse, primary, secondary, transmission).
+vec4 hair_lobes(vec3 T, vec3 N, vec3 L, vec3 E, float p)
+{
+    float tl = dot(T, L);
+    vec3 h = L - E;
+    float len = length(h);
+    vec3 H = len > 1e-12 ? h / len : N;
+    return vec4(sqrt(max(0.0, 1.0 - tl * tl)),
+                strand_specular(shift_tangent(T, N, HAIR_SHIFT_PRIMARY), H, p),
+                strand_specular(shift_tangent(T, N, HAIR_SHIFT_SECONDARY), H, p * HAIR_SECONDARY_WIDTH),
+                hair_transmission(T, L, E, p * HAIR_TT_WIDTH));
+}
+
+// Occlusion from the fur's own density (pelt__fur_occlusion).
+float fur_occlusion(float depth, float h)
+{
+    return exp(-depth * (1.0 - h));
+}
+
+// Grooming (Lengyel et al. §3): a vertex's hair colour c.rgb (sRGB bytes,
+// decoded) over the look's colour with weight c.a; its tip is brightened
+// by the look's own tip-to-root ratio. Mirrored by pelt__groom_root_color
+// / _tip_color.
 vec3 groom_root_color(vec3 color, vec4 c)
 {
-    return mix(color, c.rgb, c.a);
+    return mix(color, srgb_decode(c.rgb), c.a);
 }
 
 vec3 groom_tip_color(vec3 color, vec3 tip, vec4 c)
 {
-    return mix(tip, min(c.rgb * tip / max(color, vec3(0.01)), vec3(1.0)), c.a);
+    return mix(tip, min(srgb_decode(c.rgb) * tip / max(color, vec3(0.01)), vec3(1.0)), c.a);
 }
 
 // Grooming's density keeps the strands whose id (the fur volume's blue,

@@ -108,11 +108,12 @@ void main()
         discard;
 #endif
     }
-    vec3 base = mix(v_root, v_tip, hair.g) * hair.r;
+    // The strand's shade is an sRGB value like the colours: decoded.
+    vec3 base = mix(v_root, v_tip, hair.g) * shade_decode(hair.r);
 #ifdef PELT_COLOR_TEXTURE
     base *= texture(u_color_tex, (v_uv + d) * u_color_scale).rgb;
 #endif
     base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
-    o_color = vec4(base + v_spec * (u_specular * u_light_color), hair.a);
+    o_color = vec4(display_color(base + v_spec * (u_specular * u_light_color), u_exposure, u_tone), hair.a);
 #endif
 }

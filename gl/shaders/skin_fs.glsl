@@ -1,4 +1,5 @@
-// Opaque skin: the innermost fur slice lit by Lambert, under gamma(0).
+// Opaque skin: the innermost fur slice lit by Lambert, under gamma(0) (or
+// the hair model's occlusion at the roots), in linear light.
 // Where grooming thins the hair (density below 1) the bare skin colour
 // shows through in proportion.
 in vec3 v_normal;
@@ -16,7 +17,7 @@ out vec4 o_color;
 void main()
 {
     vec3 n = normalize(v_normal);
-    float shade = texture(u_fur, vec3(v_fur_uv, 0.0)).r;
+    float shade = shade_decode(texture(u_fur, vec3(v_fur_uv, 0.0)).r); // linear light
     vec3 roots = groom_root_color(u_color, v_hair_color) * shade;
     // Variants as the shells' (gl/skin_pass.c): only what the frame needs.
 #ifdef PELT_COLOR_TEXTURE
@@ -28,7 +29,8 @@ void main()
     // The skin sits under all the fur: gamma at h = 0; with the light's
     // shadow maps, the fur's real opacity instead (unless gamma is kept),
     // read with a bias that grows as the light grazes the skin.
-    float gamma = shadow_factor(u_shadow, 0.0);
+    // Scheuermann-Marschner's occlusion from the fur's density in place of gamma.
+    float gamma = u_shading_model > 1.5 ? fur_occlusion(u_occlusion, 0.0) : shadow_factor(u_shadow, 0.0);
 #ifdef PELT_SHADOW_MAP
     if (u_shadow_map.x > 0.5 && lambert > 0.0) {
         float nl = max(lambert, 0.1);
@@ -36,5 +38,5 @@ void main()
         gamma = mix(1.0, gamma, u_shadow_slab.w);
     }
 #endif
-    o_color = vec4(base * gamma * (u_ambient + lambert * u_light_color), 1.0);
+    o_color = vec4(display_color(base * gamma * (u_ambient + lambert * u_light_color), u_exposure, u_tone), 1.0);
 }

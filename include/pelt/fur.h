@@ -24,7 +24,11 @@ typedef enum pelt_color_pattern {
  * K_s (1 - v^2)^(P_s/2), u = T.L, v = T.H, read from a 32x32 texture. */
 typedef enum pelt_shading_model {
     PELT_SHADING_KAJIYA_KAY = 0,
-    PELT_SHADING_LENGYEL_TABLE
+    PELT_SHADING_LENGYEL_TABLE,
+    /* Scheuermann's real-time reading of Marschner et al.: two highlights
+       shifted along the strand, transmission, occlusion from the fur's
+       density (docs/shading.md) */
+    PELT_SHADING_MARSCHNER
 } pelt_shading_model;
 
 /* The shape of the strands simulated into the fur texture (Lengyel et
@@ -64,7 +68,7 @@ typedef struct pelt_fur_look {
     pelt_strand_curl_shape strand_curl_shape; /* default PELT_STRAND_CURL_HELIX */
     float tiling;            /* fur-texture tiles per world unit, default
                                 5 / the mesh's bounding-box diagonal */
-    float color[3];          /* base hair colour (linear RGB), default (0.55, 0.34, 0.18) */
+    float color[3];          /* base hair colour (sRGB, lit in linear light), default (0.55, 0.34, 0.18) */
     float tip_color[3];      /* colour at the tips, default (1, 0.82, 0.58) */
     float skin_color[3];     /* bare skin where grooming thins the hair
                                 (pelt/groom.h density), default (0.78, 0.56, 0.47) */

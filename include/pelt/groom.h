@@ -29,7 +29,7 @@ typedef struct pelt_groom_value {
                         normal x u): tan of the lean angle, |lean| at most
                         PELT_GROOM_MAX_LEAN; default 0 (the global comb.slant
                         still applies) */
-    float color[4];  /* hair colour (linear RGB) and its weight over the
+    float color[4];  /* hair colour (sRGB) and its weight over the
                         fur's look.color in [0,1]; default weight 0 */
 } pelt_groom_value;
 
@@ -98,7 +98,7 @@ typedef struct pelt_brush {
     float delta[3];   /* COMB: tip displacement at the centre */
     float amount;     /* LENGTH: length added at the centre (negative
                          shortens); DENSITY: the density painted, 0..1 */
-    float color[3];   /* COLOR: the colour painted, linear RGB */
+    float color[3];   /* COLOR: the colour painted, sRGB */
 } pelt_brush;
 
 /* Applies a stroke centred at `center`. The vertices are found through the

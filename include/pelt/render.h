@@ -35,6 +35,15 @@ typedef enum pelt_draw_mode {
     PELT_DRAW_STRANDS = 1
 } pelt_draw_mode;
 
+/* The tone curve between the linear light the hair is lit in and the
+ * picture (docs/shading.md): both end in the sRGB encoding. */
+typedef enum pelt_tone {
+    /* A filmic curve (Narkowicz's ACES fit): a toe and a shoulder,
+       highlights roll off below white instead of clipping. The default. */
+    PELT_TONE_FILMIC = 0,
+    PELT_TONE_NONE = 1 /* the exposed colour clamped to [0, 1] */
+} pelt_tone;
+
 /* Per-frame choices of one pelt_renderer_draw. Zero-initialised (or a NULL
  * pointer) draws everything. */
 /* Switches for measuring and inspecting (pelt bench, the tests, the
@@ -77,6 +86,10 @@ typedef struct pelt_draw_desc {
     /* Shells and fins (0, the default) or the strand reference, which
        draws every hair in place of both (no_fins and debug.no_shells unused). */
     pelt_draw_mode mode;
+    /* The picture from the linear light: the colour times `exposure`
+       (0 means 1, the default; at most 64), then the tone curve, then sRGB. */
+    float exposure;
+    pelt_tone tone;
     pelt_draw_debug debug; /* measuring and inspecting; unstable */
 } pelt_draw_desc;
 

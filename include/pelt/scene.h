@@ -81,7 +81,10 @@ typedef struct pelt_scene_texture {
 typedef struct pelt_scene_output {
     unsigned width, height; /* pixels, default 800 x 600 (Table 1), 1..16384 */
     unsigned msaa;          /* samples, 0 = off (default), at most 16 */
-    float background[4];    /* linear RGBA, default (0.10, 0.11, 0.13, 1) */
+    float background[4];    /* RGBA as written to the image (sRGB), default (0.10, 0.11, 0.13, 1) */
+    /* "output.exposure" and "output.tone" are draw.exposure (default 1,
+       0.01..64) and draw.tone (filmic, none): the picture from the linear
+       light (docs/shading.md). */
 } pelt_scene_output;
 
 /* Wind at a time; keyframes are linearly interpolated. */

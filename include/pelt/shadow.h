@@ -38,7 +38,7 @@ typedef struct pelt_shadow_desc {
  * mesh's lowest point (world +Y up), centred under it. */
 typedef struct pelt_ground_desc {
     bool enabled;
-    float color[3]; /* linear RGB; all zero = (0.42, 0.40, 0.36) */
+    float color[3]; /* sRGB (lit in linear light); all zero = (0.42, 0.40, 0.36) */
     float size;     /* radius in bounding-sphere radii, 0 = 4 */
 } pelt_ground_desc;
 

@@ -184,8 +184,12 @@ static void features_and_passes_follow_the_switches(pelt_fur *fur, const pelt_me
     pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
     CHECK(p.skin && p.fins && p.shells && !p.gpu_skin);
     CHECK(p.shell_features & PELT__SHELL_INTER_SHADOW);
-    CHECK(p.shell_features & PELT__SHELL_KAJIYA_KAY);
-    CHECK(!(p.shell_features & (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_LIGHT_TABLE)));
+    /* Each hair model builds its own variant: Kajiya-Kay and the table their
+       bit, Scheuermann-Marschner neither (gl/shaders/fur_light.glsl). */
+    const unsigned models = PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE;
+    const unsigned model_bits[] = {PELT__SHELL_KAJIYA_KAY, PELT__SHELL_LIGHT_TABLE, 0};
+    CHECK((p.shell_features & models) == model_bits[pelt_fur_get_desc(fur).look.shading]);
+    CHECK(!(p.shell_features & (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE)));
     CHECK(p.lod.cull); /* a closed torus with fins: the back shells go */
     pelt__frame_switches sw = everything;
     sw.inter_shadow = false, sw.fins = false, sw.skin = false, sw.gpu_skin = true;
@@ -208,7 +212,13 @@ static void features_and_passes_follow_the_switches(pelt_fur *fur, const pelt_me
 static void run_levels_of_detail_follow_the_distance(void) { on_torus((pelt_fur_desc){.layers = 32, .look.texture_size = 32}, levels_of_detail_follow_the_distance); }
 static void run_the_light_frame_holds_the_fur(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, the_light_frame_holds_the_fur); }
 static void run_the_ground_lies_under_the_mesh(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, the_ground_lies_under_the_mesh); }
-static void run_features_and_passes_follow_the_switches(void) { on_torus((pelt_fur_desc){.look.texture_size = 32, .look.inter_shadow = true}, features_and_passes_follow_the_switches); }
+static void run_features_and_passes_follow_the_switches(void)
+{
+    const pelt_shading_model models[] = {PELT_SHADING_KAJIYA_KAY, PELT_SHADING_LENGYEL_TABLE, PELT_SHADING_MARSCHNER};
+    for (int k = 0; k < 3; k++)
+        on_torus((pelt_fur_desc){.look.texture_size = 32, .look.inter_shadow = true, .look.shading = models[k]},
+                 features_and_passes_follow_the_switches);
+}
 
 /* The silhouette of a closed mesh: with the fins, the back-facing shells
  * are culled; without them they are drawn within the fur's reach of the

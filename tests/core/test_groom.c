@@ -379,8 +379,11 @@ static void colour_and_density_references(void)
     CHECK_NEAR(t.y, 1.0f, 0); /* white stays white at the tip (clamped) */
     const float grey[4] = {0.2f, 0.2f, 0.2f, 1.0f};
     t = pelt__groom_tip_color(root, tip, grey);
-    CHECK_NEAR(t.x, 0.4f, 1e-6); /* brightened by tip / root = 2 */
-    CHECK_NEAR(t.z, 0.6f, 1e-6);
+    /* The groom's colour is sRGB: 0.2 is 0.0331 in linear light. */
+    r = pelt__groom_root_color(root, grey);
+    CHECK_NEAR(r.x, 0.033105, 1e-5);
+    CHECK_NEAR(t.x, 2.0 * 0.033105, 2e-5); /* brightened by tip / root = 2 */
+    CHECK_NEAR(t.z, 3.0 * 0.033105, 2e-5);
     CHECK(pelt__groom_keeps(0.99f, 1.0f));
     CHECK(!pelt__groom_keeps(0.0f, 0.0f));
     CHECK(pelt__groom_keeps(0.3f, 0.5f) && !pelt__groom_keeps(0.5f, 0.5f));

@@ -8,6 +8,7 @@
 #include "core/wet/mask.h"
 #include "core/fur/lod.h"
 #include "core/fur/shading.h"
+#include "pelt/render.h"
 
 enum { W = 64, H = 48 };
 
@@ -507,6 +508,109 @@ static void lengyel_table_lookup_matches_the_formula(void)
     glDeleteTextures(1, &tex);
 }
 
+static const char hair_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, t, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
+    "  vec3 E = normalize(tip - 0.5 * n);\n"
+    "  vec3 L = normalize(vec3(0.5, 1.0, 0.8) * (s - 0.4) + n * (h - 0.5));\n"
+    "  float p = 4.0 + 60.0 * s;\n"
+    "  vec3 ts = shift_tangent(t, n, h - 0.5);\n"
+    "  o = u_which == 0 ? hair_lobes(t, n, L, E, p)\n"
+    "    : u_which == 1 ? vec4(ts, strand_specular(ts, normalize(L - E), p))\n"
+    "    : vec4(hair_transmission(t, L, E, p), fur_occlusion(3.0 * s, h), 0.0, 0.0);\n"
+    "}\n";
+
+/* Scheuermann-Marschner: the four lobes, the shifted tangent and its
+ * highlight, transmission and occlusion, against core/fur/shading.c. */
+static void hair_model_glsl_matches_c(void)
+{
+    const char *names[] = {"hair_lobes", "shift_tangent, strand_specular", "hair_transmission, fur_occlusion"};
+    for (int which = 0; which < 3; which++) {
+        char define[64];
+        snprintf(define, sizeof define, "#define u_which %d\n", which);
+        const char *fs[] = {pelt__shader_shading, inputs_glsl, define, hair_main, NULL};
+        CHECK(gl_test_eval(gl, fs, W, H, out));
+        double worst = 0.0, largest = 0.0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                pelt_vec3 n, t, tip;
+                float h, s, r[4] = {0};
+                cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
+                pelt_vec3 e = v3_norm_or(v3_sub(tip, v3_scale(n, 0.5f)), v3(0, 0, 1));
+                pelt_vec3 l = v3_norm_or(v3_add(v3_scale(v3(0.5f, 1.0f, 0.8f), s - 0.4f), v3_scale(n, h - 0.5f)),
+                                         v3(0, 1, 0));
+                float p = 4.0f + 60.0f * s;
+                pelt_vec3 ts = pelt__shift_tangent(t, n, h - 0.5f);
+                if (which == 0) {
+                    pelt__hair_lobes(t, n, l, e, p, r);
+                } else if (which == 1) {
+                    pelt_vec3 hv = v3_norm_or(v3_sub(l, e), n);
+                    r[0] = ts.x, r[1] = ts.y, r[2] = ts.z, r[3] = pelt__strand_specular(ts, hv, p);
+                } else {
+                    r[0] = pelt__hair_transmission(t, l, e, p);
+                    r[1] = pelt__fur_occlusion(3.0f * s, h);
+                }
+                const float *g = out + 4 * (y * W + x);
+                for (int k = 0; k < 4; k++) {
+                    worst = fmax(worst, fabs(g[k] - r[k]));
+                    largest = fmax(largest, fabs(r[k]));
+                }
+            }
+        printf("  %s: worst |GLSL - C| = %.3g (values up to %.3g)\n", names[which], worst, largest);
+        CHECK(largest > 0.5); /* the grid reaches the lobes' peaks */
+        CHECK(worst < 5e-4);
+    }
+}
+
+static const char display_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  float x = (c.x + float(W) * c.y) / float(W * H);\n"
+    "  vec3 v = vec3(x, x * 6.0, x * 0.02);\n"
+    "  vec3 d = srgb_decode(v.xxz);\n"
+    "  o = u_which == 0 ? vec4(d, shade_decode(v.x))\n"
+    "    : u_which == 1 ? vec4(srgb_encode(v), 0.0)\n"
+    "    : u_which == 2 ? vec4(tone_map(v, 1.7, 0.0), 0.0)\n"
+    "    : u_which == 3 ? vec4(tone_map(v, 1.7, 1.0), 0.0)\n"
+    "    : vec4(display_color(v, 0.8, 0.0), 0.0);\n"
+    "}\n";
+
+/* Linear light: sRGB decode and encode, the tone curves and the whole
+ * display mapping, against core/fur/shading.c. */
+static void display_glsl_matches_c(void)
+{
+    const char *names[] = {"srgb_decode, shade_decode", "srgb_encode", "tone_map filmic", "tone_map none",
+                           "display_color"};
+    for (int which = 0; which < 5; which++) {
+        char define[96];
+        snprintf(define, sizeof define, "#define u_which %d\n#define W %d\n#define H %d\n", which, W, H);
+        const char *fs[] = {pelt__shader_shading, define, display_main, NULL};
+        CHECK(gl_test_eval(gl, fs, W, H, out));
+        double worst = 0.0;
+        for (int y = 0; y < H; y++)
+            for (int x = 0; x < W; x++) {
+                float v0 = ((float)x + (float)W * (float)y) / (float)(W * H);
+                const float v[3] = {v0, v0 * 6.0f, v0 * 0.02f};
+                float r[4] = {0};
+                for (int k = 0; k < 3; k++) {
+                    if (which == 0) r[k] = pelt__srgb_decode(k == 2 ? v[2] : v[0]);
+                    if (which == 1) r[k] = pelt__srgb_encode(v[k]);
+                    if (which == 2) r[k] = pelt__tone(v[k], 1.7f, PELT_TONE_FILMIC);
+                    if (which == 3) r[k] = pelt__tone(v[k], 1.7f, PELT_TONE_NONE);
+                    if (which == 4) r[k] = pelt__display(v[k], 0.8f, PELT_TONE_FILMIC);
+                }
+                if (which == 0) r[3] = pelt__shade_decode(v[0]);
+                const float *g = out + 4 * (y * W + x);
+                for (int k = 0; k < 4; k++) worst = fmax(worst, fabs(g[k] - r[k]));
+            }
+        printf("  %s: worst |GLSL - C| = %.3g\n", names[which], worst);
+        CHECK(worst < 2e-4);
+    }
+}
+
 int main(void)
 {
     gl = gl_test_open(W, H, true);
@@ -522,6 +626,8 @@ int main(void)
     RUN(shell_lod_glsl_matches_c);
     RUN(shell_view_blend_glsl_matches_c);
     RUN(lengyel_table_lookup_matches_the_formula);
+    RUN(hair_model_glsl_matches_c);
+    RUN(display_glsl_matches_c);
     pelt_headless_destroy(gl);
     return check_summary();
 }

@@ -54,6 +54,7 @@ static void defaults_equal_table1(void)
     }
     CHECK(s.output.width == 800 && s.output.height == 600);
     CHECK(s.output.msaa == 0);
+    CHECK(s.draw.exposure == 1.0f && s.draw.tone == PELT_TONE_FILMIC);
     CHECK(s.fur.wet.mask_size == 0); /* 0: the atlas picks, else 256 */
     CHECK(s.wetness.droplets == NULL && s.wetness.droplet_count == 0);
     CHECK(s.animation.wind_keys == NULL && s.animation.wind_key_count == 0);
@@ -154,6 +155,8 @@ static void full_scene_sets_every_field(void)
     /* three numbers: alpha stays opaque */
     CHECK_NEAR(s.output.background[0], 1, 0);
     CHECK_NEAR(s.output.background[3], 1, 0);
+    CHECK_NEAR(s.draw.exposure, 1.5, 0);
+    CHECK(s.draw.tone == PELT_TONE_NONE);
 
     CHECK_NEAR(s.forces.gravity[1], -5, 0);
     CHECK_NEAR(s.forces.wind[0], 2, 0);
@@ -297,6 +300,8 @@ static void each_bad_value_names_file_and_key(void)
         {"{\"output\": {\"width\": 16385}}", PELT_ERR_FORMAT, {"output.width", "16385"}},
         {"{\"output\": {\"height\": 0}}", PELT_ERR_FORMAT, {"output.height"}},
         {"{\"output\": {\"background\": [0, 0]}}", PELT_ERR_FORMAT, {"output.background"}},
+        {"{\"output\": {\"exposure\": 0}}", PELT_ERR_FORMAT, {"output.exposure", "0.01"}},
+        {"{\"output\": {\"tone\": \"aces\"}}", PELT_ERR_FORMAT, {"output.tone", "\"aces\"", "filmic"}},
         {"{\"mesh\": {\"shape\": \"cube\"}}", PELT_ERR_FORMAT, {"mesh.shape", "\"cube\"", "torus"}},
         {"{\"mesh\": {\"shape\": \"file\"}}", PELT_ERR_FORMAT, {"mesh.file"}},
         {"{\"mesh\": {\"file\": \"a.obj\", \"shape\": \"torus\"}}", PELT_ERR_FORMAT,
