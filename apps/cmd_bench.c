@@ -452,10 +452,10 @@ int cmd_bench(int argc, char **argv)
     pelt_mesh_stats ms = pelt_mesh_get_stats(mesh);
     pelt_fur_desc fd = pelt_fur_get_desc(fur);
     printf("pelt bench: %s\n", pelt_headless_renderer_name(s.gl));
-    printf("scene: %zu triangles, %u layers, %ux%u, fur texture %u, mask %u, %u frames after %u "
+    printf("scene: %zu triangles, %u layers, %ux%u, %ux MSAA, fur texture %u, mask %u, %u frames after %u "
            "warm-up\n",
-           ms.triangle_count, fd.layers, sc->output.width, sc->output.height, fd.look.texture_size,
-           pelt_fur_mask_size(fur), frames, o.warmup);
+           ms.triangle_count, fd.layers, sc->output.width, sc->output.height, sc->output.msaa,
+           fd.look.texture_size, pelt_fur_mask_size(fur), frames, o.warmup);
     if (is.atlas_seconds > 0.0)
         printf("atlas build: %.3f s%s\n", is.atlas_seconds, is.atlas_from_cache ? " (from the cache)" : "");
 

@@ -10,14 +10,6 @@
 /* The difference picture shows |shells - strands| this many times over. */
 #define DIFF_GAIN 4
 
-/* The reference picture's passes, and its name on the `reference` line:
- * the same hairs drawn as geometry. */
-static const char *reference_draw(pelt_draw_desc *d)
-{
-    d->mode = PELT_DRAW_STRANDS;
-    return "strands";
-}
-
 /* Draws the instance's current state with `draw` and reads it into out. */
 static void draw_into(cli_session *s, const pelt_draw_desc *draw, uint8_t *out)
 {
@@ -26,6 +18,37 @@ static void draw_into(cli_session *s, const pelt_draw_desc *draw, uint8_t *out)
     cli_session_draw(s);
     pelt_headless_read_rgba8(s->gl, out);
     s->draw = keep;
+}
+
+/* Runs the scene to the frame that render would draw and draws it in
+ * `mode`, in a session of its own: the strand reference supersampled and
+ * multisampled as `render --strands` draws it (cli_session_open), the
+ * shells as `render` does. With skin, the skin alone too (the outline).
+ * Gives the fur's shell layers. */
+static bool draw_state(const pelt_scene *scene, const cli_options *o, pelt_draw_mode mode, uint8_t *out,
+                       uint8_t *skin, unsigned *layers)
+{
+    pelt_scene sc = *scene;
+    sc.draw.mode = mode;
+    cli_session s;
+    if (!cli_session_open("compare", &sc, &s)) return false;
+    cli_session_drop_at(&s, o);
+    /* An animation compares its last frame, as render would draw it. */
+    unsigned frames = sc.animation.frames ? sc.animation.frames : 1;
+    float fps = sc.animation.fps > 0.0f ? sc.animation.fps : 30.0f;
+    for (unsigned i = 1; i < frames; i++) pelt_scene_instance_advance(s.instance, 1.0f / fps);
+    cli_session_draw(&s);
+    cli_session_read(&s);
+    memcpy(out, s.pixels, (size_t)s.width * s.height * 4);
+    *layers = pelt_fur_get_desc(pelt_scene_instance_fur(s.instance)).layers;
+    if (skin) {
+        pelt_draw_desc d = s.draw;
+        d.no_skin = false;
+        d.debug.no_shells = d.no_fins = true;
+        draw_into(&s, &d, skin);
+    }
+    cli_session_close(&s);
+    return true;
 }
 
 /* shells | strands | |shells - strands| x DIFF_GAIN, one row of three. */
@@ -108,17 +131,6 @@ int cmd_compare(int argc, char **argv)
         cli_options_free(&o);
         return 2;
     }
-    cli_session s;
-    if (!cli_session_open("compare", sc, &s)) {
-        cli_options_free(&o);
-        return 1;
-    }
-    cli_session_drop_at(&s, &o);
-    /* An animation compares its last frame, as render would draw it. */
-    unsigned frames = sc->animation.frames ? sc->animation.frames : 1;
-    float fps = sc->animation.fps > 0.0f ? sc->animation.fps : 30.0f;
-    for (unsigned i = 1; i < frames; i++) pelt_scene_instance_advance(s.instance, 1.0f / fps);
-
     unsigned w = sc->output.width, h = sc->output.height;
     size_t bytes = (size_t)w * h * 4;
     uint8_t *shells = malloc(bytes), *strands = malloc(bytes), *skin = malloc(bytes);
@@ -127,29 +139,22 @@ int cmd_compare(int argc, char **argv)
         cli_error("compare", "out of memory for three %ux%u pictures", w, h);
         rc = 1;
     }
+    /* The same scene run twice from its seed: the same state each time. */
+    unsigned layers = 0;
+    if (rc == 0 && (!draw_state(sc, &o, PELT_DRAW_SHELLS, shells, skin, &layers) ||
+                    !draw_state(sc, &o, PELT_DRAW_STRANDS, strands, NULL, &layers)))
+        rc = 1;
     if (rc == 0) {
-        pelt_draw_desc d = s.draw;
-        d.mode = PELT_DRAW_SHELLS; /* whatever render.mode the scene names */
-        draw_into(&s, &d, shells);
-        d = s.draw;
-        const char *reference = reference_draw(&d);
-        draw_into(&s, &d, strands);
-        d = s.draw;
-        d.mode = PELT_DRAW_SHELLS;
-        d.no_skin = false;
-        d.debug.no_shells = d.no_fins = true;
-        draw_into(&s, &d, skin);
-        unsigned layers = pelt_fur_get_desc(pelt_scene_instance_fur(s.instance)).layers;
         pelt_compare_desc cd = {.shells = {shells, w, h}, .strands = {strands, w, h},
                                 .skin = {skin, w, h}, .fur_px = o.fur_px, .layers = layers};
-        for (int c = 0; c < 3; c++) cd.background[c] = to_byte(s.background[c]);
+        for (int c = 0; c < 3; c++) cd.background[c] = to_byte(sc->output.background[c]);
         pelt_compare_result r;
         pelt_error err = {0};
         if (pelt_compare_images(&cd, &r, &err) != PELT_OK) {
             cli_error("compare", "%s", err.message);
             rc = 1;
         } else {
-            printf("reference %s\n", reference);
+            printf("reference strands\n");
             print_result(&r, layers);
             if (o.output_set && !write_side(o.output, shells, strands, w, h)) rc = 1;
             else if (o.output_set && !o.quiet)
@@ -160,7 +165,6 @@ int cmd_compare(int argc, char **argv)
     free(shells);
     free(strands);
     free(skin);
-    cli_session_close(&s);
     cli_options_free(&o);
     return rc;
 }

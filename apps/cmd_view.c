@@ -443,7 +443,8 @@ int cmd_view(int argc, char **argv)
     char title[256];
     snprintf(title, sizeof title, "pelt view - %s", a->scene_path ? a->scene_path : "default scene");
     const pelt_scene *sc = &a->o.scene;
-    if (!view_window_open(title, sc->output.width, sc->output.height, &a->win, err, sizeof err)) {
+    if (!view_window_open(title, sc->output.width, sc->output.height, sc->output.msaa, &a->win, err,
+                          sizeof err)) {
         cli_error("view", "%s", err);
         close_app(a);
         return 1;

@@ -46,10 +46,11 @@ typedef struct view_event {
 
 typedef struct view_window view_window;
 
-/* Opens a window of w x h pixels with an OpenGL 3.3 core context, current
- * on this thread. False with a message in err (no display, no GLX...). */
-bool view_window_open(const char *title, unsigned w, unsigned h, view_window **out, char *err,
-                      size_t err_size);
+/* Opens a window of w x h pixels with an OpenGL 3.3 core context and
+ * `samples` multisampling (output.msaa: what render draws), current on
+ * this thread. False with a message in err (no display, no GLX...). */
+bool view_window_open(const char *title, unsigned w, unsigned h, unsigned samples, view_window **out,
+                      char *err, size_t err_size);
 void view_window_close(view_window *w);
 /* Collects pending input (never blocks). */
 void view_window_poll(view_window *w);

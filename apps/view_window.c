@@ -145,8 +145,8 @@ static void on_drop(GLFWwindow *g, int count, const char **paths)
     }
 }
 
-bool view_window_open(const char *title, unsigned w, unsigned h, view_window **out, char *err,
-                      size_t err_size)
+bool view_window_open(const char *title, unsigned w, unsigned h, unsigned samples, view_window **out,
+                      char *err, size_t err_size)
 {
     *out = NULL;
     const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
@@ -174,7 +174,7 @@ bool view_window_open(const char *title, unsigned w, unsigned h, view_window **o
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
     glfwWindowHint(GLFW_DEPTH_BITS, 24);
-    glfwWindowHint(GLFW_SAMPLES, 0);
+    glfwWindowHint(GLFW_SAMPLES, (int)samples); /* output.msaa, as render draws it */
     glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);
     win->glfw = glfwCreateWindow((int)w, (int)h, title, NULL, NULL);
     if (!win->glfw) {

@@ -38,7 +38,7 @@ void pelt_scene_defaults(pelt_scene *s)
 
     s->output.width = 800;
     s->output.height = 600;
-    s->output.msaa = 0;
+    s->output.msaa = 4; /* GL 3.3 guarantees 4; thin hair aliases without */
     s->output.background[0] = 0.10f;
     s->output.background[1] = 0.11f;
     s->output.background[2] = 0.13f;
@@ -64,10 +64,6 @@ void pelt_scene_defaults(pelt_scene *s)
     s->wetness.rain.seed = 1;
     s->wetness.mask_image_wetness = 1.0f;
 
-    /* The silhouette: the back-facing shells within the fur's reach of it
-     * show hair crossing the outline as the strand reference does (the
-     * fins draw a smooth, brighter band there): fins off unless asked. */
-    s->draw.no_fins = true;
     s->strand_samples = 4;
     s->groom.length_range[1] = 1.0f;
     s->groom.density_range[1] = 1.0f;

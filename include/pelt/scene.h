@@ -221,9 +221,8 @@ typedef struct pelt_scene {
     pelt_direction_source atlas_direction_from;
     /* What to draw, whole (pelt/render.h): "draw.skin", "draw.fins" and
        "draw.shells" set no_skin, no_fins and debug.no_shells inverted.
-       pelt_scene_defaults leaves the fins off ("draw.fins": false; the
-       back-facing shells carry the silhouette, docs/lod.md); everything
-       else is drawn. */
+       pelt_scene_defaults draws everything. Without the fins the
+       back-facing shells near the silhouette carry it (docs/lod.md). */
     pelt_draw_desc draw;
     /* render.strand_samples: the strand reference (draw.mode, "render.mode")
        is drawn at this many times the output's width and height, then
