@@ -36,6 +36,7 @@ typedef enum flag_kind {
     FLAG_DROPLETS,
     FLAG_BRUSH,
     FLAG_FLOOR,
+    FLAG_PLAIN,
     FLAG_DOLLY,
     FLAG_FUR_PX,
     FLAG_QUIET
@@ -120,6 +121,8 @@ static const flag flags[] = {
      "bench: time 200 comb strokes (radius 2% and 5% of the mesh diagonal) and their uploads"},
     {"--floor", NULL, NULL, FLAG_FLOOR, NULL,
      "bench: also time the frame with a one-fetch shell shader, with and without the fins, alternated (the floor)"},
+    {"--plain", NULL, NULL, FLAG_PLAIN, NULL,
+     "bench: also time a plain shell renderer in the same run (every shell along the normal, one fetch, blended, no fins)"},
     {"--dolly", NULL, NULL, FLAG_DOLLY, NULL,
      "bench: time the frame as the camera backs away to 16x its distance (level of detail)"},
     {"--fur-px", NULL, "PX", FLAG_FUR_PX, NULL,
@@ -292,6 +295,9 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
         return true;
     case FLAG_FLOOR:
         o->bench_floor = true;
+        return true;
+    case FLAG_PLAIN:
+        o->bench_plain = true;
         return true;
     case FLAG_DOLLY:
         o->bench_dolly = true;

@@ -117,10 +117,12 @@ typedef struct pelt__shell_program {
 /* All shells in one instanced draw, blended inner to outer, depth tested
  * without depth write. Variants build the first time a frame needs them
  * (tens of milliseconds on llvmpipe, once); the generic one and the floor
- * (pelt_draw_desc.debug.floor_shader) at creation. */
+ * (pelt_draw_desc.debug.floor_shader) at creation, the plain renderer
+ * (debug.plain_shells) the first time it draws. */
 typedef struct pelt__shell_pass {
     pelt__shell_program variants[PELT__SHELL_VARIANTS];
     pelt__shell_program floor;
+    pelt__shell_program plain;
     pelt_hooks hooks;
 } pelt__shell_pass;
 

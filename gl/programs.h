@@ -17,6 +17,8 @@ extern const char pelt__shader_skin_fs[];
 extern const char pelt__shader_shell_vs[];
 extern const char pelt__shader_shell_fs[];
 extern const char pelt__shader_shell_floor_fs[];
+extern const char pelt__shader_shell_plain_vs[];
+extern const char pelt__shader_shell_plain_fs[];
 extern const char pelt__shader_shell_lod[];
 extern const char pelt__shader_fur_light[];
 extern const char pelt__shader_fin_vs[];

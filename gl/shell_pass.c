@@ -57,6 +57,27 @@ pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks
     return st;
 }
 
+/* The plain shell renderer of pelt bench --plain (shell_plain_vs.glsl):
+ * every shell along the normal, all N on every triangle, no back faces
+ * culled, one fetch blended. Built the first time it draws. */
+static void draw_plain(pelt__shell_pass *p, const pelt__pass_frame *f)
+{
+    if (!p->plain.program && !p->plain.failed) {
+        const char *vs[] = {pelt__shader_shell_plain_vs, NULL};
+        const char *fs[] = {pelt__shader_shell_plain_fs, NULL};
+        if (pelt__gl_program_create("shell plain", vs, fs, &p->hooks, &p->plain.program, NULL) != PELT_OK)
+            p->plain.failed = true;
+    }
+    if (!p->plain.program || f->layers == 0) return;
+    pelt__gl_blended_hair_state();
+    glUseProgram(p->plain.program);
+    size_t triangles = f->mesh->triangle_count;
+    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(triangles * 3), GL_UNSIGNED_INT, 0, (GLsizei)f->layers);
+    f->stats->shell_draw_calls++;
+    f->stats->shell_instances += f->layers;
+    f->stats->triangles += triangles * f->layers;
+}
+
 /* Built on first use; a variant that does not build is logged through the
  * hooks, and the generic program stands in. */
 const pelt__shell_program *pelt__shell_pass_program(pelt__shell_pass *p, unsigned features)
@@ -70,6 +91,10 @@ const pelt__shell_program *pelt__shell_pass_program(pelt__shell_pass *p, unsigne
 
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
 {
+    if (f->draw->debug.plain_shells) {
+        draw_plain(p, f);
+        return;
+    }
     const pelt__frame_lod *lod = &f->lod;
     unsigned n = f->layers, level = lod->shell_level;
     float shells[4], next[2];
@@ -105,5 +130,6 @@ void pelt__shell_pass_destroy(pelt__shell_pass *p)
     for (int k = 0; k < PELT__SHELL_VARIANTS; k++)
         if (p->variants[k].program) glDeleteProgram(p->variants[k].program);
     if (p->floor.program) glDeleteProgram(p->floor.program);
+    if (p->plain.program) glDeleteProgram(p->plain.program);
     memset(p, 0, sizeof *p);
 }

@@ -62,6 +62,12 @@ typedef struct pelt_draw_debug {
      * coverage against a 0.05 threshold in a constant colour, over the same
      * geometry and levels of detail. */
     bool floor_shader;
+    /* pelt bench --plain: the classic shell renderer in place of the
+     * shells, as a yardstick: every layer extruded along the vertex normal
+     * over the full mesh (no strand shape, no level of detail, no culling),
+     * one fetch of the fur texture blended in the fur's unlit colour, no
+     * discard. Fins are the caller's to switch off. */
+    bool plain_shells;
     /* Skip the light's shadow maps this frame, as if they were off
        (pelt_renderer_set_shadows turns them on). */
     bool no_shadows;

@@ -97,6 +97,46 @@ static void shells_are_one_instanced_draw(void)
     }
 }
 
+/* pelt bench --plain's yardstick: one instanced draw of every layer over the
+ * full mesh (nothing culled: the torus is closed and would cull its back
+ * faces with fins), and its fur reaches past the bare silhouette. */
+static void plain_renderer_draws_every_shell(void)
+{
+    pelt_fur_desc d = {.layers = 16};
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
+    CHECK(pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    if (r) {
+        pelt_view v;
+        memset(&v, 0, sizeof v);
+        pelt_camera_to_view(&torus_cam, (float)W / H, &v);
+        pelt_draw_desc plain = {.no_skin = true, .no_fins = true, .debug.plain_shells = true};
+        unsigned prims = gl_test_draw_primitives(r, &v, &plain);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        CHECK(st.shell_draw_calls == 1 && st.fin_draw_calls == 0);
+        CHECK(st.shell_instances == 16);
+        CHECK_NEAR(prims, 9360.0 * 16, 0.0);
+    }
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+
+    pelt_draw_desc bare = {.debug.no_shells = true, .no_fins = true};
+    pelt_draw_desc plain = {.no_fins = true, .debug.plain_shells = true};
+    uint8_t *skin = gl_test_render(gl, torus, &d, &torus_cam, &bare, NULL, NULL);
+    uint8_t *fur_px = gl_test_render(gl, torus, &d, &torus_cam, &plain, NULL, NULL);
+    CHECK(skin && fur_px);
+    if (skin && fur_px) {
+        size_t n = (size_t)W * H, outside = 0;
+        for (size_t i = 0; i < n; i++)
+            if (gl_test_coverage(skin + 4 * i, 1) == 0 && gl_test_coverage(fur_px + 4 * i, 1) == 1) outside++;
+        printf("  the plain shells cover %zu px outside the bare skin's %zu\n", outside, gl_test_coverage(skin, n));
+        CHECK(outside > gl_test_coverage(skin, n) / 50);
+    }
+    free(skin);
+    free(fur_px);
+}
+
 static void wet_left_half(pelt_fur *fur, void *user)
 {
     (void)user;
@@ -781,6 +821,7 @@ int main(void)
         RUN(fur_covers_beyond_bare_silhouette);
         RUN(longer_fur_covers_more);
         RUN(shells_are_one_instanced_draw);
+        RUN(plain_renderer_draws_every_shell);
         RUN(wet_clumps_show_skin_and_leave_dry_fur_alone);
         RUN(dried_fur_matches_dry_render);
         RUN(clumps_grow_thinner_toward_the_tips);
