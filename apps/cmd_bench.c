@@ -310,10 +310,10 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
  * without the inter-fur shadows, every shell everywhere (no view budget),
  * the floor shader, the plain shell renderer, and with the light's shadows
  * on: without them and the light pass alone. */
-static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool with_plain)
+static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool with_plain, bool wet)
 {
-    enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, PLAIN, NO_LIGHT, LIGHT_ONLY, SKIN_ONLY,
-           VARIANTS };
+    enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, PLAIN, WET_WHOLE, NO_LIGHT, LIGHT_ONLY,
+           SKIN_ONLY, VARIANTS };
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
     pelt_draw_desc v[VARIANTS];
@@ -339,13 +339,15 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool
      * skin, then every shell along the normal with one fetch). */
     v[PLAIN].no_fins = true;
     v[PLAIN].debug.plain_shells = true;
+    /* Every triangle with the wet shader, as before wet and dry were drawn apart. */
+    v[WET_WHOLE].debug.no_wet_split = true;
     v[NO_LIGHT].debug.no_shadows = true;
     v[LIGHT_ONLY].no_skin = v[LIGHT_ONLY].no_fins = v[LIGHT_ONLY].debug.no_shells = true;
     /* The skin alone: what the shells' and the floor's times stand on. */
     v[SKIN_ONLY].no_fins = v[SKIN_ONLY].debug.no_shells = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
-    bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, with_plain, light, light, true};
+    bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, with_plain, wet, light, light, true};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -361,6 +363,7 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool
     if (with_floor) print_stats("floor", st[FLOOR]);
     if (run[FLOOR_FINS]) print_stats("floor + fins", st[FLOOR_FINS]);
     if (with_plain) print_stats("plain", st[PLAIN]);
+    if (wet) print_stats("wet whole", st[WET_WHOLE]);
     if (light) {
         print_stats("no light sh.", st[NO_LIGHT]);
         print_stats("light pass", st[LIGHT_ONLY]);
@@ -379,6 +382,9 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool
         printf("  the frame takes %.2fx the floor with its fins (the same scene, only the shell shader "
                "swapped)\n",
                st[FULL].median / st[FLOOR_FINS].median);
+    if (wet)
+        printf("  wet and dry drawn apart: the frame takes %.2fx as long as with every triangle drawn wet\n",
+               st[FULL].median / st[WET_WHOLE].median);
     if (with_plain)
         printf("  the frame takes %.2fx the plain shell renderer (every shell along the normal, one fetch, "
                "blended, no fins)\n",
@@ -480,7 +486,7 @@ int cmd_bench(int argc, char **argv)
            "shell level %u (blend %.2f), back faces %s\n",
            rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.fin_rows, rs.shell_level,
            (double)rs.shell_blend, rs.culled ? "culled" : "drawn");
-    if (bench_variants(&s, frames, o.bench_floor, o.bench_plain)) rc = 1;
+    if (bench_variants(&s, frames, o.bench_floor, o.bench_plain, false)) rc = 1;
     if (rc == 0 && sc->animation.name[0]) rc = bench_skinning(&s, sc, frames, plain[PART_FRAME].median);
     if (rc == 0 && o.bench_dolly) bench_dolly(&s, frames);
     if (o.bench_clumps) {
@@ -490,10 +496,8 @@ int cmd_bench(int argc, char **argv)
         printf("clumps cost %+.1f%% per frame (draw %+.1f%%)\n",
                100.0 * (wet[PART_FRAME].median / plain[PART_FRAME].median - 1.0),
                100.0 * (wet[PART_DRAW].median / plain[PART_DRAW].median - 1.0));
-        if (o.bench_floor || o.bench_plain) {
-            printf("with the clumps, ");
-            if (bench_variants(&s, frames, o.bench_floor, o.bench_plain)) rc = 1;
-        }
+        printf("with the clumps, ");
+        if (bench_variants(&s, frames, o.bench_floor, o.bench_plain, true)) rc = 1;
     }
     if (o.bench_droplets) rc = bench_droplets(mesh);
     if (rc == 0 && o.bench_brush) rc = bench_brush(&s);

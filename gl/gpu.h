@@ -10,6 +10,7 @@
 #include "core/base/hooks.h"
 #include "core/fur/frame_plan.h"
 #include "core/fur/fur_gpu.h" /* core/fur/lod.h: the levels of detail */
+#include "core/wet/wet_split.h"
 
 #include "gl/shaders/bindings.glsl"
 
@@ -54,6 +55,12 @@ typedef struct pelt__gpu_mesh {
     size_t level_offset[PELT__LOD_MAX_LEVELS];    /* bytes into ebo */
     size_t level_triangles[PELT__LOD_MAX_LEVELS];
     unsigned level_count;
+    /* The mesh's triangles again, dry ones first (core/wet/wet_split.h),
+     * after the levels in ebo: the shells draw the dry part with the dry
+     * shader. split_ok false: out of memory, every triangle draws wet. */
+    pelt__wet_split split;
+    size_t split_offset; /* bytes into ebo */
+    bool split_ok;
     unsigned tips_version;
     unsigned pose_version;
     /* A skinned mesh, skinned in the vertex stage (for measuring): */
@@ -78,6 +85,9 @@ size_t pelt__gpu_mesh_upload(pelt__gpu_mesh *g, pelt_fur *fur, const pelt__fur_s
 /* Skinning in the vertex stage: the bones' matrices of the last pose into
  * their texture; returns bytes sent (0 for a mesh without a skeleton). */
 size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur);
+/* The mask's texels in rect changed: triangles that turned wet or dry move
+ * between the split's parts; returns bytes sent. */
+size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *fs, const unsigned rect[4]);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
 
 /* ---- fur textures (gl/gpu_fur.c) --------------------------------------- */
@@ -91,9 +101,9 @@ typedef struct pelt__gpu_fur {
 } pelt__gpu_fur;
 
 void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs);
-/* Uploads a new colour texture and the changed rectangle of the mask;
- * returns bytes sent. */
-size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs);
+/* Uploads a new colour texture and the changed rectangle of the mask (in
+ * mask_rect; empty when none); returns bytes sent. */
+size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs, unsigned mask_rect[4]);
 /* Binds the textures to their PELT_UNIT_* units. */
 void pelt__gpu_fur_bind(const pelt__gpu_fur *g);
 void pelt__gpu_fur_destroy(pelt__gpu_fur *g);

@@ -81,7 +81,7 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snaps
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
-size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs)
+size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs, unsigned mask_rect[4])
 {
     size_t bytes = 0;
     unsigned w = fs->color_width, h = fs->color_height, version = fs->color_version;
@@ -100,7 +100,8 @@ size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_sna
         bytes += (size_t)w * h * 4;
     }
     /* Only the rectangle of the mask that changed since the last upload. */
-    unsigned r[4];
+    unsigned *r = mask_rect;
+    r[0] = r[1] = r[2] = r[3] = 0;
     if (pelt__fur_gpu_take_mask_dirty(fur, r)) {
         const float *texels = fs->mask;
         w = fs->mask_width;

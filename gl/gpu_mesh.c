@@ -169,7 +169,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
     /* One index buffer: the mesh's own triangles (the skin, and the shells
      * with level of detail off), then each level of detail's (lod.h). */
     const pelt__lod_chain *lod = fs.lod;
-    size_t total = m.triangle_count;
+    size_t total = 2 * m.triangle_count; /* the mesh's, and its wet split */
     for (unsigned k = 0; k < lod->count; k++) total += lod->levels[k].triangle_count;
     glGenBuffers(1, &g->ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
@@ -183,6 +183,16 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
         g->level_offset[k] = at;
         g->level_triangles[k] = lod->levels[k].triangle_count;
         at += bytes;
+    }
+    g->split_offset = at;
+    g->split_ok = pelt__wet_split_init(&g->split, m.indices, m.triangle_count, m.uvs, fs.mask_width,
+                                       fs.mask_height, &hooks->allocator);
+    if (g->split_ok) {
+        /* The mask as it is now: the textures take its changes from here. */
+        const unsigned whole[4] = {0, 0, fs.mask_width, fs.mask_height};
+        pelt__wet_split_update(&g->split, fs.mask, whole);
+        glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)at,
+                        (GLsizeiptr)(m.triangle_count * 3 * sizeof(uint32_t)), g->split.indices);
     }
     point(g->vbo_pose, pose_attrs, 3);
     point_shared(g, attrs, ATTRS, stride);
@@ -244,8 +254,20 @@ size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur)
     return (size_t)g->bone_rows * PELT_TABLE_WIDTH * 4 * sizeof(float);
 }
 
+size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *fs, const unsigned rect[4])
+{
+    if (!g->split_ok || !pelt__wet_split_update(&g->split, fs->mask, rect)) return 0;
+    size_t bytes = g->split.triangle_count * 3 * sizeof(uint32_t);
+    /* The VAO holds the element buffer: bind it there, as every draw does. */
+    glBindVertexArray(g->vao);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)g->split_offset, (GLsizeiptr)bytes, g->split.indices);
+    glBindVertexArray(0);
+    return bytes;
+}
+
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)
 {
+    pelt__wet_split_free(&g->split);
     GLuint buffers[7] = {g->vbo_static, g->vbo_pose, g->vbo_tips, g->vbo_groom, g->ebo, g->vbo_bind, g->vbo_bones};
     glDeleteBuffers(7, buffers);
     if (g->vao) glDeleteVertexArrays(1, &g->vao);

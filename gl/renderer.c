@@ -100,7 +100,9 @@ static void upload(pelt_renderer *r)
     pelt__fur_snapshot fs; /* one read of the fur for the three */
     pelt__fur_gpu_snapshot(r->fur, &fs);
     r->pending_upload += pelt__gpu_mesh_upload(&r->mesh, r->fur, &fs);
-    r->pending_upload += pelt__gpu_fur_upload(&r->textures, r->fur, &fs);
+    unsigned mask_rect[4];
+    r->pending_upload += pelt__gpu_fur_upload(&r->textures, r->fur, &fs, mask_rect);
+    r->pending_upload += pelt__gpu_mesh_update_split(&r->mesh, &fs, mask_rect);
     r->pending_upload += pelt__gpu_blocks_set_fur(&r->blocks, r->fur, &fs);
 }
 

@@ -68,6 +68,9 @@ typedef struct pelt_draw_debug {
      * one fetch of the fur texture blended in the fur's unlit colour, no
      * discard. Fins are the caller's to switch off. */
     bool plain_shells;
+    /* Draw every triangle's shells with the wet shader while any fur is
+     * wet, as before wet and dry were drawn apart (for measuring it). */
+    bool no_wet_split;
     /* Skip the light's shadow maps this frame, as if they were off
        (pelt_renderer_set_shadows turns them on). */
     bool no_shadows;

@@ -156,6 +156,70 @@ static void wet_left_half(pelt_fur *fur, void *user)
     }
 }
 
+/* Wet and dry drawn apart: a torus wet on one half draws its dry triangles
+ * with the dry shader (two shell draws) and the picture is the one every
+ * triangle drawn wet gives, within mean 0.5 and 1% of pixels off by more
+ * than 32: where the two parts overlap on screen they blend in another
+ * order (an inner shell of one after an outer one of the other), a few
+ * pixels along the boundary. Towelled dry, one draw; wet again elsewhere,
+ * the triangles follow. */
+static void wet_and_dry_drawn_apart(void)
+{
+    pelt_fur_desc d = {0};
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
+    if (fur) wet_left_half(fur, NULL);
+    CHECK(fur && pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    uint8_t *apart = malloc((size_t)W * H * 4), *together = malloc((size_t)W * H * 4);
+    if (r && apart && together) {
+        pelt_view v;
+        memset(&v, 0, sizeof v);
+        pelt_camera_to_view(&torus_cam, (float)W / H, &v);
+        v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.5f, 1.45f, 1.4f}, 0.25f};
+        pelt_draw_desc split = {0}, whole = {.debug.no_wet_split = true};
+        pelt_headless_bind(gl);
+        glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        pelt_renderer_draw(r, &v, &split);
+        pelt_headless_read_rgba8(gl, apart);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        CHECK(st.shell_draw_calls == 2);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        pelt_renderer_draw(r, &v, &whole);
+        pelt_headless_read_rgba8(gl, together);
+        CHECK(pelt_renderer_get_stats(r).shell_draw_calls == 1);
+        double mean, frac;
+        gl_test_compare(apart, together, (size_t)W * H, &mean, &frac);
+        printf("  apart against together: mean %.3f, %.4f of pixels off by more than 32\n", mean, frac);
+        CHECK(mean < 0.5 && frac < 0.01);
+        /* Towelled dry, then wet where it had been dry (the front of the
+         * ring): the triangles follow the mask's changed rectangles. */
+        pelt_fur_clear_wetness(fur);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        pelt_renderer_draw(r, &v, &split);
+        CHECK(pelt_renderer_get_stats(r).shell_draw_calls == 1);
+        for (float u = 0.6f; u < 0.95f; u += 0.05f) {
+            pelt_droplet drop = {{u, 0.25f}, 0.05f, 1.0f};
+            pelt_fur_add_droplet(fur, &drop, NULL);
+        }
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        pelt_renderer_draw(r, &v, &split);
+        pelt_headless_read_rgba8(gl, apart);
+        CHECK(pelt_renderer_get_stats(r).shell_draw_calls == 2);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        pelt_renderer_draw(r, &v, &whole);
+        pelt_headless_read_rgba8(gl, together);
+        gl_test_compare(apart, together, (size_t)W * H, &mean, &frac);
+        printf("  wet again elsewhere: mean %.3f, %.4f off\n", mean, frac);
+        CHECK(mean < 0.5 && frac < 0.01);
+    }
+    free(apart);
+    free(together);
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+}
+
 static double luma(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
 
 static int cmp_double(const void *a, const void *b)
@@ -471,9 +535,9 @@ static void renderer_allocates_through_its_hooks(void)
     pelt_renderer_desc rd = {.hooks.allocator = {count_alloc, count_free, &counts}};
     CHECK(pelt_renderer_create(square, fur, &rd, &r, NULL) == PELT_OK);
     /* The renderer, the two interleaved vertex arrays (the pose's and the
-     * rest's, freed before return), and the staging of the fins a frame
-     * draws and of their vertices. */
-    CHECK(counts.allocs == 5);
+     * rest's, freed before return), the staging of the fins a frame
+     * draws and of their vertices, and the wet split's four arrays. */
+    CHECK(counts.allocs == 9);
     CHECK(counts.frees == 2);
     pelt_renderer_destroy(r);
     CHECK(counts.allocs == counts.frees);
@@ -822,6 +886,7 @@ int main(void)
         RUN(longer_fur_covers_more);
         RUN(shells_are_one_instanced_draw);
         RUN(plain_renderer_draws_every_shell);
+        RUN(wet_and_dry_drawn_apart);
         RUN(wet_clumps_show_skin_and_leave_dry_fur_alone);
         RUN(dried_fur_matches_dry_render);
         RUN(clumps_grow_thinner_toward_the_tips);
