@@ -9,8 +9,7 @@
 
 #include "core/base/hooks.h"
 #include "core/fur/frame_plan.h"
-#include "core/fur/fur_gpu.h" /* core/fur/lod.h: the levels of detail */
-#include "core/wet/wet_split.h"
+#include "core/fur/fur_gpu.h" /* core/fur/lod.h: the levels of detail; core/wet/wet_split.h */
 
 #include "gl/shaders/bindings.glsl"
 
