@@ -57,6 +57,16 @@ pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks
     return st;
 }
 
+/* One instanced draw of `triangles` from byte `offset` of the element
+ * buffer, `count` shells, with the program in use; counted in the stats. */
+static void draw_instanced(const pelt__pass_frame *f, size_t offset, size_t triangles, unsigned count)
+{
+    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(triangles * 3), GL_UNSIGNED_INT, (const void *)offset,
+                            (GLsizei)count);
+    f->stats->shell_draw_calls++;
+    f->stats->triangles += triangles * count;
+}
+
 /* The plain shell renderer of pelt bench --plain (shell_plain_vs.glsl):
  * every shell along the normal, all N on every triangle, no back faces
  * culled, one fetch blended. Built the first time it draws. */
@@ -71,11 +81,8 @@ static void draw_plain(pelt__shell_pass *p, const pelt__pass_frame *f)
     if (!p->plain.program || f->layers == 0) return;
     pelt__gl_blended_hair_state();
     glUseProgram(p->plain.program);
-    size_t triangles = f->mesh->triangle_count;
-    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(triangles * 3), GL_UNSIGNED_INT, 0, (GLsizei)f->layers);
-    f->stats->shell_draw_calls++;
+    draw_instanced(f, 0, f->mesh->triangle_count, f->layers);
     f->stats->shell_instances += f->layers;
-    f->stats->triangles += triangles * f->layers;
 }
 
 /* Built on first use; a variant that does not build is logged through the
@@ -89,8 +96,7 @@ const pelt__shell_program *pelt__shell_pass_program(pelt__shell_pass *p, unsigne
     return features & PELT__SHELL_LIGHT_PASS ? NULL : &p->variants[PELT__SHELL_GENERIC];
 }
 
-/* One instanced draw of `triangles` from byte `offset` of the element
- * buffer, all `count` shells, with sp. */
+/* draw_instanced with sp and the shell pass's uniforms. */
 static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, const float shells[4],
                       const float next[2], size_t offset, size_t triangles, unsigned count)
 {
@@ -101,10 +107,7 @@ static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, 
     glUniform2fv(sp->shell_view, 1, f->lod.shell_view);
     glUniform1f(sp->back_reach, f->lod.back_reach);
     glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
-    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(triangles * 3), GL_UNSIGNED_INT, (const void *)offset,
-                            (GLsizei)count);
-    f->stats->shell_draw_calls++;
-    f->stats->triangles += triangles * count;
+    draw_instanced(f, offset, triangles, count);
 }
 
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)

@@ -63,7 +63,7 @@ float pelt__srgb_decode(float c); /* c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1
  * - 0.0225411470 l, within 0.25 / 255 of the power; three square roots
  * cost llvmpipe a fraction of one power, on every fragment. */
 float pelt__srgb_encode(float l);
-/* The strand's shade in the fur texture (a brightness in [0.65, 1]),
+/* The strand's shade in the fur texture (a brightness in [0.4, 1]),
  * decoded per fragment by Taylor's cubic fit of the sRGB curve,
  * c (c (0.305306011 c + 0.682171111) + 0.012522878): within 0.002 of
  * pelt__srgb_decode, and three multiply-adds. */
