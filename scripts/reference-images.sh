@@ -4,20 +4,30 @@
 # (shells | strands | difference x4) to OUTDIR/NAME.png and prints the
 # figures as the rows of a Markdown table.
 #
-#   scripts/reference-images.sh OUTDIR [PELT_BINARY]
+#   scripts/reference-images.sh OUTDIR [PELT_BINARY] [SET]
 #
-# PELT_BINARY defaults to build/pelt of this checkout. The creature scene
-# renders the Stanford bunny of Debian's libcgal-demo (CGAL_ARCHIVE, default
-# /usr/share/doc/libcgal-dev/data.tar.gz); without it that row is skipped.
+# PELT_BINARY defaults to build/pelt of this checkout. SET is `reference`
+# (default: scenes/reference/, docs/reference.md) or `wet` (the wet close-up
+# and the partly wet creature of scenes/wet/ beside the curly hair:
+# docs/gallery-papers.md). The creature scenes render the Stanford bunny
+# of Debian's libcgal-demo (CGAL_ARCHIVE, default
+# /usr/share/doc/libcgal-dev/data.tar.gz); without it their rows are skipped.
 set -euo pipefail
 
-if [ $# -lt 1 ] || [ $# -gt 2 ] || [ "${1:-}" = -h ] || [ "${1:-}" = --help ]; then
-  echo "usage: $0 OUTDIR [PELT_BINARY]" >&2
+if [ $# -lt 1 ] || [ $# -gt 3 ] || [ "${1:-}" = -h ] || [ "${1:-}" = --help ]; then
+  echo "usage: $0 OUTDIR [PELT_BINARY] [reference|wet]" >&2
   exit 2
 fi
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out=$1
 pelt=${2:-$here/build/pelt}
+set_name=${3:-reference}
+case "$set_name" in
+  reference) scenes="reference/torus reference/torus-rim reference/creature reference/long-hair reference/combed
+                     reference/curly reference/shadowed reference/distant" ;;
+  wet) scenes="wet/wet-closeup wet/wet-creature reference/curly" ;;
+  *) echo "$0: unknown set '$set_name' (reference or wet)" >&2; exit 2 ;;
+esac
 mkdir -p "$out"
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/reference.XXXXXX")"
 trap 'rm -rf "$tmp"' EXIT
@@ -32,9 +42,10 @@ field() { awk -v k="$1" '$1 == k { $1 = ""; sub(/^ /, ""); print }' <<<"$2"; }
 
 echo "| scene | ssim | mae | coverage at 1 2 4 8 16 32 px: shells / strands | stripe ratio (shells/strands) | luminance shells / strands |"
 echo "|---|---|---|---|---|---|"
-for scene in torus torus-rim creature long-hair combed curly shadowed distant; do
-  args=("$here/scenes/reference/$scene.json")
-  if [ "$scene" = creature ]; then
+for path in $scenes; do
+  scene=${path#*/}
+  args=("$here/scenes/$path.json")
+  if [ "${scene%creature}" != "$scene" ]; then
     if [ -z "$M" ]; then
       echo "reference-images: no $archive, skipping $scene" >&2
       continue
