@@ -132,7 +132,7 @@ typedef struct pelt__fur_block {
     float color_scale, slant, wet_gloss, wet_sharpness;
     float skin_color[3], tiling;
     float fin_length, inter_shadow, inter_shadow_step, shading_model;
-    float ringlets[2], occlusion, pad2_;
+    float ringlets[2], occlusion, wet_strays;
 } pelt__fur_block;
 
 

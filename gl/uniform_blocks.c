@@ -46,6 +46,7 @@ OFFSET(pelt__fur_block, tiling, 108);
 OFFSET(pelt__fur_block, fin_length, 112);
 OFFSET(pelt__fur_block, ringlets, 128);
 OFFSET(pelt__fur_block, occlusion, 136);
+OFFSET(pelt__fur_block, wet_strays, 140);
 _Static_assert(sizeof(pelt__fur_block) == 144, "std140 size of pelt_fur_block");
 #undef OFFSET
 
@@ -113,6 +114,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.clump_blend = d.wet.clump_blend;
     k.clump_tightness = d.wet.clump_tightness;
     k.wet_darken = d.wet.darken;
+    k.wet_strays = d.wet.strays;
     k.wet_gloss = d.wet.gloss;
     k.wet_sharpness = d.wet.gloss_sharpness;
     k.color_scale = d.look.color_scale;

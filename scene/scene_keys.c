@@ -172,6 +172,8 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("wetness.clump_blend", "wet.clump_blend"),
     PARAM("wetness.clump_tightness", "wet.clump_tightness"),
     PARAM("wetness.darken", "wet.darken"),
+    PARAM("wetness.clumps", "wet.clumps"),
+    PARAM("wetness.strays", "wet.strays"),
     PARAM("wetness.clump_size", "wet.clump_size"),
     PARAM("wetness.gloss", "wet.gloss"),
     PARAM("wetness.gloss_sharpness", "wet.gloss_sharpness"),

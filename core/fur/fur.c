@@ -30,6 +30,13 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->dynamics.spring_k == 0.0f) d->dynamics.spring_k = d->dynamics.mass * 9.81f / (0.4f * d->length);
     if (d->dynamics.damping == 0.0f) d->dynamics.damping = 0.5f * sqrtf(d->dynamics.spring_k * d->dynamics.mass);
     if (d->fins.density == 0.0f) d->fins.density = (float)d->look.texture_size / 16.0f;
+    if (d->wet.clump_size == 0.0f) {
+        /* Wet tufts about as wide as the hair is long, holding tens of
+           hairs: between 20 and 100 at the texture's density. */
+        float hairs_per_area = d->look.density * d->look.tiling * d->look.tiling;
+        float lo = sqrtf(20.0f / hairs_per_area), hi = sqrtf(100.0f / hairs_per_area);
+        d->wet.clump_size = d->length < lo ? lo : d->length > hi ? hi : d->length;
+    }
 }
 
 bool pelt__fur_has_ringlets(const pelt_fur_desc *d)
@@ -153,7 +160,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     }
     f->tips = pelt__strands_tip_offsets(f->strands);
     st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
-    pelt__water_desc wd = {d.wet.mask_size, d.wet.clump_size, d.seed};
+    pelt__water_desc wd = {d.wet.mask_size, d.wet.clumps == PELT_CLUMPS_NATURAL ? d.wet.clump_size : 0.0f, d.seed};
     if (st == PELT_OK) st = pelt__water_create(mesh, f->bvh, &wd, &f->desc.hooks.allocator, &f->water, err);
     if (st == PELT_OK) st = pelt__groom_init(&f->groom, mesh_data.vertex_count, &f->desc.hooks.allocator, err);
     /* Level 0 holds the fins of the full mesh; with level of detail off

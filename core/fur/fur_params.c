@@ -20,6 +20,7 @@ static const char *const strand_curl_shapes[] = {"helix", "wave", NULL};
 static const char *const curl_phases[] = {"ringlets", "coherent", NULL};
 static const char *const shadings[] = {"kajiya-kay", "lengyel-table", "marschner", NULL};
 static const char *const lod_modes[] = {"auto", "off", "fixed", NULL};
+static const char *const wet_clumps[] = {"natural", "droplet", NULL};
 
 /* The ranges are what the library can draw; the defaults are the papers'
  * (Silva Table 1: a 256 x 256 texture and mask, 16 layers where the fur is
@@ -57,8 +58,11 @@ static const pelt_param fur_params[] = {
     UINT_("wet.mask_size", wet.mask_size, 1, 8192, 256),
     FLT("wet.clump_blend", wet.clump_blend, 0, 1, 0, 0.5),
     FLT("wet.clump_tightness", wet.clump_tightness, 0, 1, OPEN, 0.9),
-    FLT("wet.darken", wet.darken, 0, 1, PELT_PARAM_MAX_OPEN, 0.35),
-    FLT("wet.clump_size", wet.clump_size, 0, FMAX, 0, 0),
+    FLT("wet.darken", wet.darken, 0, 1, PELT_PARAM_MAX_OPEN, 0.5),
+    FLT("wet.strays", wet.strays, 0, 1, 0, 0.1),
+    ENUM("wet.clumps", wet.clumps, wet_clumps),
+    DERIVED("wet.clump_size", wet.clump_size, 0, FMAX, OPEN,
+            "the fur's length, kept between 20 and 100 hairs a tuft"),
     FLT("wet.gloss", wet.gloss, 1, 16, 0, 2),
     FLT("wet.gloss_sharpness", wet.gloss_sharpness, 1, 64, 0, 4),
     FLT("comb.slant", comb.slant, 0, 60, 0, 0),

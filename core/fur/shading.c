@@ -19,6 +19,15 @@ void pelt__wet_shine(float rho, float p, float sharpness, float gloss, float *p_
     *gain = 1.0f + (gloss - 1.0f) * r;
 }
 
+pelt_vec3 pelt__wet_color(pelt_vec3 c, float rho, float darken)
+{
+    float r = fminf(fmaxf(rho, 0.0f), 1.0f);
+    float top = fmaxf(fmaxf(c.x, c.y), fmaxf(c.z, 1e-6f));
+    float e = 1.0f + PELT__WET_SATURATION * r, k = top * (1.0f - darken * r);
+    return v3(k * powf(fmaxf(c.x, 0.0f) / top, e), k * powf(fmaxf(c.y, 0.0f) / top, e),
+              k * powf(fmaxf(c.z, 0.0f) / top, e));
+}
+
 /* Silva et al. Eq. 6: darkens the lower part of the fur. */
 float pelt__shadow_factor(float k_shadow, float h) { return (k_shadow - 1.0f + h) / k_shadow; }
 

@@ -24,6 +24,13 @@ void pelt__kajiya_kay(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p, float *dif
  * (the cone's width falls as 1 / sqrt(p)); pelt's defaults are 2 and 4. */
 void pelt__wet_shine(float rho, float p, float sharpness, float gloss, float *p_wet, float *gain);
 
+/* Wet hair's colour (docs/wetness.md, Wet optics), linear light: with r =
+ * clamp(rho, 0, 1) and m the largest channel of c, each channel becomes
+ * m (c / m)^(1 + PELT__WET_SATURATION r) (1 - darken r): darker and more
+ * saturated, the brightest channel keeping its share. GLSL: wet_color. */
+#define PELT__WET_SATURATION 0.4f
+pelt_vec3 pelt__wet_color(pelt_vec3 c, float rho, float darken);
+
 /* Silva et al. Eq. 6 shadow factor gamma = (K - 1 + h) / K, K >= 1. */
 float pelt__shadow_factor(float k_shadow, float h);
 

@@ -6,6 +6,7 @@
 #include "core/base/vec.h"
 #include "core/fur/fur_internal.h"
 #include "core/fur/vertex_strand.h"
+#include "core/wet/clump.h"
 
 #include <math.h>
 #include <string.h>
@@ -108,15 +109,39 @@ static void put(float *t, pelt_vec3 a, float w)
     t[0] = a.x, t[1] = a.y, t[2] = a.z, t[3] = w;
 }
 
+/* The tuft a hair belongs to (docs/wetness.md, Tufts), read forward: the
+ * clump pulls the hair rooted at atlas uv `root` towards its centre c by
+ * s rho f(h) of the way (f the tuft's profile), roots in place. A hair
+ * whose root is dry, outside its clump's radius or a stray is not pulled. */
+typedef struct tuft {
+    float pull_uv[2]; /* c - root, atlas uv */
+    float rho, s, w, layers;
+    bool on;
+} tuft;
+
+static tuft tuft_at(const pelt_fur *f, const float root[2], float id)
+{
+    const pelt__wetness *mask = pelt__water_mask(f->water);
+    const float *t = pelt__clump_texel(mask->texels, mask->width, mask->height, root);
+    tuft k = {{t[0] - root[0], t[1] - root[1]}, t[3], f->desc.wet.clump_tightness, f->desc.wet.clump_blend,
+              (float)f->desc.layers, false};
+    k.on = k.rho > 0.0f && hypotf(k.pull_uv[0], k.pull_uv[1]) <= t[2] && !pelt__clump_stray(id, f->desc.wet.strays);
+    return k;
+}
+
 /* One hair: root weights w in triangle (i0, i1, i2) with vertex strands
  * st, the triangle's map from fur-uv offsets to mesh offsets (du, dv per
- * texel), the tile strand s. */
+ * texel) and from atlas-uv offsets (au, av per unit), the tile strand s. */
 static void hair(const pelt_fur *f, const pelt__furtex_desc *td, const pelt_mesh_data *m, const uint32_t *ix,
-                 const fin_strand *st, pelt_vec3 du, pelt_vec3 dv, float texel, const pelt__furtex_strand *s,
-                 const float w[3], float *out)
+                 const fin_strand *st, pelt_vec3 du, pelt_vec3 dv, pelt_vec3 au, pelt_vec3 av, float texel,
+                 const pelt__furtex_strand *s, const float w[3], float *out)
 {
     float c0[2];
     pelt__furtex_strand_center(td, s, 0.0f, c0);
+    const float root_uv[2] = {w[0] * m->uvs[2 * ix[0]] + w[1] * m->uvs[2 * ix[1]] + w[2] * m->uvs[2 * ix[2]],
+                              w[0] * m->uvs[2 * ix[0] + 1] + w[1] * m->uvs[2 * ix[1] + 1] +
+                                  w[2] * m->uvs[2 * ix[2] + 1]};
+    const tuft tf = tuft_at(f, root_uv, s->id);
     pelt_vec3 pts[PELT__STRAND_SEGMENTS + 1];
     for (int k = 0; k <= PELT__STRAND_SEGMENTS; k++) {
         float z = s->length * (float)k / (float)PELT__STRAND_SEGMENTS; /* of the full height */
@@ -126,6 +151,11 @@ static void hair(const pelt_fur *f, const pelt__furtex_desc *td, const pelt_mesh
         pelt__furtex_strand_center(td, s, z, c);
         /* Its own shape in the tile, carried over the surface. */
         pts[k] = v3_add(mix3(at, w), v3_add(v3_scale(du, c[0] - c0[0]), v3_scale(dv, c[1] - c0[1])));
+        if (tf.on) {
+            float pull = clampf(tf.s * tf.rho * pelt__clump_tuft_profile(z, tf.w, tf.layers), 0.0f,
+                                PELT__CLUMP_MAX_PULL);
+            pts[k] = v3_add(pts[k], v3_add(v3_scale(au, tf.pull_uv[0] * pull), v3_scale(av, tf.pull_uv[1] * pull)));
+        }
     }
     for (int k = 0; k <= PELT__STRAND_SEGMENTS; k++) {
         int a = k > 0 ? k - 1 : 0, b = k < PELT__STRAND_SEGMENTS ? k + 1 : PELT__STRAND_SEGMENTS;
@@ -139,8 +169,8 @@ static void hair(const pelt_fur *f, const pelt__furtex_desc *td, const pelt_mesh
     float *e = out + 8 * (PELT__STRAND_SEGMENTS + 1);
     pelt_vec3 n = v3_norm_or(mix3((pelt_vec3[3]){st[0].n, st[1].n, st[2].n}, w), v3(0.0f, 1.0f, 0.0f));
     put(e, n, s->shade);
-    e[4] = w[0] * m->uvs[2 * ix[0]] + w[1] * m->uvs[2 * ix[1]] + w[2] * m->uvs[2 * ix[2]];
-    e[5] = w[0] * m->uvs[2 * ix[0] + 1] + w[1] * m->uvs[2 * ix[1] + 1] + w[2] * m->uvs[2 * ix[2] + 1];
+    e[4] = tf.rho; /* wet hair is darker and shines (strand_vs.glsl) */
+    e[5] = 0.0f;
     float col[4];
     for (int c = 0; c < 4; c++) {
         float x = 0.0f;
@@ -178,13 +208,20 @@ size_t pelt__strand_ref_build(const pelt_fur *f, const pelt__furtex_strand *tile
         pelt_vec3 du = v3_scale(v3_add(v3_scale(e1, ft.inv[0]), v3_scale(e2, ft.inv[2])), inv_size);
         pelt_vec3 dv = v3_scale(v3_add(v3_scale(e1, ft.inv[1]), v3_scale(e2, ft.inv[3])), inv_size);
         float texel = sqrtf(v3_len(du) * v3_len(dv));
+        /* Mesh offset of one atlas-uv unit: the tufts pull in the mask's uv. */
+        fur_tri at = fur_tri_at(m.uvs, ix);
+        pelt_vec3 au = v3(0.0f, 0.0f, 0.0f), av = au;
+        if (at.ok) {
+            au = v3_add(v3_scale(e1, at.inv[0]), v3_scale(e2, at.inv[2]));
+            av = v3_add(v3_scale(e1, at.inv[1]), v3_scale(e2, at.inv[3]));
+        }
         root_iter it = roots_begin(&ft, tile, tile_count, inv_size);
         float w[3];
         const pelt__furtex_strand *s;
         while (n < cap && (s = roots_next(&it, w))) {
             float keep = w[0] * density[0] + w[1] * density[1] + w[2] * density[2];
             if (keep < 1.0f && !(s->id < keep)) continue; /* groom_keeps */
-            hair(f, &td, &m, ix, st, du, dv, texel, s, w, out + n * 4 * PELT__STRAND_TEXELS);
+            hair(f, &td, &m, ix, st, du, dv, au, av, texel, s, w, out + n * 4 * PELT__STRAND_TEXELS);
             n++;
         }
     }

@@ -17,8 +17,9 @@
 /* Texels of 4 floats a hair: for k = 0 .. PELT__STRAND_SEGMENTS its
  * point (mesh-local, w the radius in mesh units) and unit tangent (w the
  * height along the hair, 0 root .. 1 tip); then the surface normal with
- * the hair's shade in w; then the atlas uv and the hair colour's bytes,
- * two a float (r 256 + g, b 256 + a). */
+ * the hair's shade in w; then the wetness at its root, 0, and the hair
+ * colour's bytes, two a float (r 256 + g, b 256 + a). A wet hair's points
+ * follow its tuft (docs/wetness.md, Tufts). */
 #define PELT__STRAND_TEXELS (2 * (PELT__STRAND_SEGMENTS + 1) + 2)
 
 /* The tile's strands (pelt__furtex_strands of the fur's texture desc):

@@ -28,6 +28,22 @@ float pelt__clump_profile(float h, float w, float n_layers)
     return clampf((1.0f - w) * lin + w * lg, 0.0f, 1.0f);
 }
 
+float pelt__clump_tuft_profile(float h, float w, float n_layers)
+{
+    if (!(n_layers > 1.0f)) return 1.0f;
+    float first = 1.0f / n_layers;
+    float t = clampf((h - PELT__CLUMP_BASE) / (1.0f - PELT__CLUMP_BASE), 0.0f, 1.0f);
+    return pelt__clump_profile(first + (1.0f - first) * t, w, n_layers);
+}
+
+bool pelt__clump_stray(float id, float share)
+{
+    /* A multiple of the id, so the strays are not the hairs that a thinned
+     * groom (which keeps ids below its density) drops first or last. */
+    float x = id * 7.31f;
+    return x - floorf(x) < share;
+}
+
 static unsigned nearest_index(float uv, unsigned size)
 {
     float x = floorf(uv * (float)size);
@@ -56,7 +72,7 @@ pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
     if (!(rho > 0.0f)) return PELT__CLUMP_KEEP; /* Alg. 2: dry, not in a clump */
     float ox = p[0] - t[0], oy = p[1] - t[1];
     if (sqrtf(ox * ox + oy * oy) > t[2]) return PELT__CLUMP_DISCARD; /* another clump */
-    float pull = clampf(s * rho * pelt__clump_profile(h, w, n_layers), 0.0f,
+    float pull = clampf(s * rho * pelt__clump_tuft_profile(h, w, n_layers), 0.0f,
                         PELT__CLUMP_MAX_PULL);
     /* Inverse of the strand map root q -> c + (q - c)(1 - pull) (docs/wetness.md). */
     float k = 1.0f / (1.0f - pull);

@@ -4,6 +4,7 @@
 #ifndef PELT_CORE_CLUMP_H
 #define PELT_CORE_CLUMP_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
 /* Outcome of Alg. 2 for one fragment; the values match the GLSL constants
@@ -32,6 +33,22 @@ void pelt__ringlet_levels(float rho, float levels, float stride, float out[3]);
  * [0,1]; N <= 1 gives 1. */
 float pelt__clump_profile(float h, float w, float n_layers);
 
+/* Where a tuft starts to gather its hairs, as a share of their height:
+ * below it the hairs of a clump stand as dry hairs do, so the roots stay
+ * spread over the skin and no lower layer loses its hair inside a clump;
+ * the gaps between tufts open above it (docs/wetness.md, Tufts). */
+#define PELT__CLUMP_BASE 0.25f
+
+/* The tuft's profile: Eq. 5's f over the height above PELT__CLUMP_BASE,
+ * f(1/N + (1 - 1/N) t) with t = clamp((h - base) / (1 - base), 0, 1):
+ * 0 up to the base, 1 at the tip, rising as Eq. 5 between. */
+float pelt__clump_tuft_profile(float h, float w, float n_layers);
+
+/* Strays (docs/wetness.md, Tufts): a share of the hairs, picked by the
+ * strand's id in [0, 1] (the fur texture's blue channel), stays out of
+ * the tufts and stands where it grew: fract(7.31 id) < share. */
+bool pelt__clump_stray(float id, float share);
+
 /* Texel of a width x height RGBA32F mask (4 floats per texel, row 0 at
  * v = 0) that GL's NEAREST filter with CLAMP_TO_EDGE picks at uv:
  * index = clamp(floor(uv * size), 0, size - 1). */
@@ -40,7 +57,8 @@ const float *pelt__clump_texel(const float *mask, unsigned width,
 
 /* Alg. 2 with the inverse mapping: the fragment at mask point p with texel
  * (c, r, rho) at layer height h samples the root
- *   q = c + (p - c) / (1 - min(s rho f(h), 0.95)).
+ *   q = c + (p - c) / (1 - min(s rho f(h), 0.95)),
+ * f the tuft's profile (pelt__clump_tuft_profile).
  * Dry texel -> KEEP (q = p); |p - c| > r -> DISCARD; the texel at q dry ->
  * DISCARD; else DISPLACED. q is always written (p when KEEP). The caller
  * adds d = q - p to the colour uv and d * fur_tiling to the fur uv, and

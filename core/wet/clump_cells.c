@@ -14,7 +14,10 @@
 #include <string.h>
 
 #define NONE UINT32_MAX
-#define LLOYD_STEPS 3
+#define LLOYD_STEPS 2
+/* The weights' spread, a share of the clump size: power-diagram walls move
+ * by up to about this much of a cell, so tuft sizes vary (docs/wetness.md). */
+#define SIZE_SPREAD 0.5f
 #define MAX_GRID_CELLS (1u << 22)
 
 /* A mask texel a triangle covers: its surface point and the triangle. */
@@ -82,9 +85,12 @@ static void grid_fill(seed_grid *g, const float *seeds, size_t n)
     g->start[0] = 0;
 }
 
-/* The seed nearest p: rings of grid boxes outwards until a ring cannot
- * hold anything nearer than the best so far. */
-static uint32_t grid_nearest(const seed_grid *g, const float *seeds, const float p[3])
+/* The seed nearest p by the power distance |p - s|^2 - weight_s (plain
+ * distance when weights is NULL; max_weight is the largest weight): rings
+ * of grid boxes outwards until a ring cannot hold anything nearer than the
+ * best so far. */
+static uint32_t grid_nearest(const seed_grid *g, const float *seeds, const float *weights, float max_weight,
+                             const float p[3])
 {
     int c[3] = {(int)grid_coord(g, p[0], 0), (int)grid_coord(g, p[1], 1), (int)grid_coord(g, p[2], 2)};
     int reach = (int)(g->dim[0] > g->dim[1] ? g->dim[0] : g->dim[1]);
@@ -95,7 +101,7 @@ static uint32_t grid_nearest(const seed_grid *g, const float *seeds, const float
         /* Every point of the boxes of this ring is at least (ring - 1)
          * boxes from p. */
         float floor_d = (float)(ring - 1) * g->cell;
-        if (best != NONE && floor_d > 0.0f && floor_d * floor_d > best_d) break;
+        if (best != NONE && floor_d > 0.0f && floor_d * floor_d - max_weight > best_d) break;
         for (int z = c[2] - ring; z <= c[2] + ring; z++)
             for (int y = c[1] - ring; y <= c[1] + ring; y++)
                 for (int x = c[0] - ring; x <= c[0] + ring; x++) {
@@ -107,7 +113,7 @@ static uint32_t grid_nearest(const seed_grid *g, const float *seeds, const float
                     for (uint32_t k = g->start[b]; k < g->start[b + 1]; k++) {
                         const float *s = seeds + 3 * g->items[k];
                         float dx = s[0] - p[0], dy = s[1] - p[1], dz = s[2] - p[2];
-                        float d = dx * dx + dy * dy + dz * dz;
+                        float d = dx * dx + dy * dy + dz * dz - (weights ? weights[g->items[k]] : 0.0f);
                         if (d < best_d || (d == best_d && g->items[k] < best)) best_d = d, best = g->items[k];
                     }
                 }
@@ -238,9 +244,10 @@ pelt_status pelt__clump_cells_create(const pelt_mesh *mesh, unsigned width, unsi
     c->count = n;
 
     float *seeds = pelt__alloc_zero(a, n, 3 * sizeof(float));
+    float *weights = pelt__alloc_zero(a, n, sizeof(float));
     double *sum = pelt__alloc_zero(a, n, 4 * sizeof(double));
     seed_grid g = {{0, 0, 0}, 0, {0, 0, 0}, NULL, NULL};
-    if (!seeds || !sum) goto oom_seeds;
+    if (!seeds || !weights || !sum) goto oom_seeds;
     scatter_seeds(&md, area_sum, n, seed, seeds);
     g = grid_for(seeds, n, clump_size);
     size_t boxes = (size_t)g.dim[0] * g.dim[1] * g.dim[2];
@@ -248,27 +255,43 @@ pelt_status pelt__clump_cells_create(const pelt_mesh *mesh, unsigned width, unsi
     g.items = pelt__alloc_zero(a, n, sizeof *g.items);
     if (!g.start || !g.items) goto oom_seeds;
     /* Lloyd: each seed moves to the centroid of the texels nearest it, so
-     * the cells come out about equal; then the texels take their cells. */
-    for (int step = 0; step <= LLOYD_STEPS; step++) {
+     * the seeds spread evenly (blue noise, not a lattice: a few steps from
+     * random, not converged). */
+    for (int step = 0; step < LLOYD_STEPS; step++) {
         grid_fill(&g, seeds, n);
         memset(sum, 0, n * 4 * sizeof(double));
         for (size_t i = 0; i < texels; i++) {
             const texel_point *p = &c->points[i];
             if (p->triangle == NONE) continue;
             const float xyz[3] = {p->x, p->y, p->z};
-            uint32_t s = grid_nearest(&g, seeds, xyz);
-            c->cell_of[i] = s;
+            uint32_t s = grid_nearest(&g, seeds, NULL, 0.0f, xyz);
             sum[4 * s] += p->x, sum[4 * s + 1] += p->y, sum[4 * s + 2] += p->z, sum[4 * s + 3] += 1.0;
         }
-        if (step == LLOYD_STEPS) break;
         for (size_t s = 0; s < n; s++)
             if (sum[4 * s + 3] > 0.0)
                 for (int k = 0; k < 3; k++) seeds[3 * s + k] = (float)(sum[4 * s + k] / sum[4 * s + 3]);
+    }
+    /* Tufts of varied size: each seed gets a weight, and a texel joins the
+     * seed of least power distance |p - s|^2 - weight (a power diagram:
+     * cells stay convex, their walls shift towards the lighter seed). */
+    grid_fill(&g, seeds, n);
+    pelt__rng rng = pelt__rng_seed(seed, 0x73697a65ULL);
+    float spread = SIZE_SPREAD * clump_size, max_weight = 0.0f;
+    for (size_t s = 0; s < n; s++) {
+        weights[s] = spread * spread * (2.0f * pelt__rng_float(&rng) - 1.0f);
+        max_weight = fmaxf(max_weight, weights[s]);
+    }
+    for (size_t i = 0; i < texels; i++) {
+        const texel_point *p = &c->points[i];
+        if (p->triangle == NONE) continue;
+        const float xyz[3] = {p->x, p->y, p->z};
+        c->cell_of[i] = grid_nearest(&g, seeds, weights, max_weight, xyz);
     }
     pelt__free(a, g.start);
     pelt__free(a, g.items);
     pelt__free(a, sum);
     pelt__free(a, seeds);
+    pelt__free(a, weights);
     pelt__free(a, area_sum);
     area_sum = NULL;
 
@@ -304,6 +327,7 @@ oom_seeds:
     pelt__free(a, g.items);
     pelt__free(a, sum);
     pelt__free(a, seeds);
+    pelt__free(a, weights);
 oom:
     pelt__free(a, area_sum);
     pelt__clump_cells_destroy(c);

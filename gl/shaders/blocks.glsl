@@ -48,4 +48,5 @@ layout(std140) uniform pelt_fur_block {
     vec2 u_ringlets;         // ringlets: x: the curl's amplitude levels in the
                              // fur volume (1 = none), y: slices between levels
     float u_occlusion;       // the fur's optical depth (fur_occlusion)
+    float u_wet_strays;      // the share of hairs that stays out of the tufts
 };

@@ -32,6 +32,25 @@ float clump_profile(float h, float w, float N)
     return clamp((1.0 - w) * lin + w * lg, 0.0, 1.0);
 }
 
+// Where a tuft starts to gather its hairs (PELT__CLUMP_BASE): below, the
+// roots stay spread; above, Eq. 5's profile over the rest of the height.
+// Mirrors pelt__clump_tuft_profile.
+const float CLUMP_BASE = 0.25;
+float clump_tuft_profile(float h, float w, float N)
+{
+    if (!(N > 1.0)) return 1.0;
+    float first = 1.0 / N;
+    float t = clamp((h - CLUMP_BASE) / (1.0 - CLUMP_BASE), 0.0, 1.0);
+    return clump_profile(first + (1.0 - first) * t, w, N);
+}
+
+// Strays: a share of the hairs, picked by the strand's id (the fur
+// texture's blue channel), stays out of the tufts. Mirrors pelt__clump_stray.
+bool clump_stray(float id, float share)
+{
+    return fract(id * 7.31) < share;
+}
+
 // The texel GL's NEAREST + CLAMP_TO_EDGE picks: clamp(floor(uv*size), 0, size-1),
 // clamped as a float so no out-of-range float reaches the int conversion.
 vec4 clump_texel(sampler2D mask, vec2 uv)
@@ -42,7 +61,7 @@ vec4 clump_texel(sampler2D mask, vec2 uv)
 }
 
 // Alg. 2 with the inverse mapping q = c + (p - c) / (1 - min(s rho f(h), 0.95)),
-// from p's mask texel t and the profile f = clump_profile(h, w, N), which
+// from p's mask texel t and the profile f = clump_tuft_profile(h, w, N), which
 // the shells work out once per layer in the vertex stage.
 int clump_lookup_texel(sampler2D mask, vec4 t, vec2 p, float f, float s, out vec2 q)
 {
@@ -62,7 +81,7 @@ int clump_lookup_texel(sampler2D mask, vec4 t, vec2 p, float f, float s, out vec
 
 int clump_lookup(sampler2D mask, vec2 p, float h, float w, float N, float s, out vec2 q)
 {
-    return clump_lookup_texel(mask, clump_texel(mask, p), p, clump_profile(h, w, N), s, q);
+    return clump_lookup_texel(mask, clump_texel(mask, p), p, clump_tuft_profile(h, w, N), s, q);
 }
 
 // Coverage of strands squeezed by a factor k (0 < k <= 1) towards the clump

@@ -28,7 +28,7 @@ void main()
     base *= texture(u_color_tex, v_uv * u_color_scale).rgb;
 #endif
 #ifdef PELT_WET
-    base *= 1.0 - u_wet_darken * textureLod(u_mask, v_uv, 0.0).a;
+    base = wet_color(base, textureLod(u_mask, v_uv, 0.0).a, u_wet_darken);
 #endif
     o_color = vec4(display_color(base + v_spec * (u_specular * u_light_color), u_exposure, u_tone), a);
 }

@@ -18,6 +18,19 @@ vec2 wet_shine(float rho, float p, float sharpness, float gloss)
     return vec2(p * (1.0 + (sharpness - 1.0) * r), 1.0 + (gloss - 1.0) * r);
 }
 
+// Wet hair's colour (docs/wetness.md, Wet optics): water fills the gaps
+// between the hairs, so less light scatters back out (darker by darken
+// rho), and what does has passed through more hair (more saturated: each
+// channel's share of the brightest raised to 1 + WET_SATURATION rho).
+// Mirrors pelt__wet_color.
+const float WET_SATURATION = 0.4;
+vec3 wet_color(vec3 c, float rho, float darken)
+{
+    float r = clamp(rho, 0.0, 1.0);
+    float top = max(max(c.r, c.g), max(c.b, 1e-6));
+    return top * pow(max(c, vec3(0.0)) / top, vec3(1.0 + WET_SATURATION * r)) * (1.0 - darken * r);
+}
+
 float shadow_factor(float k_shadow, float h)
 {
     return (k_shadow - 1.0 + h) / k_shadow;

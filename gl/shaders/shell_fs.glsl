@@ -38,6 +38,20 @@ vec4 shell_hair(vec2 fur_uv, float offset)
     return hair;
 }
 
+// The hair at fur_uv under wetness rho: with ringlets, water takes the
+// curl out, between the levels the volume holds it at (docs/method.md).
+// Dry hair reads the full-curl level with weight 1: no branch, which
+// llvmpipe would pay for on both sides.
+vec4 wet_hair(vec2 fur_uv, float rho)
+{
+#ifdef PELT_RINGLETS
+    vec3 level = ringlet_levels(rho, u_ringlets.x, u_ringlets.y);
+    return mix(shell_hair(fur_uv, level.x), shell_hair(fur_uv, level.y), level.z);
+#else
+    return shell_hair(fur_uv, 0.0);
+#endif
+}
+
 // The shell pass builds this shader in variants (gl/shell_pass.c): each
 // PELT_* feature below is compiled in only when the frame needs it, so the
 // dry, unshadowed common case pays for none of it. The generic program
@@ -55,19 +69,24 @@ void main()
     vec4 t = clump_texel(u_mask, v_uv);
     rho = t.a;
     int clump = clump_lookup_texel(u_mask, t, v_uv, v_clump_profile, u_clump_tightness, q);
-    if (clump == CLUMP_DISCARD) discard;
     if (clump == CLUMP_DISPLACED) d = q - v_uv;
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
-    vec4 hair;
-#ifdef PELT_RINGLETS
-    // Ringlets: water takes the curl out, between the levels the volume
-    // holds it at (docs/method.md). Dry hair reads the full-curl level with
-    // weight 1: no branch, which llvmpipe would pay for on both sides.
-    vec3 level = ringlet_levels(rho, u_ringlets.x, u_ringlets.y);
-    hair = mix(shell_hair(fur_uv, level.x), shell_hair(fur_uv, level.y), level.z);
-#else
-    hair = shell_hair(fur_uv, 0.0);
+    vec4 hair = wet_hair(fur_uv, rho);
+#ifdef PELT_WET
+    if (clump != CLUMP_KEEP) {
+        // Strays (docs/wetness.md, Tufts): the hair rooted at q is not in
+        // the tuft if it is a stray; one growing here that is, stands here.
+        if (clump == CLUMP_DISCARD || clump_stray(hair.b / max(hair.a, 1e-3), u_wet_strays)) hair = vec4(0.0);
+        vec4 own = wet_hair(v_fur_uv, rho);
+        if (own.a > hair.a && clump_stray(own.b / max(own.a, 1e-3), u_wet_strays)) {
+            hair = own;
+            d = vec2(0.0);
+            fur_uv = v_fur_uv;
+            clump = CLUMP_KEEP;
+        }
+        if (!(hair.a > 0.0)) discard;
+    }
 #endif
     hair = shell_view_texel(v_view, hair) * v_alpha;
     hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
@@ -113,7 +132,7 @@ void main()
 #ifdef PELT_COLOR_TEXTURE
     base *= texture(u_color_tex, (v_uv + d) * u_color_scale).rgb;
 #endif
-    base *= 1.0 - u_wet_darken * rho;   // wet fur is darker
+    base = wet_color(base, rho, u_wet_darken); // darker, more saturated
     o_color = vec4(display_color(base + v_spec * (u_specular * u_light_color), u_exposure, u_tone), hair.a);
 #endif
 }

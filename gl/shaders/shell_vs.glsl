@@ -35,7 +35,7 @@ out vec3 v_root;        // the groomed root and tip colours, lit: times
 out vec3 v_tip;         // fur_light_terms' mul
 out float v_spec;       // fur_light_terms' specular weight
 out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
-flat out float v_clump_profile; // Silva Eq. 5's f(h), the same for the whole layer
+flat out float v_clump_profile; // the tuft's profile f(h) (Eq. 5 above its base), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
 out float v_alpha;      // the shell's opacity: fades as its level leaves, and
                         // where the view's budget leaves it out (face-on)
@@ -107,5 +107,5 @@ void main()
     v_fur_uv = a_fur_uv;
     v_h = h;
     v_density = a_groom.w;
-    v_clump_profile = clump_profile(h, u_clump_blend, u_layers);
+    v_clump_profile = clump_tuft_profile(h, u_clump_blend, u_layers);
 }

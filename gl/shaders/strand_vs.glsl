@@ -34,10 +34,13 @@ void main()
 
     vec3 mul;
     float spec;
+    fur_wetness = ex.x; // the wetness at the root: wet hair shines (fur_light_terms)
     fur_light_terms(T, mat3(u_model) * ns.xyz, world.xyz, th.w, mul, spec);
     vec3 root = groom_root_color(u_color, hair_color);
     vec3 tip = groom_tip_color(u_color, u_tip_color, hair_color);
     // The strand's shade is sRGB like the shells' fur texture: decoded (linear light).
-    v_color = mix(root, tip, th.w) * shade_decode(ns.w) * mul + spec * (u_specular * u_light_color);
+    // Wet hair is darker and more saturated, as the shells' (shell_fs.glsl).
+    v_color = wet_color(mix(root, tip, th.w) * shade_decode(ns.w) * mul, ex.x, u_wet_darken)
+            + spec * (u_specular * u_light_color);
     gl_Position = u_view_proj * world;
 }

@@ -99,18 +99,29 @@ typedef struct pelt_fur_dynamics {
     float damping;           /* default 0.5 * sqrt(spring_k * mass) */
 } pelt_fur_dynamics;
 
+/* How wet fur splits into clumps (pelt_fur_wet.clumps). */
+typedef enum pelt_wet_clumps {
+    PELT_CLUMPS_NATURAL = 0, /* tufts of varied size, cells fixed on the surface */
+    PELT_CLUMPS_DROPLET      /* one clump per droplet (Silva et al. Alg. 1) */
+} pelt_wet_clumps;
+
 /* Wet fur (Silva et al. §3.1, §3.3; docs/wetness.md). */
 typedef struct pelt_fur_wet {
     unsigned mask_size;      /* wetness mask width = height, default 256, at most 8192 */
     float clump_blend;       /* w of Silva Eq. 5 in [0,1], default 0.5 */
     float clump_tightness;   /* s in (0,1]: 1 = tips meet at the clump centre, default 0.9 */
-    float darken;            /* brightness fully wet fur loses, [0,1), default 0.35 */
-    /* Natural clumps (Bruderlin's clump size; docs/wetness.md): inside wet
-       areas clumps have this size, in world units, from cells fixed on the
-       surface, so a big droplet makes many small tufts and overlapping
-       droplets keep the same clumps. 0 (default) = one clump per droplet,
-       as Silva et al.'s Alg. 1. */
-    float clump_size;
+    float darken;            /* brightness fully wet fur loses, [0,1), default 0.5 */
+    float strays;            /* share of hairs that stays out of the tufts,
+                                [0, 1], default 0.1 */
+    /* How wet fur splits into clumps (docs/wetness.md, Natural clumps):
+       PELT_CLUMPS_NATURAL (default), tufts of varied size from cells fixed
+       on the surface (Bruderlin's clump size), so a big droplet makes many
+       tufts and overlapping droplets keep the same ones; or
+       PELT_CLUMPS_DROPLET, one clump per droplet as Silva et al.'s Alg. 1. */
+    pelt_wet_clumps clumps;
+    float clump_size;        /* natural clumps' mean width in world units,
+                                default as long as the fur, kept between 20
+                                and 100 hairs a tuft */
     /* Wet fur shines (Silva §4 points to Gupta and Magnenat-Thalmann 2007:
        water on a hair makes its surface a smooth film): the Kajiya-Kay
        highlight grows sharper and stronger with the wetness rho, the

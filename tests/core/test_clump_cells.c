@@ -48,9 +48,11 @@ static size_t distinct_clumps(const pelt_fur *fur)
     return distinct;
 }
 
+/* Fur with natural clumps of clump_size; 0: one clump per droplet. */
 static pelt_fur *wet_fur(const pelt_mesh *m, float clump_size)
 {
-    pelt_fur_desc d = {.layers = 4, .look.texture_size = 64, .wet.clump_size = clump_size};
+    pelt_fur_desc d = {.layers = 4, .look.texture_size = 64, .wet.clump_size = clump_size,
+                       .wet.clumps = clump_size > 0.0f ? PELT_CLUMPS_NATURAL : PELT_CLUMPS_DROPLET};
     pelt_fur *fur = NULL;
     pelt_error err = {0};
     if (pelt_fur_create(m, &d, &fur, &err) != PELT_OK) fprintf(stderr, "  %s\n", err.message);
@@ -92,6 +94,82 @@ static void clump_count_grows_with_area_over_clump_size_squared(void)
     size_t five = fur ? distinct_clumps(fur) : 0;
     printf("  clump size 0: five droplets apart, %zu clumps\n", five);
     CHECK(five == 5);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(sq);
+}
+
+static double coefficient_of_variation(const double *x, size_t n)
+{
+    double mean = 0.0, var = 0.0;
+    for (size_t i = 0; i < n; i++) mean += x[i];
+    mean /= (double)n;
+    for (size_t i = 0; i < n; i++) var += (x[i] - mean) * (x[i] - mean);
+    return sqrt(var / (double)n) / mean;
+}
+
+/* Natural clumps by default, and not a lattice (docs/wetness.md, Natural
+ * clumps): on a soaked square the tufts' sizes (their wet texels) vary
+ * with a coefficient of variation of at least 0.3, and the distances from
+ * each tuft's centre to its nearest neighbour vary by at least 0.15 of
+ * their mean (0 on a lattice, about 0.5 for independent random points). */
+static void tufts_vary_in_size_and_are_not_a_lattice(void)
+{
+    pelt_mesh *sq = NULL;
+    CHECK(pelt_mesh_square(2.0f, 16, &sq, NULL) == PELT_OK);
+    if (!sq) return;
+    pelt_fur_desc d = {.layers = 4, .look.texture_size = 64, .wet.clump_size = 0.12f};
+    pelt_fur *fur = NULL;
+    CHECK(pelt_fur_create(sq, &d, &fur, NULL) == PELT_OK);
+    if (!fur) return;
+    const pelt_droplet all = {{0.5f, 0.5f}, 0.75f, 1.0f};
+    CHECK(pelt_fur_add_droplet(fur, &all, NULL) == PELT_OK);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    size_t texels = (size_t)fs.mask_width * fs.mask_height, n = 0;
+    float *c = malloc(texels * 2 * sizeof *c);
+    double *size = calloc(texels, sizeof *size), *nearest = calloc(texels, sizeof *nearest);
+    float *centre = malloc(texels * 2 * sizeof *centre);
+    if (!c || !size || !nearest || !centre) goto out;
+    for (size_t i = 0; i < texels; i++)
+        if (fs.mask[4 * i + 3] > 0.0f) {
+            c[2 * n] = roundf(fs.mask[4 * i] / SAME_CENTRE) * SAME_CENTRE;
+            c[2 * n + 1] = roundf(fs.mask[4 * i + 1] / SAME_CENTRE) * SAME_CENTRE;
+            n++;
+        }
+    qsort(c, n, 2 * sizeof *c, cmp_centre);
+    size_t clumps = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (i == 0 || c[2 * i] != c[2 * i - 2] || c[2 * i + 1] != c[2 * i - 1]) {
+            centre[2 * clumps] = c[2 * i], centre[2 * clumps + 1] = c[2 * i + 1];
+            clumps++;
+        }
+        size[clumps - 1] += 1.0;
+    }
+    /* Tufts whose cell the square's edge cuts are smaller for that: only
+     * those whose centre lies 1.5 sizes from every edge count. */
+    size_t inner = 0;
+    const float margin = 1.5f * 0.12f / 2.0f;
+    for (size_t k = 0; k < clumps; k++) {
+        float x = centre[2 * k], y = centre[2 * k + 1];
+        if (x < margin || y < margin || x > 1.0f - margin || y > 1.0f - margin) continue;
+        double best = INFINITY;
+        for (size_t j = 0; j < clumps; j++)
+            if (j != k) best = fmin(best, hypot(centre[2 * j] - x, centre[2 * j + 1] - y));
+        size[inner] = size[k];
+        nearest[inner] = best;
+        inner++;
+    }
+    double cv_size = coefficient_of_variation(size, inner), cv_nearest = coefficient_of_variation(nearest, inner);
+    printf("  %zu tufts (%zu inside): size cv %.2f, nearest-neighbour distance cv %.2f\n", clumps, inner, cv_size,
+           cv_nearest);
+    CHECK(inner > 100);
+    CHECK(cv_size >= 0.3);
+    CHECK(cv_nearest >= 0.15);
+out:
+    free(c);
+    free(size);
+    free(nearest);
+    free(centre);
     pelt_fur_destroy(fur);
     pelt_mesh_destroy(sq);
 }
@@ -197,6 +275,7 @@ static void a_second_droplet_keeps_the_first_ones_clumps(void)
 int main(void)
 {
     RUN(clump_count_grows_with_area_over_clump_size_squared);
+    RUN(tufts_vary_in_size_and_are_not_a_lattice);
     RUN(overlapping_droplets_keep_whole_clumps_across_the_seam);
     RUN(a_second_droplet_keeps_the_first_ones_clumps);
     return check_summary();

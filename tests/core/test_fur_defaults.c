@@ -192,8 +192,11 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK(d.wet.mask_size == 256);
     CHECK_REL(d.wet.clump_blend, 0.5f);
     CHECK_REL(d.wet.clump_tightness, 0.9f);
-    CHECK_REL(d.wet.darken, 0.35f);
-    CHECK(d.wet.clump_size == 0.0f);
+    CHECK_REL(d.wet.darken, 0.5f);
+    CHECK(d.wet.clumps == PELT_CLUMPS_NATURAL);
+    /* Tufts as wide as the fur is long, kept between 20 and 100 hairs. */
+    float hairs = d.look.density * d.look.tiling * d.look.tiling;
+    CHECK_REL(d.wet.clump_size, fminf(fmaxf(d.length, sqrtf(20.0f / hairs)), sqrtf(100.0f / hairs)));
     CHECK_REL(d.wet.gloss, 2.0f);
     CHECK_REL(d.wet.gloss_sharpness, 4.0f);
 

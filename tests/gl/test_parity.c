@@ -111,6 +111,35 @@ static void wet_shine_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+static const char wet_color_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, t, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
+    "  o = vec4(wet_color(abs(t) * (0.2 + 1.5 * s), 1.4 * h - 0.2, 0.9 * fract(3.0 * s)), 0.0);\n"
+    "}\n";
+
+/* Wet hair's colour: darker and more saturated, in GLSL as in C. */
+static void wet_color_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_shading, inputs_glsl, wet_color_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, t, tip;
+            float h, s;
+            cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
+            float f3 = 3.0f * s - floorf(3.0f * s);
+            pelt_vec3 c = v3_scale(v3(fabsf(t.x), fabsf(t.y), fabsf(t.z)), 0.2f + 1.5f * s);
+            pelt_vec3 w = pelt__wet_color(c, 1.4f * h - 0.2f, 0.9f * f3);
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fmax(fabs(g[0] - w.x), fmax(fabs(g[1] - w.y), fabs(g[2] - w.z))));
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-4);
+}
+
 /* u_which comes in as a #define placed before this text. */
 static const char shape_main[] =
     "out vec4 o;\n"
@@ -617,6 +646,7 @@ int main(void)
     if (!gl) return check_skip("no OpenGL context");
     RUN(kajiya_kay_glsl_matches_c);
     RUN(wet_shine_glsl_matches_c);
+    RUN(wet_color_glsl_matches_c);
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);

@@ -278,7 +278,7 @@ static void wet_clumps_show_skin_and_leave_dry_fur_alone(void)
 {
     /* Looking along -Z at the square, u along x. */
     const pelt_camera cam = {0.0f, 35.0f, 2.6f, 45.0f, {0, 0, 0}};
-    pelt_fur_desc d = {.wet.darken = 1e-6f};
+    pelt_fur_desc d = {.wet.darken = 1e-6f, .wet.clumps = PELT_CLUMPS_DROPLET};
     uint8_t *dry = gl_test_render(gl, square, &d, &cam, NULL, NULL, NULL);
     uint8_t *wet = gl_test_render(gl, square, &d, &cam, NULL, wet_left_half, NULL);
     CHECK(dry && wet);
@@ -364,7 +364,8 @@ static double covered_radius90(const uint8_t *px)
 static void clumps_grow_thinner_toward_the_tips(void)
 {
     const pelt_camera top = {0.0f, 89.0f, 2.4f, 50.0f, {0, 0, 0}};
-    pelt_fur_desc d = {.layers = 16, .wet.clump_tightness = 1.0f, .wet.darken = 1e-6f};
+    pelt_fur_desc d = {.layers = 16, .wet.clump_tightness = 1.0f, .wet.darken = 1e-6f,
+                       .wet.clumps = PELT_CLUMPS_DROPLET, .wet.strays = 1e-6f};
     const unsigned layers[] = {1, 4, 7, 10};
     double dry_r[4], wet_r[4];
     for (int k = 0; k < 4; k++) {
@@ -494,10 +495,15 @@ static void soaked_square_makes_tufts_by_clump_size(void)
     const float sizes[] = {0.0f, 0.5f, 0.25f};
     size_t tufts[3];
     for (int k = 0; k < 3; k++) {
-        pelt_fur_desc d = {.length = 0.12f, .wet = {.clump_tightness = 1.0f, .clump_size = sizes[k]}};
+        pelt_fur_desc d = {.layers = 16, .length = 0.12f,
+                           .wet = {.clump_tightness = 1.0f, .clump_size = sizes[k], .strays = 1e-6f,
+                                   .clumps = sizes[k] > 0.0f ? PELT_CLUMPS_NATURAL : PELT_CLUMPS_DROPLET}};
         uint8_t *px = gl_test_render(gl, square, &d, &top, &tips, soak_square, NULL);
         CHECK(px != NULL);
         tufts[k] = px ? count_blobs(px, 3) : 0;
+        char path[1024];
+        snprintf(path, sizeof path, "%s/tufts_%d.png", PELT_TEST_OUT, k);
+        if (px) stbi_write_png(path, W, H, 4, px, W * 4);
         printf("  clump size %.2f: %zu tufts (area / size^2 = %.0f)\n", (double)sizes[k], tufts[k],
                sizes[k] > 0.0f ? 4.0 / ((double)sizes[k] * sizes[k]) : 1.0);
         free(px);
