@@ -311,21 +311,28 @@ img_papers() {
   pelt render --mesh $M/bunny00.off --size 480x360 --set fur.preset=many-small-curls --set fur.length=0.06 \
     -o papers_fig1b.png
   pelt render --mesh $M/cow.off --size 480x360 -o papers_fig1c.png
-  pelt render --mesh $M/cow.off --size 480x360 $W --set wetness.clump_size=0.02 -o papers_fig1d.png
-  pelt render --mesh $M/bunny00.off --size 480x360 $W --set wetness.clump_size=0.025 \
-    -o papers_fig11b.png --mask-out papers_fig11b_mask.png
-  pelt render --mesh $M/bunny00.off --size 480x360 $W -o papers_fig11b_alg1.png
+  pelt render --mesh $M/cow.off --size 480x360 $W -o papers_fig1d.png
+  # Fig. 11: a partly wet bunny, dry and wet fur side by side, and its mask.
+  P="--drops 60 --set wetness.drops.radius=[0.03,0.06]"
+  pelt render --mesh $M/bunny00.off --size 480x360 $P -o papers_fig11b.png --mask-out papers_fig11b_mask.png
+  pelt render --mesh $M/bunny00.off --size 480x360 $P --set wetness.clumps=droplet -o papers_fig11b_alg1.png
   L="--mesh $M/lion-head.off --size 480x360 --yaw 30 --pitch 12 --distance 2.1 --set fur.length=0.02"
   pelt render $L -o papers_fig12a.png
-  pelt render $L --drops 300 --set wetness.drops.radius=[0.015,0.03] --set wetness.clump_size=0.015 \
-    -o papers_fig12b.png
-  pelt render --mesh $M/bunny00.off --size 480x360 --yaw 30 --pitch 25 --distance 0.55 \
-    --set camera.target=[0.05,0.05,0.1] --set fur.layers=32 $W --set wetness.clump_size=0.025 -o papers_fig13.png
+  pelt render $L --drops 300 --set wetness.drops.radius=[0.015,0.03] -o papers_fig12b.png
+  C13="--mesh $M/bunny00.off --size 480x360 --yaw 30 --pitch 25 --distance 0.55
+       --set camera.target=[0.05,0.05,0.1] --set fur.layers=32"
+  pelt render $C13 $W -o papers_fig13.png
+  # The wet figures beside the strand reference: shells | strands | difference.
+  pelt compare --mesh $M/cow.off --size 480x360 $W -q -o papers_fig1d_compare.png > papers_fig1d_compare.txt
+  pelt compare --mesh $M/bunny00.off --size 480x360 $P -q -o papers_fig11b_compare.png > papers_fig11b_compare.txt
+  pelt compare $L --drops 300 --set wetness.drops.radius=[0.015,0.03] -q -o papers_fig12b_compare.png \
+    > papers_fig12b_compare.txt
+  pelt compare $C13 $W -q -o papers_fig13_compare.png > papers_fig13_compare.txt
   B="--mesh $M/bear.off --size 480x360 --set fur.strand_curl=6 --set fur.strand_curl_turns=3 --set fur.layers=32"
   pelt render $B -o papers_lengyel_fig5.png
   pelt render $B --yaw 30 --pitch 20 --distance 1.0 --set camera.target=[0,0.3,0.2] -o papers_lengyel_fig5_closeup.png
   for F in fig1a fig1b fig1c fig1d fig11b fig11b_mask fig11b_alg1 fig12a fig12b fig13 lengyel_fig5 \
-           lengyel_fig5_closeup; do
+           lengyel_fig5_closeup fig1d_compare fig11b_compare fig12b_compare fig13_compare; do
     collect papers_$F.png papers_$F.png
   done
 }

@@ -36,6 +36,25 @@ float pelt__clump_tuft_profile(float h, float w, float n_layers)
     return pelt__clump_profile(first + (1.0f - first) * t, w, n_layers);
 }
 
+float pelt__clump_tuft_slope(float h, float w, float n_layers)
+{
+    float half_step = 0.5f / fmaxf(n_layers, 1.0f);
+    return (pelt__clump_tuft_profile(h + half_step, w, n_layers) - pelt__clump_tuft_profile(h - half_step, w, n_layers)) /
+           (2.0f * half_step);
+}
+
+void pelt__tuft_tangent(const float t[3], const float du[3], const float dv[3], const float to_centre[2],
+                        float slope, float out[3])
+{
+    float d[3], len2 = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        d[k] = t[k] + (du[k] * to_centre[0] + dv[k] * to_centre[1]) * slope;
+        len2 += d[k] * d[k];
+    }
+    float inv = len2 > 1e-30f ? 1.0f / sqrtf(len2) : 0.0f;
+    for (int k = 0; k < 3; k++) out[k] = inv > 0.0f ? d[k] * inv : t[k];
+}
+
 bool pelt__clump_stray(float id, float share)
 {
     /* A multiple of the id, so the strays are not the hairs that a thinned

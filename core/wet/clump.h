@@ -44,6 +44,18 @@ float pelt__clump_profile(float h, float w, float n_layers);
  * 0 up to the base, 1 at the tip, rising as Eq. 5 between. */
 float pelt__clump_tuft_profile(float h, float w, float n_layers);
 
+/* How fast the tuft's profile rises at h per unit of height: its change
+ * over one layer spacing 1/N centred on h, times N. */
+float pelt__clump_tuft_slope(float h, float w, float n_layers);
+
+/* The unit tangent of a hair in a tuft (docs/wetness.md, Tuft light): the
+ * hair's own unit tangent t plus du to_centre[0] + dv to_centre[1] times
+ * slope, where to_centre = c - q in mask uv, du and dv are the world
+ * vectors of one mask-uv unit divided by the hair's length, and slope is
+ * d(pull)/dh = s rho pelt__clump_tuft_slope. t where the sum vanishes. */
+void pelt__tuft_tangent(const float t[3], const float du[3], const float dv[3], const float to_centre[2],
+                        float slope, float out[3]);
+
 /* Strays (docs/wetness.md, Tufts): a share of the hairs, picked by the
  * strand's id in [0, 1] (the fur texture's blue channel), stays out of
  * the tufts and stands where it grew: fract(7.31 id) < share. */

@@ -44,6 +44,25 @@ float clump_tuft_profile(float h, float w, float N)
     return clump_profile(first + (1.0 - first) * t, w, N);
 }
 
+// How fast the tuft's profile rises at h, per unit of height: its change
+// over one layer spacing, centred on h. Mirrors pelt__clump_tuft_slope.
+float clump_tuft_slope(float h, float w, float N)
+{
+    float half_step = 0.5 / max(N, 1.0);
+    return (clump_tuft_profile(h + half_step, w, N) - clump_tuft_profile(h - half_step, w, N)) / (2.0 * half_step);
+}
+
+// The tangent of a hair in a tuft (docs/wetness.md, Tuft light): its own
+// unit tangent t plus the tuft's pull along the height, the way to the
+// clump centre (mask uv) times d(pull)/dh, carried to world units per unit
+// of the hair's length by du and dv. Mirrors pelt__tuft_tangent.
+vec3 tuft_tangent(vec3 t, vec3 du, vec3 dv, vec2 to_centre, float slope)
+{
+    vec3 d = t + (du * to_centre.x + dv * to_centre.y) * slope;
+    float len2 = dot(d, d);
+    return len2 > 1e-30 ? d * inversesqrt(len2) : t;
+}
+
 // Strays: a share of the hairs, picked by the strand's id (the fur
 // texture's blue channel), stays out of the tufts. Mirrors pelt__clump_stray.
 bool clump_stray(float id, float share)

@@ -17,16 +17,14 @@ float fur_wetness = 0.0;
 // and maps the result to the picture: display_color). docs/lod.md says
 // what that costs in the picture. The stages fold mul into the root and
 // tip colours they pass on: fewer varyings to interpolate.
-void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mul, out float spec)
+// The direct light's reach at a hair with surface normal N (unit) at
+// world: (facing, seen, gamma): hair on the side of the body facing away
+// from the light is in the body's shadow (the hair models alone would
+// light it as brightly), the light's shadow maps darken it, and gamma(h)
+// (Silva Eq. 6) darkens the lower fur.
+vec3 fur_reach(vec3 N, vec3 world, float h)
 {
-    vec3 T = normalize(tangent);
-    vec3 N = normalize(normal);
-    vec3 L = normalize(u_light_dir);
-    vec3 E = normalize(world - u_eye);
-    vec2 shine = wet_shine(fur_wetness, u_shininess, u_wet_sharpness, u_wet_gloss);
-    // Hair on the side of the body facing away from the light is in the
-    // body's shadow: the hair models alone would light it as brightly.
-    float nl = dot(N, L), seen = 1.0;
+    float nl = dot(N, normalize(u_light_dir)), seen = 1.0;
     float gamma = shadow_factor(u_shadow, h);
 #ifdef PELT_SHADOW_MAP
     // The light's shadow maps (shadow_map.glsl) darken the direct light;
@@ -34,7 +32,18 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
     seen = shadow_light(world, u_shadow_slab.z, 1);
     if (u_shadow_map.x > 0.5) gamma = mix(1.0, gamma, u_shadow_slab.w);
 #endif
-    float facing = clamp(nl * 0.8 + 0.35, 0.0, 1.0) * seen;
+    return vec3(clamp(nl * 0.8 + 0.35, 0.0, 1.0) * seen, seen, gamma);
+}
+
+void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mul, out float spec)
+{
+    vec3 T = normalize(tangent);
+    vec3 N = normalize(normal);
+    vec3 L = normalize(u_light_dir);
+    vec3 E = normalize(world - u_eye);
+    vec2 shine = wet_shine(fur_wetness, u_shininess, u_wet_sharpness, u_wet_gloss);
+    vec3 reach = fur_reach(N, world, h);
+    float nl = dot(N, L), facing = reach.x, seen = reach.y, gamma = reach.z;
     // A program may be built for one model (the passes' variants,
     // gl/shell_pass.c: Kajiya-Kay, the table, or neither define for
     // Scheuermann-Marschner); else the fur's model is chosen at run time.

@@ -12,6 +12,14 @@ flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
 in float v_alpha;
 in float v_view;
+#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+in vec3 v_hair_t;   // a tuft's own light (shell_vs.glsl)
+in vec3 v_tuft_u;
+in vec3 v_tuft_v;
+in vec3 v_world;
+in vec2 v_light;
+flat in float v_clump_slope;
+#endif
 
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
@@ -51,6 +59,32 @@ vec4 wet_hair(vec2 fur_uv, float rho)
     return shell_hair(fur_uv, 0.0);
 #endif
 }
+
+#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+// A tuft's own light (docs/wetness.md, Tuft light): Kajiya-Kay along the
+// tangent of the tufted hair rather than the free hair's. The vertex stage
+// lit the free hair; the diffuse is scaled by the ratio of the two and the
+// highlight is the tuft's. Other hair models keep the free hair's light.
+void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
+{
+#if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
+    return;
+#elif !defined(PELT_SHADING_KK)
+    return;
+#else
+#ifdef PELT_SHADING_TABLE
+    if (u_shading_model > 0.5) return;
+#endif
+    vec3 T = tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, to_centre, u_clump_tightness * rho * v_clump_slope);
+    vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
+    vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
+    vec2 tuft = kajiya_kay(T, L, E, shine.x), free_hair = kajiya_kay(normalize(v_hair_t), L, E, shine.x);
+    vec3 lit_free = u_ambient + free_hair.x * v_light.x * u_light_color;
+    base *= (u_ambient + tuft.x * v_light.x * u_light_color) / max(lit_free, vec3(1e-4));
+    spec = v_light.y * shine.y * tuft.y * v_light.x;
+#endif
+}
+#endif
 
 // The shell pass builds this shader in variants (gl/shell_pass.c): each
 // PELT_* feature below is compiled in only when the frame needs it, so the
@@ -133,6 +167,10 @@ void main()
     base *= texture(u_color_tex, (v_uv + d) * u_color_scale).rgb;
 #endif
     base = wet_color(base, rho, u_wet_darken); // darker, more saturated
-    o_color = vec4(display_color(base + v_spec * (u_specular * u_light_color), u_exposure, u_tone), hair.a);
+    float spec = v_spec;
+#ifdef PELT_WET
+    if (clump == CLUMP_DISPLACED) tuft_light(t.xy - q, rho, base, spec);
+#endif
+    o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), hair.a);
 #endif
 }

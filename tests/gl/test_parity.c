@@ -116,13 +116,16 @@ static const char wet_color_main[] =
     "void main() {\n"
     "  vec3 n, t, tip; float h, s;\n"
     "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
-    "  o = vec4(wet_color(abs(t) * (0.2 + 1.5 * s), 1.4 * h - 0.2, 0.9 * fract(3.0 * s)), 0.0);\n"
+    "  o = vec4(wet_color(abs(t) * (0.2 + 1.5 * s), 1.4 * h - 0.2, 0.9 * fract(3.0 * s)),\n"
+    "           clump_stray(floor(h * 255.0) / 255.0, 0.3 * s) ? 1.0 : 0.0);\n"
     "}\n";
 
-/* Wet hair's colour: darker and more saturated, in GLSL as in C. */
+/* Wet hair's colour: darker and more saturated, in GLSL as in C; and the
+ * strays, on the ids an 8-bit texture holds. */
 static void wet_color_glsl_matches_c(void)
 {
-    const char *fs[] = {pelt__shader_shading, inputs_glsl, wet_color_main, NULL};
+    const char *fs[] = {pelt__shader_shading, pelt__shader_clump, inputs_glsl, wet_color_main, NULL};
+    int strays = 0, stray_mismatch = 0;
     CHECK(gl_test_eval(gl, fs, W, H, out));
     double worst = 0.0;
     for (int y = 0; y < H; y++)
@@ -135,8 +138,12 @@ static void wet_color_glsl_matches_c(void)
             pelt_vec3 w = pelt__wet_color(c, 1.4f * h - 0.2f, 0.9f * f3);
             const float *g = out + 4 * (y * W + x);
             worst = fmax(worst, fmax(fabs(g[0] - w.x), fmax(fabs(g[1] - w.y), fabs(g[2] - w.z))));
+            bool stray = pelt__clump_stray(floorf(h * 255.0f) / 255.0f, 0.3f * s);
+            strays += stray;
+            stray_mismatch += stray != (g[3] > 0.5f);
         }
-    printf("  worst |GLSL - C| = %.3g\n", worst);
+    printf("  worst |GLSL - C| = %.3g; %d strays, %d differ\n", worst, strays, stray_mismatch);
+    CHECK(strays > 0 && stray_mismatch == 0);
     CHECK(worst < 2e-4);
 }
 
@@ -203,7 +210,7 @@ static const char clump_main[] =
     "  float w = mod(c.y, 3.0) * 0.5;\n"
     "  vec2 q = p;\n"
     "  int r = clump_lookup(u_mask, p, h, w, 16.0, 0.9, q);\n"
-    "  o = vec4(float(r), q, clump_profile(h, w, 16.0));\n"
+    "  o = vec4(float(r), q, clump_tuft_profile(h, w, 16.0));\n"
     "}\n";
 
 /* Silva Eq. 5 and Alg. 2 in the shell fragment shader vs core/wet/clump.c, on
@@ -241,7 +248,7 @@ static void clump_glsl_matches_c(void)
                 worst = fmax(worst, fmax(fabs(g[1] - q[0]), fabs(g[2] - q[1])));
             }
             if (r == PELT__CLUMP_DISCARD) discarded++;
-            worst = fmax(worst, fabs(g[3] - pelt__clump_profile(h, w, 16.0f)));
+            worst = fmax(worst, fabs(g[3] - pelt__clump_tuft_profile(h, w, 16.0f)));
         }
     printf("  %d displaced, %d discarded, %d results differ, worst |GLSL - C| = %.3g\n", displaced,
            discarded, mismatched, worst);
@@ -250,6 +257,42 @@ static void clump_glsl_matches_c(void)
     CHECK(worst < 2e-4);
     glDeleteTextures(1, &tex);
     pelt__wetness_destroy(m);
+}
+
+static const char tuft_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, t, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
+    "  float slope = clump_tuft_slope(h, s, 16.0);\n"
+    "  vec3 T = tuft_tangent(t, 3.0 * n, 2.0 * tip, vec2(s - 0.5, 0.3 - h), 0.9 * slope);\n"
+    "  o = vec4(T, slope);\n"
+    "}\n";
+
+/* A tuft's own tangent and the slope of its profile, in GLSL as in C. */
+static void tuft_tangent_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_clump, inputs_glsl, tuft_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int bent = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, t, tip;
+            float h, s;
+            cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
+            float slope = pelt__clump_tuft_slope(h, s, 16.0f);
+            float tv[3] = {t.x, t.y, t.z}, du[3] = {3.0f * n.x, 3.0f * n.y, 3.0f * n.z};
+            float dv[3] = {2.0f * tip.x, 2.0f * tip.y, 2.0f * tip.z}, to[2] = {s - 0.5f, 0.3f - h}, T[3];
+            pelt__tuft_tangent(tv, du, dv, to, 0.9f * slope, T);
+            const float *g = out + 4 * (y * W + x);
+            for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(g[k] - T[k]));
+            worst = fmax(worst, fabs(g[3] - slope) / fmax(1.0, slope));
+            bent += T[0] * t.x + T[1] * t.y + T[2] * t.z < 0.99f;
+        }
+    printf("  %d of %d tangents bent towards their tuft; worst |GLSL - C| = %.3g\n", bent, W * H, worst);
+    CHECK(bent > W * H / 4);
+    CHECK(worst < 2e-4);
 }
 
 static const char ringlet_main[] =
@@ -647,6 +690,7 @@ int main(void)
     RUN(kajiya_kay_glsl_matches_c);
     RUN(wet_shine_glsl_matches_c);
     RUN(wet_color_glsl_matches_c);
+    RUN(tuft_tangent_glsl_matches_c);
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);

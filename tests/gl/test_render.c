@@ -513,6 +513,115 @@ static void soaked_square_makes_tufts_by_clump_size(void)
     CHECK(tufts[2] >= 3 * tufts[1]);
 }
 
+/* Soaked, then dried for *user seconds at 0.25 a second, no forces but
+ * the drying (no gravity: every state's strands stand alike). */
+static void soak_then_dry(pelt_fur *fur, void *user)
+{
+    soak_square(fur, NULL);
+    pelt_forces calm = pelt_forces_default();
+    calm.gravity[1] = 0.0f;
+    pelt_fur_set_dry_rate(fur, 0.25f);
+    for (float t = *(const float *)user; t > 0.0f; t -= 0.5f) pelt_fur_step(fur, fminf(t, 0.5f), &calm);
+}
+
+/* Coverage of one layer band of the square seen from above (no skin, no
+ * fins), as a share of the pixels; `blobs` gets its separate pieces. */
+static double band_coverage(const pelt_fur_desc *d, unsigned first, unsigned count, float dried_for, size_t *blobs)
+{
+    const pelt_camera top = {0.0f, 89.0f, 2.4f, 50.0f, {0, 0, 0}};
+    pelt_draw_desc band = {.no_skin = true, .no_fins = true, .first_layer = first, .layer_count = count};
+    uint8_t *px = dried_for < 0.0f ? gl_test_render(gl, square, d, &top, &band, NULL, NULL)
+                                   : gl_test_render(gl, square, d, &top, &band, soak_then_dry, &dried_for);
+    CHECK(px != NULL);
+    if (!px) return 0.0;
+    double c = (double)gl_test_coverage(px, (size_t)W * H) / (double)(W * H);
+    if (blobs) *blobs = count_blobs(px, 3);
+    free(px);
+    return c;
+}
+
+/* Tufts, not dishes (docs/wetness.md, Tufts): the soaked square seen from
+ * above, one layer at a time (wet darkening off, so that coverage counts
+ * hair, not its colour). Low down the hair stays where it grew: each of the
+ * lowest quarter of the layers covers at least 0.9 of what the same dry
+ * layer covers (Eq. 5 read from the root left the rim of every clump bald
+ * there). Towards the tips the tufts gather: layer 13 of 16 (the dry
+ * fur's last with solid hair; the tips above taper out) covers less than
+ * 0.8 of the dry one's (the tufts' hair is denser but the gaps between
+ * them are bare), in at least 10 separate tufts. */
+static void tufts_keep_their_roots_and_gather_at_the_tips(void)
+{
+    pelt_fur_desc d = {.layers = 16, .length = 0.12f, .wet = {.clump_size = 0.4f, .darken = 1e-6f}};
+    double worst_low = INFINITY;
+    for (unsigned n = 0; n < 4; n++) {
+        double dry = band_coverage(&d, n, 1, -1.0f, NULL), wet = band_coverage(&d, n, 1, 0.0f, NULL);
+        printf("  layer %u of 16: coverage dry %.3f, soaked %.3f\n", n + 1, dry, wet);
+        worst_low = fmin(worst_low, wet / fmax(dry, 1e-9));
+    }
+    size_t tufts = 0;
+    double dry_top = band_coverage(&d, 12, 1, -1.0f, NULL), wet_top = band_coverage(&d, 12, 1, 0.0f, &tufts);
+    printf("  lowest quarter: soaked / dry at least %.3f; layer 13 of 16: dry %.3f, soaked %.3f in %zu tufts\n",
+           worst_low, dry_top, wet_top, tufts);
+    CHECK(worst_low >= 0.9);
+    CHECK(wet_top < 0.8 * dry_top);
+    CHECK(tufts >= 10);
+}
+
+/* Drying loosens the tufts (docs/wetness.md): the soaked square drying at
+ * 0.25 a second, seen from above with wet darkening and shine off, so that
+ * only the tufts' shape tells it from dry fur. At every step of a second
+ * the picture is nearer the dry fur's (mean difference falling), and dry,
+ * it is the dry fur's. */
+static void drying_loosens_the_tufts_step_by_step(void)
+{
+    const pelt_camera top = {0.0f, 60.0f, 2.4f, 50.0f, {0, 0, 0}};
+    pelt_fur_desc d = {.layers = 16, .length = 0.12f,
+                       .wet = {.clump_size = 0.4f, .darken = 1e-6f, .gloss = 1.0f, .gloss_sharpness = 1.0f}};
+    uint8_t *dry = gl_test_render(gl, square, &d, &top, NULL, NULL, NULL);
+    CHECK(dry != NULL);
+    double prev = INFINITY;
+    bool falling = true;
+    for (int k = 0; dry && k <= 4; k++) {
+        float t = (float)k;
+        uint8_t *px = gl_test_render(gl, square, &d, &top, NULL, soak_then_dry, &t);
+        CHECK(px != NULL);
+        double diff = px ? mean_diff_in(dry, px, 0, W) : INFINITY;
+        printf("  dried for %d s (wetness %.2f): mean difference from dry fur %.3f\n", k, 1.0 - 0.25 * k, diff);
+        falling = falling && diff < prev;
+        prev = diff;
+        free(px);
+    }
+    CHECK(falling);
+    CHECK(prev < 0.1);
+    free(dry);
+}
+
+/* The tufts shine (docs/wetness.md, Tuft light): the combed square, evenly
+ * wet and clumped, seen near the mirror cone of the light; the tufts held
+ * to one shape (tightness s = 0.45 / rho keeps the pull s rho) and wet
+ * darkening off, so that only the water's shine changes: the brightest
+ * 0.2% of the picture, the tufts' highlights, rises with the wetness. */
+static void tuft_highlight_rises_with_wetness(void)
+{
+    const pelt_camera cam = {-90.0f, 25.0f, 2.6f, 45.0f, {0, 0, 0}};
+    const float wetness[] = {0.5f, 0.75f, 1.0f};
+    double peak[3];
+    for (int k = 0; k < 3; k++) {
+        float rho = wetness[k];
+        pelt_fur_desc d = {.look.specular = {0.3f, 0.3f, 0.3f}, .comb.slant = 60.0f,
+                           .wet = {.clump_size = 0.3f, .clump_tightness = 0.45f / rho, .darken = 1e-6f}};
+        pelt_draw_desc shells = {.no_fins = true};
+        uint8_t *px = gl_test_render(gl, square, &d, &cam, &shells, wet_all_over, &rho);
+        CHECK(px != NULL);
+        peak[k] = px ? luma_percentile(px, 0, W, 0.998) : 0.0;
+        printf("  wetness %.2f, clumped: highlight peak %.1f\n", (double)rho, peak[k]);
+        free(px);
+    }
+    /* Smaller steps than the open fur's above: the tufts' tangents spread
+     * the highlight over many directions. */
+    CHECK(peak[1] > peak[0] + 1.0 && peak[2] > peak[1] + 1.0);
+}
+
 /* Counts what the renderer's allocator hooks see. */
 typedef struct counting_allocator {
     size_t allocs, frees;
@@ -899,6 +1008,9 @@ int main(void)
         RUN(wet_fur_highlight_peak_rises_with_wetness);
         RUN(soaked_ringlets_render_as_straight_fur);
         RUN(soaked_square_makes_tufts_by_clump_size);
+        RUN(tufts_keep_their_roots_and_gather_at_the_tips);
+        RUN(drying_loosens_the_tufts_step_by_step);
+        RUN(tuft_highlight_rises_with_wetness);
         RUN(renderer_allocates_through_its_hooks);
         RUN(program_errors_reach_the_logger);
         RUN(uniform_blocks_match_their_c_structs);
