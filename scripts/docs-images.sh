@@ -323,11 +323,10 @@ img_papers() {
        --set camera.target=[0.05,0.05,0.1] --set fur.layers=32"
   pelt render $C13 $W -o papers_fig13.png
   # The wet figures beside the strand reference: shells | strands | difference.
-  pelt compare --mesh $M/cow.off --size 480x360 $W -q -o papers_fig1d_compare.png > papers_fig1d_compare.txt
-  pelt compare --mesh $M/bunny00.off --size 480x360 $P -q -o papers_fig11b_compare.png > papers_fig11b_compare.txt
-  pelt compare $L --drops 300 --set wetness.drops.radius=[0.015,0.03] -q -o papers_fig12b_compare.png \
-    > papers_fig12b_compare.txt
-  pelt compare $C13 $W -q -o papers_fig13_compare.png > papers_fig13_compare.txt
+  pelt compare --mesh $M/cow.off --size 480x360 $W -o papers_fig1d_compare.png
+  pelt compare --mesh $M/bunny00.off --size 480x360 $P -o papers_fig11b_compare.png
+  pelt compare $L --drops 300 --set wetness.drops.radius=[0.015,0.03] -o papers_fig12b_compare.png
+  pelt compare $C13 $W -o papers_fig13_compare.png
   B="--mesh $M/bear.off --size 480x360 --set fur.strand_curl=6 --set fur.strand_curl_turns=3 --set fur.layers=32"
   pelt render $B -o papers_lengyel_fig5.png
   pelt render $B --yaw 30 --pitch 20 --distance 1.0 --set camera.target=[0,0.3,0.2] -o papers_lengyel_fig5_closeup.png
