@@ -46,7 +46,10 @@ ffmpeg -v error -i "$d/rain.mp4" -vf "select=eq(n\,20)" -frames:v 1 "$d/v20.png"
 ffmpeg -v error -i "$d/rain.mp4" -vf "select=eq(n\,0)" -frames:v 1 "$d/v00.png"
 r=$("$png_diff" "$d/rain_20.png" "$d/v20.png" --max-mean 4 --max-frac 0.03 2>&1)
 check video_frame_matches_the_png $? "$r"
-r=$("$png_diff" "$d/v00.png" "$d/v20.png" --max-mean 0.5 --max-frac 0.002 2>&1)
+# Natural tufts change a distant picture less than one crater per drop did:
+# frame 20 is 0.48 off frame 0 (0.19% of pixels by more than 32), frame 1
+# only 0.01 (0.003%), so these bounds sit well between the two.
+r=$("$png_diff" "$d/v00.png" "$d/v20.png" --max-mean 0.2 --max-frac 0.0005 2>&1)
 [ $? -eq 1 ]; check video_frames_move $? "frames 0 and 20 are nearly the same: $r"
 
 # WebM (VP9) pads an odd size to even; GIF keeps it.
