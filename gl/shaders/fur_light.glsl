@@ -35,6 +35,10 @@ vec3 fur_reach(vec3 N, vec3 world, float h)
     return vec3(clamp(nl * 0.8 + 0.35, 0.0, 1.0) * seen, seen, gamma);
 }
 
+// The reach (fur_reach) the last fur_light_terms call lit with, for a
+// stage that lights again per fragment (the shells' tuft light).
+vec3 fur_light_reach = vec3(0.0);
+
 void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mul, out float spec)
 {
     vec3 T = normalize(tangent);
@@ -43,6 +47,7 @@ void fur_light_terms(vec3 tangent, vec3 normal, vec3 world, float h, out vec3 mu
     vec3 E = normalize(world - u_eye);
     vec2 shine = wet_shine(fur_wetness, u_shininess, u_wet_sharpness, u_wet_gloss);
     vec3 reach = fur_reach(N, world, h);
+    fur_light_reach = reach;
     float nl = dot(N, L), facing = reach.x, seen = reach.y, gamma = reach.z;
     // A program may be built for one model (the passes' variants,
     // gl/shell_pass.c: Kajiya-Kay, the table, or neither define for

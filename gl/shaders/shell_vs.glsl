@@ -111,7 +111,7 @@ void main()
     v_tuft_u = mat3(u_model) * u * world_per_uv.x;
     v_tuft_v = mat3(u_model) * v * world_per_uv.y;
     v_world = world.xyz;
-    v_light = fur_reach(normalize(mat3(u_model) * n), world.xyz, h).xz;
+    v_light = fur_light_reach.xz; // the reach the free hair was just lit with
     v_clump_slope = clump_tuft_slope(h, u_clump_blend, u_layers);
 #endif
     v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),
