@@ -91,14 +91,16 @@ void pelt__fin_pass_destroy(pelt__fin_pass *p);
 #define PELT__STRAND_FEATURES (PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE | PELT__SHELL_SHADOW_MAP)
 typedef struct pelt__strands_pass {
     GLuint variants[PELT__STRAND_FEATURES + 1];
+    GLint segments_uniform[PELT__STRAND_FEATURES + 1]; /* u_strand_segments of each */
     bool failed[PELT__STRAND_FEATURES + 1];
     GLuint buffer, texture; /* the hairs (RGBA32F buffer texture, PELT_UNIT_STRANDS) */
     pelt_hooks hooks;
     const pelt_fur *fur;
     void *tile;    /* the tile's strands (pelt__furtex_strand) */
     size_t tile_count;
-    float *hairs;  /* staging, PELT__STRAND_TEXELS * 4 floats a hair */
+    float *hairs;  /* staging, PELT__STRAND_TEXELS(segments) * 4 floats a hair */
     size_t capacity; /* hairs with every strand kept */
+    unsigned segments; /* a hair's pieces the storage has room for */
     bool made, broken;
 } pelt__strands_pass;
 

@@ -14,8 +14,6 @@
 
 #include <string.h>
 
-_Static_assert(PELT__STRAND_SEGMENTS == PELT_STRAND_SEGMENTS && PELT__STRAND_TEXELS == PELT_STRAND_TEXELS,
-               "core/fur/strand_ref.h and bindings.glsl agree on a hair's texels");
 
 static void build(pelt__strands_pass *p, unsigned features)
 {
@@ -29,6 +27,7 @@ static void build(pelt__strands_pass *p, unsigned features)
         return;
     }
     glUniform1i(glGetUniformLocation(p->variants[features], "u_strands"), PELT_UNIT_STRANDS);
+    p->segments_uniform[features] = glGetUniformLocation(p->variants[features], "u_strand_segments");
 }
 
 void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const pelt_hooks *hooks)
@@ -38,24 +37,21 @@ void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const
     p->fur = fur;
 }
 
-/* The tile's strands, room for every hair and the buffer texture: once,
- * on the first frame of strands. */
-static bool make(pelt__strands_pass *p)
+/* Room for every hair of `segments` pieces: staging and the buffer
+ * texture. Made on the first frame of strands and again only when the
+ * curls need more pieces than there is room for. */
+static bool reserve(pelt__strands_pass *p, unsigned segments)
 {
-    p->made = true;
-    p->tile_count = pelt__strand_ref_tile(p->fur, NULL, 0);
-    p->tile = pelt__alloc(&p->hooks.allocator, (p->tile_count ? p->tile_count : 1) * sizeof(pelt__furtex_strand));
-    if (!p->tile) return false;
-    pelt__strand_ref_tile(p->fur, p->tile, p->tile_count);
-    p->capacity = pelt__strand_ref_count(p->fur, p->tile, p->tile_count);
-    size_t bytes = (p->capacity ? p->capacity : 1) * 16 * PELT__STRAND_TEXELS;
+    size_t bytes = (p->capacity ? p->capacity : 1) * 16 * (size_t)PELT__STRAND_TEXELS(segments);
+    pelt__free(&p->hooks.allocator, p->hairs);
     p->hairs = pelt__alloc(&p->hooks.allocator, bytes);
+    p->segments = p->hairs ? segments : 0;
     if (!p->hairs) return false;
-    glGenBuffers(1, &p->buffer);
+    if (!p->buffer) glGenBuffers(1, &p->buffer);
     glBindBuffer(GL_TEXTURE_BUFFER, p->buffer);
     glBufferData(GL_TEXTURE_BUFFER, (GLsizeiptr)bytes, NULL, GL_STREAM_DRAW);
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
-    glGenTextures(1, &p->texture);
+    if (!p->texture) glGenTextures(1, &p->texture);
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_STRANDS);
     glBindTexture(GL_TEXTURE_BUFFER, p->texture);
     glTexBuffer(GL_TEXTURE_BUFFER, GL_RGBA32F, p->buffer);
@@ -63,20 +59,35 @@ static bool make(pelt__strands_pass *p)
     return true;
 }
 
+/* The tile's strands and the hairs' storage: once, on the first frame of
+ * strands. */
+static bool make(pelt__strands_pass *p, unsigned segments)
+{
+    p->made = true;
+    p->tile_count = pelt__strand_ref_tile(p->fur, NULL, 0);
+    p->tile = pelt__alloc(&p->hooks.allocator, (p->tile_count ? p->tile_count : 1) * sizeof(pelt__furtex_strand));
+    if (!p->tile) return false;
+    pelt__strand_ref_tile(p->fur, p->tile, p->tile_count);
+    p->capacity = pelt__strand_ref_count(p->fur, p->tile, p->tile_count);
+    return reserve(p, segments);
+}
+
 void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
 {
-    if (!p->made && !make(p)) {
+    unsigned segments = pelt__strand_ref_segments(p->fur);
+    if (!p->broken && (p->made ? segments > p->segments && !reserve(p, segments) : !make(p, segments))) {
         p->broken = true;
         pelt__log(&p->hooks.logger, PELT_LOG_ERROR, "out of memory for the strand reference's %zu hairs",
                   p->capacity);
     }
     if (p->broken) return;
-    size_t n = pelt__strand_ref_build(p->fur, p->tile, p->tile_count, p->hairs, p->capacity);
+    size_t n = pelt__strand_ref_build(p->fur, p->tile, p->tile_count, segments, p->hairs, p->capacity);
     if (n == 0) return;
+    size_t bytes = n * 16 * (size_t)PELT__STRAND_TEXELS(segments);
     glBindBuffer(GL_TEXTURE_BUFFER, p->buffer);
-    glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)(n * 16 * PELT__STRAND_TEXELS), p->hairs);
+    glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)bytes, p->hairs);
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
-    f->stats->upload_bytes += n * 16 * PELT__STRAND_TEXELS;
+    f->stats->upload_bytes += bytes;
 
     unsigned features = f->shell_features & PELT__STRAND_FEATURES;
     if (!p->variants[features] && !p->failed[features]) build(p, features);
@@ -89,11 +100,12 @@ void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_STRANDS);
     glBindTexture(GL_TEXTURE_BUFFER, p->texture);
     glUseProgram(p->variants[features]);
-    glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 6 * PELT__STRAND_SEGMENTS));
+    glUniform1i(p->segments_uniform[features], (GLint)segments);
+    glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 6 * segments));
     glBindTexture(GL_TEXTURE_BUFFER, 0);
     f->stats->strand_draw_calls++;
     f->stats->strands += n;
-    f->stats->triangles += n * 2 * PELT__STRAND_SEGMENTS;
+    f->stats->triangles += n * 2 * segments;
 }
 
 void pelt__strands_pass_destroy(pelt__strands_pass *p)

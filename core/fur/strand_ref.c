@@ -11,6 +11,19 @@
 #include <math.h>
 #include <string.h>
 
+unsigned pelt__strand_ref_segments(const pelt_fur *f)
+{
+    const pelt__furtex_desc td = pelt__fur_texture_desc(&f->desc);
+    const float two_pi = 6.2831853f;
+    float turns = 0.0f;
+    if (td.curl_radius > 0.0f) turns += fabsf(td.curl_turns);
+    if (td.ringlet_radius > 0.0f) turns += fabsf(td.ringlet_omega) / two_pi;
+    if (pelt__fur_vertex_curl_radius(&f->desc) > 0.0f) turns += fabsf(f->desc.look.curl_frequency) / two_pi;
+    float s = ceilf(8.0f * turns);
+    if (!(s > (float)PELT__STRAND_SEGMENTS_MIN)) return PELT__STRAND_SEGMENTS_MIN;
+    return s < (float)PELT__STRAND_SEGMENTS_MAX ? (unsigned)s : PELT__STRAND_SEGMENTS_MAX;
+}
+
 size_t pelt__strand_ref_tile(const pelt_fur *f, pelt__furtex_strand *out, size_t cap)
 {
     pelt__furtex_desc td = pelt__fur_texture_desc(&f->desc);
@@ -134,7 +147,7 @@ static tuft tuft_at(const pelt_fur *f, const float root[2], float id)
  * texel) and from atlas-uv offsets (au, av per unit), the tile strand s. */
 static void hair(const pelt_fur *f, const pelt__furtex_desc *td, const pelt_mesh_data *m, const uint32_t *ix,
                  const fin_strand *st, pelt_vec3 du, pelt_vec3 dv, pelt_vec3 au, pelt_vec3 av, float texel,
-                 const pelt__furtex_strand *s, const float w[3], float *out)
+                 const pelt__furtex_strand *s, const float w[3], int segments, float *out)
 {
     float c0[2];
     pelt__furtex_strand_center(td, s, 0.0f, c0);
@@ -142,9 +155,9 @@ static void hair(const pelt_fur *f, const pelt__furtex_desc *td, const pelt_mesh
                               w[0] * m->uvs[2 * ix[0] + 1] + w[1] * m->uvs[2 * ix[1] + 1] +
                                   w[2] * m->uvs[2 * ix[2] + 1]};
     const tuft tf = tuft_at(f, root_uv, s->id);
-    pelt_vec3 pts[PELT__STRAND_SEGMENTS + 1];
-    for (int k = 0; k <= PELT__STRAND_SEGMENTS; k++) {
-        float z = s->length * (float)k / (float)PELT__STRAND_SEGMENTS; /* of the full height */
+    pelt_vec3 pts[PELT__STRAND_SEGMENTS_MAX + 1];
+    for (int k = 0; k <= segments; k++) {
+        float z = s->length * (float)k / (float)segments; /* of the full height */
         pelt_vec3 at[3];
         for (int j = 0; j < 3; j++) at[j] = v3_add(st[j].p, pelt__fur_vertex_strand_offset(&st[j], z));
         float c[2];
@@ -157,16 +170,16 @@ static void hair(const pelt_fur *f, const pelt__furtex_desc *td, const pelt_mesh
             pts[k] = v3_add(pts[k], v3_add(v3_scale(au, tf.pull_uv[0] * pull), v3_scale(av, tf.pull_uv[1] * pull)));
         }
     }
-    for (int k = 0; k <= PELT__STRAND_SEGMENTS; k++) {
-        int a = k > 0 ? k - 1 : 0, b = k < PELT__STRAND_SEGMENTS ? k + 1 : PELT__STRAND_SEGMENTS;
-        float along = (float)k / (float)PELT__STRAND_SEGMENTS;
+    for (int k = 0; k <= segments; k++) {
+        int a = k > 0 ? k - 1 : 0, b = k < segments ? k + 1 : segments;
+        float along = (float)k / (float)segments;
         float r = td->strand_radius * (1.0f - td->taper * along);
         pelt_vec3 n0 = mix3((pelt_vec3[3]){st[0].n, st[1].n, st[2].n}, w);
         pelt_vec3 tan = v3_norm_or(v3_sub(pts[b], pts[a]), v3_norm_or(n0, v3(0.0f, 1.0f, 0.0f)));
         put(out + 8 * k, pts[k], r * texel);
         put(out + 8 * k + 4, tan, along);
     }
-    float *e = out + 8 * (PELT__STRAND_SEGMENTS + 1);
+    float *e = out + 8 * (segments + 1);
     pelt_vec3 n = v3_norm_or(mix3((pelt_vec3[3]){st[0].n, st[1].n, st[2].n}, w), v3(0.0f, 1.0f, 0.0f));
     put(e, n, s->shade);
     e[4] = tf.rho; /* wet hair is darker and shines (strand_vs.glsl) */
@@ -181,9 +194,12 @@ static void hair(const pelt_fur *f, const pelt__furtex_desc *td, const pelt_mesh
     e[7] = col[2] * 256.0f + col[3];
 }
 
-size_t pelt__strand_ref_build(const pelt_fur *f, const pelt__furtex_strand *tile, size_t tile_count, float *out,
-                              size_t cap)
+size_t pelt__strand_ref_build(const pelt_fur *f, const pelt__furtex_strand *tile, size_t tile_count,
+                              unsigned segments, float *out, size_t cap)
 {
+    if (segments < PELT__STRAND_SEGMENTS_MIN) segments = PELT__STRAND_SEGMENTS_MIN;
+    if (segments > PELT__STRAND_SEGMENTS_MAX) segments = PELT__STRAND_SEGMENTS_MAX;
+    const size_t stride = 4 * (size_t)PELT__STRAND_TEXELS(segments);
     const pelt_mesh_data m = pelt_mesh_get_data(f->mesh);
     const float *tangents = pelt_mesh_tangents(f->mesh);
     const pelt__furtex_desc td = pelt__fur_texture_desc(&f->desc);
@@ -221,7 +237,7 @@ size_t pelt__strand_ref_build(const pelt_fur *f, const pelt__furtex_strand *tile
         while (n < cap && (s = roots_next(&it, w))) {
             float keep = w[0] * density[0] + w[1] * density[1] + w[2] * density[2];
             if (keep < 1.0f && !(s->id < keep)) continue; /* groom_keeps */
-            hair(f, &td, &m, ix, st, du, dv, au, av, texel, s, w, out + n * 4 * PELT__STRAND_TEXELS);
+            hair(f, &td, &m, ix, st, du, dv, au, av, texel, s, w, (int)segments, out + n * stride);
             n++;
         }
     }

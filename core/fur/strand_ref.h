@@ -13,14 +13,23 @@
 
 #include <stddef.h>
 
-#define PELT__STRAND_SEGMENTS 8 /* straight pieces along a hair */
-/* Texels of 4 floats a hair: for k = 0 .. PELT__STRAND_SEGMENTS its
- * point (mesh-local, w the radius in mesh units) and unit tangent (w the
- * height along the hair, 0 root .. 1 tip); then the surface normal with
- * the hair's shade in w; then the wetness at its root, 0, and the hair
+/* Straight pieces along a hair: 8, or 8 a turn of its curls, at most 64
+ * (pelt__strand_ref_segments). */
+#define PELT__STRAND_SEGMENTS_MIN 8
+#define PELT__STRAND_SEGMENTS_MAX 64
+/* Texels of 4 floats a hair of S segments: for k = 0 .. S its point
+ * (mesh-local, w the radius in mesh units) and unit tangent (w the height
+ * along the hair, 0 root .. 1 tip); then the surface normal with the
+ * hair's shade in w; then the wetness at its root, 0, and the hair
  * colour's bytes, two a float (r 256 + g, b 256 + a). A wet hair's points
  * follow its tuft (docs/wetness.md, Tufts). */
-#define PELT__STRAND_TEXELS (2 * (PELT__STRAND_SEGMENTS + 1) + 2)
+#define PELT__STRAND_TEXELS(S) (2 * ((S) + 1) + 2)
+
+/* Segments a hair needs so that its curls stay round: 8 a turn of the
+ * curls it has (its own in the tile, ringlets, the vertex curve's phi),
+ * between PELT__STRAND_SEGMENTS_MIN and _MAX. A straight or wet hair has
+ * the minimum. */
+unsigned pelt__strand_ref_segments(const pelt_fur *fur);
 
 /* The tile's strands (pelt__furtex_strands of the fur's texture desc):
  * how many, and into `out` up to `cap` of them. */
@@ -30,9 +39,10 @@ size_t pelt__strand_ref_tile(const pelt_fur *fur, pelt__furtex_strand *out, size
  * density at 1): room enough for pelt__strand_ref_build. */
 size_t pelt__strand_ref_count(const pelt_fur *fur, const pelt__furtex_strand *tile, size_t tile_count);
 
-/* Writes the hairs grooming keeps, PELT__STRAND_TEXELS * 4 floats each,
- * up to `cap` hairs, and returns how many. No allocation. */
-size_t pelt__strand_ref_build(const pelt_fur *fur, const pelt__furtex_strand *tile, size_t tile_count, float *out,
-                              size_t cap);
+/* Writes the hairs grooming keeps, PELT__STRAND_TEXELS(segments) * 4
+ * floats each, up to `cap` hairs, and returns how many. No allocation.
+ * `segments` is in [PELT__STRAND_SEGMENTS_MIN, PELT__STRAND_SEGMENTS_MAX]. */
+size_t pelt__strand_ref_build(const pelt_fur *fur, const pelt__furtex_strand *tile, size_t tile_count,
+                              unsigned segments, float *out, size_t cap);
 
 #endif

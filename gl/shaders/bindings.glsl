@@ -43,8 +43,6 @@
 #define PELT_FIN_CHUNK 64
 #define PELT_FIN_HEIGHTS 4        // strand points a fin vertex has: core's PELT__FIN_HEIGHTS
 #define PELT_FIN_VERTEX_TEXELS 10 // texels a fin vertex has: core's PELT__FIN_VERTEX_TEXELS
-#define PELT_STRAND_SEGMENTS 8 // quads along a hair of the strand reference: core's PELT__STRAND_SEGMENTS
-#define PELT_STRAND_TEXELS 20  // texels a hair has: core's PELT__STRAND_TEXELS
 
 // Uniform block binding points (gl/uniform_blocks.c, gl/shaders/blocks.glsl).
 #define PELT_BLOCK_FRAME 0 // pelt_frame_block: matrices, eye, light

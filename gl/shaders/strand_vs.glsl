@@ -1,26 +1,28 @@
 // The strand reference (gl/strands_pass.c): every hair a ribbon of
-// PELT_STRAND_SEGMENTS quads, 6 vertices a quad, turned to face the eye
+// u_strand_segments quads, 6 vertices a quad, turned to face the eye
 // and as wide as the hair (its radius from root to tapered tip), lit per
 // vertex by the hairs' own model (fur_light.glsl) with the hair's tangent.
 // The hairs' points come from core/fur/strand_ref.c in a buffer texture.
-uniform highp samplerBuffer u_strands; // PELT_UNIT_STRANDS: PELT_STRAND_TEXELS a hair
+uniform highp samplerBuffer u_strands; // PELT_UNIT_STRANDS: 2 (segments + 1) + 2 texels a hair
+uniform int u_strand_segments;         // core's pelt__strand_ref_segments
 
 out vec3 v_color;
 
 void main()
 {
-    const int per_hair = 6 * PELT_STRAND_SEGMENTS;
+    int per_hair = 6 * u_strand_segments;
     int hair = gl_VertexID / per_hair;
     int corner = gl_VertexID % per_hair;
     int seg = corner / 6, k = corner % 6;
     // Two triangles a quad: (a-, a+, b-), (a+, b+, b-).
     int point = seg + ((k == 2 || k == 4 || k == 5) ? 1 : 0);
     float side = (k == 1 || k == 3 || k == 4) ? 1.0 : -1.0;
-    int base = hair * PELT_STRAND_TEXELS;
+    int end = 2 * (u_strand_segments + 1); // the hair's points end here (core/fur/strand_ref.h)
+    int base = hair * (end + 2);
     vec4 pr = texelFetch(u_strands, base + 2 * point);
     vec4 th = texelFetch(u_strands, base + 2 * point + 1);
-    vec4 ns = texelFetch(u_strands, base + 2 * (PELT_STRAND_SEGMENTS + 1));
-    vec4 ex = texelFetch(u_strands, base + 2 * (PELT_STRAND_SEGMENTS + 1) + 1);
+    vec4 ns = texelFetch(u_strands, base + end);
+    vec4 ex = texelFetch(u_strands, base + end + 1);
     vec4 hair_color = vec4(floor(ex.z / 256.0), mod(ex.z, 256.0), floor(ex.w / 256.0), mod(ex.w, 256.0)) / 255.0;
 
     vec4 world = u_model * vec4(pr.xyz, 1.0);
