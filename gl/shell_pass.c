@@ -31,8 +31,8 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     const char *vs[] = {defines,          pelt__shader_shading,   pelt__shader_shadow_map,
                         pelt__shader_fur_light, pelt__shader_fur_shape, pelt__shader_clump,
                         pelt__shader_shell_lod, pelt__shader_skin_blend, pelt__shader_shell_vs, NULL};
-    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_clump,
-                        pelt__shader_shell_lod, pelt__shader_shell_fs, NULL};
+    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_fur_shape,
+                        pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_shell_fs, NULL};
     const char *floor_fs[] = {pelt__shader_shell_floor_fs, NULL};
     pelt_status st = pelt__gl_program_create(floor ? "shell floor" : "shell", vs, floor ? floor_fs : fs, hooks,
                                              &sp->program, err);
@@ -139,7 +139,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
      * on the full mesh, whose triangles the split holds, and when at least
      * a third of them is dry: pelt bench measured the default torus 58%
      * dry at 0.83x the frame drawn all wet, a bunny 17% dry at 1.05x. */
-    const unsigned wet_bits = PELT__SHELL_WET | PELT__SHELL_RINGLETS;
+    const unsigned wet_bits = PELT__SHELL_WET;
     if (sp != &p->floor && (f->shell_features & PELT__SHELL_WET) && m->split_ok && !f->draw->debug.no_wet_split &&
         triangles == m->triangle_count && 3 * m->split.dry_count >= triangles) {
         size_t dry = m->split.dry_count;

@@ -47,7 +47,8 @@ OFFSET(pelt__fur_block, fin_length, 112);
 OFFSET(pelt__fur_block, ringlets, 128);
 OFFSET(pelt__fur_block, occlusion, 136);
 OFFSET(pelt__fur_block, wet_strays, 140);
-_Static_assert(sizeof(pelt__fur_block) == 144, "std140 size of pelt_fur_block");
+OFFSET(pelt__fur_block, ringlet_radius, 144);
+_Static_assert(sizeof(pelt__fur_block) == 160, "std140 size of pelt_fur_block");
 #undef OFFSET
 
 static GLuint make_buffer(size_t bytes)
@@ -128,6 +129,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.ringlets[0] = (float)fs->ringlet_levels;
     k.ringlets[1] = (float)(fs->volume_slices + fs->lod_slices);
     k.occlusion = fs->occlusion_depth;
+    k.ringlet_radius = fs->ringlet_levels > 1 ? d.look.curl_radius : 0.0f;
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

@@ -30,6 +30,21 @@ pelt_vec3 pelt__fur_curl_phase(pelt_vec3 u, pelt_vec3 v, float omega, float K, f
     return v3_add(v3_scale(u, alpha * c), v3_scale(v, alpha * s));
 }
 
+float pelt__ringlet_phase(float id)
+{
+    float x = 3.0f * id;
+    return 6.2831853f * (x - floorf(x));
+}
+
+pelt_vec3 pelt__ringlet_tangent(pelt_vec3 t, pelt_vec3 u, pelt_vec3 v, float k, float omega, float h,
+                                float psi)
+{
+    float c = cosf(omega * h + psi), s = sinf(omega * h + psi);
+    pelt_vec3 d = v3_add(t, v3_add(v3_scale(u, k * (c - omega * h * s)), v3_scale(v, k * (s + omega * h * c))));
+    float len2 = v3_dot(d, d);
+    return len2 > 1e-30f ? v3_scale(d, 1.0f / sqrtf(len2)) : t;
+}
+
 pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
                             float omega, float K, float rho, float h)
 {

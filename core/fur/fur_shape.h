@@ -31,6 +31,23 @@ pelt_vec3 pelt__fur_curl(pelt_vec3 u, pelt_vec3 v, float omega, float K, float r
 pelt_vec3 pelt__fur_curl_phase(pelt_vec3 u, pelt_vec3 v, float omega, float K, float rho, float h,
                                float psi);
 
+/* A ringlet's phase from its strand's id (the fur texture's blue channel,
+ * a byte): 2 pi fract(3 id), so the shells can work out the phase of the
+ * hair they draw and light it along its own curl. Three cycles over the
+ * ids keep every phase where grooming thins the hair by id; the phase
+ * moves smoothly with id, so a filtered id at a hair's edge is off by
+ * little. Mirrors ringlet_phase in fur_shape.glsl. */
+float pelt__ringlet_phase(float id);
+
+/* The unit tangent of a ringlet: the hair's own unit tangent t plus the
+ * derivative over h of the curl k h (cos(omega h + psi) u + sin(...) v),
+ * with k the curl radius at the tip over the hair's length (the curve's
+ * h runs over the length, so its axis has length 1 per unit h). Lights a
+ * curly hair along its curl (docs/method.md, Ringlets). Mirrors
+ * ringlet_tangent in fur_shape.glsl. */
+pelt_vec3 pelt__ringlet_tangent(pelt_vec3 t, pelt_vec3 u, pelt_vec3 v, float k, float omega, float h,
+                                float psi);
+
 /* Shading tangent T(h): the unit derivative d/dh (beta + phi) of the whole
  * displaced curve, so highlights follow bends and curls (Silva Fig. 6);
  * n when that derivative vanishes. */

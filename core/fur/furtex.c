@@ -23,18 +23,18 @@ typedef pelt__furtex_strand strand;
 enum { SUBSAMPLES = 4 };
 
 /* The strands of a tile, the same sequence for every slice and for the
- * fin texture: seeded streams for the strand, its id and its curl phase
- * (drawn apart so the strands stay what they were before ids and phases
- * existed). */
+ * fin texture: seeded streams for the strand and its id (drawn apart so
+ * the strands stay what they were before ids existed); the phase of its
+ * curl follows from the id. */
 typedef struct strand_stream {
-    pelt__rng shape, id, phase;
+    pelt__rng shape, id;
     float size, radius;
 } strand_stream;
 
 static strand_stream strands_begin(const pelt__furtex_desc *d)
 {
     strand_stream s = {pelt__rng_seed(d->seed, 0x73747261ULL), pelt__rng_seed(d->seed, 0x69647321ULL),
-                       pelt__rng_seed(d->seed, 0x63726c21ULL), (float)d->size, d->strand_radius};
+                       (float)d->size, d->strand_radius};
     return s;
 }
 
@@ -56,7 +56,9 @@ static strand strands_next(strand_stream *s)
     st.length = pelt__rng_range(&s->shape, 0.6f, 1.0f);
     st.shade = pelt__rng_range(&s->shape, 0.4f, 1.0f);
     st.id = pelt__rng_float(&s->id);
-    st.phase = pelt__rng_float(&s->phase) * 6.2831853f;
+    /* The phase of its curl follows the id as the texture stores it (a
+     * byte), so the shells can light the curl (pelt__ringlet_phase). */
+    st.phase = pelt__ringlet_phase(floorf(st.id * 255.0f + 0.5f) / 255.0f);
     return st;
 }
 

@@ -49,4 +49,5 @@ layout(std140) uniform pelt_fur_block {
                              // fur volume (1 = none), y: slices between levels
     float u_occlusion;       // the fur's optical depth (fur_occlusion)
     float u_wet_strays;      // the share of hairs that stays out of the tufts
+    float u_ringlet_radius;  // the ringlets' radius at the tip, world units (0: none)
 };

@@ -17,6 +17,23 @@ vec3 fur_curl(vec3 u, vec3 v, float omega, float K, float rho, float h)
     return u * (alpha * cos(omega * h)) + v * (alpha * sin(omega * h));
 }
 
+// A ringlet's phase from its strand's id: 2 pi fract(3 id). Mirrors
+// pelt__ringlet_phase.
+float ringlet_phase(float id)
+{
+    return 6.2831853 * fract(3.0 * id);
+}
+
+// A ringlet's unit tangent: t plus d/dh of k h (cos(omega h + psi) u +
+// sin(omega h + psi) v). Mirrors pelt__ringlet_tangent.
+vec3 ringlet_tangent(vec3 t, vec3 u, vec3 v, float k, float omega, float h, float psi)
+{
+    float c = cos(omega * h + psi), s = sin(omega * h + psi);
+    vec3 d = t + u * (k * (c - omega * h * s)) + v * (k * (s + omega * h * c));
+    float len2 = dot(d, d);
+    return len2 > 1e-30 ? d * inversesqrt(len2) : t;
+}
+
 // Unit d/dh (beta + phi): the shading tangent of the displaced strand
 // (Silva Fig. 6); n where the derivative vanishes.
 // Lengyel et al. §3 combing: a shear along the comb direction u; slant is

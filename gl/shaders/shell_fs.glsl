@@ -12,13 +12,18 @@ flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
 in float v_alpha;
 in float v_view;
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
-in vec3 v_hair_t;   // a tuft's own light (shell_vs.glsl)
+#if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
+in vec3 v_hair_t;   // a tuft's or ringlet's own light (shell_vs.glsl)
 in vec3 v_tuft_u;
 in vec3 v_tuft_v;
 in vec3 v_world;
 in vec2 v_light;
+#endif
+#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
 flat in float v_clump_slope;
+#endif
+#if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
+in float v_h;       // the shell's height over the full length
 #endif
 
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
@@ -49,10 +54,10 @@ vec4 shell_hair(vec2 fur_uv, float offset)
 // The hair at fur_uv under wetness rho: with ringlets, water takes the
 // curl out, between the levels the volume holds it at (docs/method.md).
 // Dry hair reads the full-curl level with weight 1: no branch, which
-// llvmpipe would pay for on both sides.
+// llvmpipe would pay for on both sides. A dry frame reads it alone.
 vec4 wet_hair(vec2 fur_uv, float rho)
 {
-#ifdef PELT_RINGLETS
+#if defined(PELT_RINGLETS) && defined(PELT_WET)
     vec3 level = ringlet_levels(rho, u_ringlets.x, u_ringlets.y);
     return mix(shell_hair(fur_uv, level.x), shell_hair(fur_uv, level.y), level.z);
 #else
@@ -60,12 +65,13 @@ vec4 wet_hair(vec2 fur_uv, float rho)
 #endif
 }
 
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
-// A tuft's own light (docs/wetness.md, Tuft light): Kajiya-Kay along the
-// tangent of the tufted hair rather than the free hair's. The vertex stage
-// lit the free hair; the diffuse is scaled by the ratio of the two and the
-// highlight is the tuft's. Other hair models keep the free hair's light.
-void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
+#if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
+// A hair's own light: Kajiya-Kay along the tangent T of the hair as it
+// lies in its tuft (docs/wetness.md, Tuft light) or curls in its ringlet
+// (docs/method.md, Ringlets) rather than the free hair's, which the vertex
+// stage lit: the diffuse is scaled by the ratio of the two and the
+// highlight is T's. Other hair models keep the free hair's light.
+void own_light(vec3 T, float rho, inout vec3 base, inout float spec)
 {
 #if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
     return;
@@ -75,7 +81,6 @@ void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 #ifdef PELT_SHADING_TABLE
     if (u_shading_model > 0.5) return;
 #endif
-    vec3 T = tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, to_centre, u_clump_tightness * rho * v_clump_slope);
     vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
     vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
     vec2 tuft = kajiya_kay(T, L, E, shine.x), free_hair = kajiya_kay(normalize(v_hair_t), L, E, shine.x);
@@ -83,6 +88,26 @@ void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
     base *= (u_ambient + tuft.x * v_light.x * u_light_color) / max(lit_free, vec3(1e-4));
     spec = v_light.y * shine.y * tuft.y * v_light.x;
 #endif
+}
+#endif
+
+#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
+{
+    own_light(tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, to_centre, u_clump_tightness * rho * v_clump_slope), rho,
+              base, spec);
+}
+#endif
+
+#if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
+// The ringlet of the hair with this id, at this shell's height: water
+// takes out the curl as it does from the volume's levels (1 - rho).
+void ringlet_light(float id, float rho, inout vec3 base, inout float spec)
+{
+    float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
+    vec3 T = ringlet_tangent(normalize(v_hair_t), normalize(v_tuft_u), normalize(v_tuft_v), k, u_curl_frequency,
+                             v_h, ringlet_phase(id));
+    own_light(T, rho, base, spec);
 }
 #endif
 
@@ -170,6 +195,11 @@ void main()
     float spec = v_spec;
 #ifdef PELT_WET
     if (clump == CLUMP_DISPLACED) tuft_light(t.xy - q, rho, base, spec);
+#ifdef PELT_RINGLETS
+    else ringlet_light(hair.b, rho, base, spec);
+#endif
+#elif defined(PELT_RINGLETS)
+    ringlet_light(hair.b, rho, base, spec);
 #endif
     o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), hair.a);
 #endif

@@ -37,14 +37,17 @@ out float v_spec;       // fur_light_terms' specular weight
 out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
 flat out float v_clump_profile; // the tuft's profile f(h) (Eq. 5 above its base), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
-// A tuft's own light (docs/wetness.md, Tuft light): what the fragment stage
-// needs to light the hair along its tuft's tangent.
+#if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
+// A tuft's or a ringlet's own light (docs/wetness.md, Tuft light;
+// docs/method.md, Ringlets): what the fragment stage needs to light the
+// hair along its own tangent.
 out vec3 v_hair_t;      // the hair's unit tangent, world
 out vec3 v_tuft_u;      // world vectors of one mask-uv unit over the hair's length
-out vec3 v_tuft_v;
+out vec3 v_tuft_v;      // (along the tangent frame's u and v)
 out vec3 v_world;       // the point, world
 out vec2 v_light;       // fur_light_terms' facing and gamma
+#endif
+#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
 flat out float v_clump_slope; // clump_tuft_slope(h): the same for the whole layer
 #endif
 out float v_alpha;      // the shell's opacity: fades as its level leaves, and
@@ -103,7 +106,7 @@ void main()
     gl_Position = vec4(lc * 2.0 - 1.0, 1.0);
 #else
     fur_light_terms(mat3(u_model) * t, mat3(u_model) * n, world.xyz, h, light_mul, v_spec);
-#ifdef PELT_WET
+#if defined(PELT_WET) || defined(PELT_RINGLETS)
     // The mask's uv runs along the fur uv, which tiles u_fur_per_uv tiles
     // per uv unit and u_tiling per world unit along the tangent frame.
     v_hair_t = normalize(mat3(u_model) * t);
@@ -112,6 +115,8 @@ void main()
     v_tuft_v = mat3(u_model) * v * world_per_uv.y;
     v_world = world.xyz;
     v_light = fur_light_reach.xz; // the reach the free hair was just lit with
+#endif
+#ifdef PELT_WET
     v_clump_slope = clump_tuft_slope(h, u_clump_blend, u_layers);
 #endif
     v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),

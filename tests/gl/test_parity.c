@@ -295,6 +295,41 @@ static void tuft_tangent_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+static const char ringlet_tangent_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, t, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
+    "  vec3 u = normalize(cross(n, t)), v = cross(t, u);\n"
+    "  float psi = ringlet_phase(s);\n"
+    "  o = vec4(ringlet_tangent(t, u, v, 0.5 * s, 37.7 * h, h, psi), psi);\n"
+    "}\n";
+
+/* A ringlet's tangent and its phase from the strand's id, in GLSL as in C. */
+static void ringlet_tangent_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_fur_shape, inputs_glsl, ringlet_tangent_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int curled = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, t, tip;
+            float h, s;
+            cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
+            pelt_vec3 u = v3_norm_or(v3_cross(n, t), v3(1, 0, 0)), v = v3_cross(t, u);
+            float psi = pelt__ringlet_phase(s);
+            pelt_vec3 T = pelt__ringlet_tangent(t, u, v, 0.5f * s, 37.7f * h, h, psi);
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fmax(fabs(g[0] - T.x), fmax(fabs(g[1] - T.y), fabs(g[2] - T.z))));
+            worst = fmax(worst, fabs(g[3] - psi) / 6.2831853);
+            curled += v3_dot(T, t) < 0.9f;
+        }
+    printf("  %d of %d tangents turned by their curl; worst |GLSL - C| = %.3g\n", curled, W * H, worst);
+    CHECK(curled > W * H / 4);
+    CHECK(worst < 5e-4);
+}
+
 static const char ringlet_main[] =
     "out vec4 o;\n"
     "void main() {\n"
@@ -695,6 +730,7 @@ int main(void)
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
     RUN(ringlet_levels_glsl_matches_c);
+    RUN(ringlet_tangent_glsl_matches_c);
     RUN(groom_glsl_matches_c);
     RUN(inter_shadow_glsl_matches_c);
     RUN(shell_lod_glsl_matches_c);

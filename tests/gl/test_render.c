@@ -722,6 +722,8 @@ static void uniform_blocks_match_their_c_structs(void)
         {"u_wet_gloss", offsetof(pelt__fur_block, wet_gloss)},
         {"u_wet_sharpness", offsetof(pelt__fur_block, wet_sharpness)},
         {"u_ringlets", offsetof(pelt__fur_block, ringlets)},
+        {"u_wet_strays", offsetof(pelt__fur_block, wet_strays)},
+        {"u_ringlet_radius", offsetof(pelt__fur_block, ringlet_radius)},
     };
     for (size_t i = 0; i < sizeof members / sizeof members[0]; i++) {
         GLuint index = GL_INVALID_INDEX;
