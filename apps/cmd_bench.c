@@ -3,7 +3,7 @@
  * Timings live here, never in tests. */
 #include "apps/cli.h"
 
-#include <epoxy/gl.h>
+#include "gl/gl_api.h"
 #include <math.h>
 #include <stdlib.h>
 #include <time.h>

@@ -2,7 +2,7 @@
  * pan, comb, wet, dry and blow on the fur (apps/view.h has the pieces). */
 #include "apps/view.h"
 
-#include <epoxy/gl.h>
+#include "gl/gl_api.h"
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -82,7 +82,16 @@ typedef struct view_app {
     char script_shots[16][VIEW_PATH_MAX]; /* this frame's screenshot events */
     struct timespec scene_mtime;
     double mtime_checked;
+    /* the run */
+    float t;                  /* seconds of the scene's time since the first frame */
+    unsigned frame;
+    double prev;              /* when the last frame ended */
+    int rc;
 } view_app;
+
+#define VIEW_FIXED_DT (1.0f / 30.0f) /* a scripted run's step */
+
+static int view_exit_code; /* the last run's, for cmd_view to return */
 
 static void log_to_hud(pelt_log_level level, const char *message, void *user)
 {
@@ -420,12 +429,153 @@ static void close_app(view_app *a)
     free(a->argv);
     free(a->pixels);
     free(a->frame_ms);
+    free(a);
+}
+
+/* One frame: input, requests, the draw, the step. False when the run ends
+ * (the window closed, an exit key or event, --frames done). */
+static bool view_frame(void *arg)
+{
+    view_app *a = arg;
+    view_window_poll(a->win);
+    if (view_window_should_close(a->win)) return false;
+    unsigned fw, fh;
+    view_window_framebuffer_size(a->win, &fw, &fh);
+    if (fw && fh && (fw != a->st.width || fh != a->st.height)) {
+        a->st.width = fw, a->st.height = fh;
+        pelt_scene_instance_set_camera(a->inst, &a->st.camera, fw, fh);
+    }
+    /* Input: the window's, or in a scripted run the script's alone. */
+    view_event e;
+    int script_shot_count = 0;
+    while (view_window_next_event(a->win, &e))
+        if (!a->scripted) view_input_event(&a->st, a->inst, &e);
+    while (a->script && view_script_next(a->script, a->t, &e)) {
+        if (e.type == VIEW_EV_SCREENSHOT) {
+            if (script_shot_count < 16)
+                snprintf(a->script_shots[script_shot_count++], VIEW_PATH_MAX, "%s", e.path);
+            continue;
+        }
+        view_input_event(&a->st, a->inst, &e);
+        handle_requests(a); /* a drop or reload before the next event sees the new scene */
+    }
+    handle_requests(a);
+    /* After the script's last event and screenshot, the window is live. */
+    if (a->scripted && !a->has_frames && (!a->script || view_script_done(a->script))) {
+        bool pending = false;
+        for (int i = 0; i < a->shot_count; i++) pending = pending || !a->shots[i].done;
+        if (!pending && a->frame > 0) a->scripted = false;
+    }
+
+    /* Draw. */
+    if (a->frame % 15 == 0) a->wet_share = wet_share(pelt_scene_instance_fur(a->inst));
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, (GLsizei)a->st.width, (GLsizei)a->st.height);
+    const float *bg = a->o.scene.output.background;
+    glClearColor(bg[0], bg[1], bg[2], bg[3]);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    pelt_view view = pelt_scene_instance_view(a->inst);
+    pelt_draw_desc draw = a->o.scene.draw; /* the viewer's toggles over the scene's */
+    draw.no_fins = !a->st.fins;
+    draw.debug.no_inter_shadow = !a->st.shadows;
+    draw.debug.no_shadows = !a->st.light_shadows;
+    double t_draw = seconds_now();
+    pelt_renderer_draw(a->renderer, &view, &draw);
+    glFinish(); /* the draw's time apart from the swap's, for the summary */
+    a->draw_ms = (seconds_now() - t_draw) * 1000.0;
+    if (a->st.hud) draw_hud(a);
+    for (int i = 0; i < a->shot_count; i++)
+        if (!a->shots[i].done && a->shots[i].time <= a->t + 5e-4f) {
+            a->shots[i].done = true;
+            if (!write_screenshot(a, a->shots[i].path)) a->rc = 1;
+        }
+    for (int i = 0; i < script_shot_count; i++)
+        if (!write_screenshot(a, a->script_shots[i])) a->rc = 1;
+    if (a->st.requests & VIEW_REQ_SCREENSHOT) {
+        char path[4096];
+        unsigned k = a->screenshot_counter++;
+        if (a->has_output) cli_frame_path(a->o.output, k, path, sizeof path);
+        else snprintf(path, sizeof path, "pelt-view-%03u.png", k);
+        if (write_screenshot(a, path)) view_message(&a->st, false, "screenshot %s", path);
+        a->st.requests &= ~(unsigned)VIEW_REQ_SCREENSHOT;
+    }
+    double t_swap = seconds_now();
+    view_window_swap(a->win);
+    a->swap_ms = (seconds_now() - t_swap) * 1000.0;
+
+    /* Time: the real frame time, clamped; fixed steps when scripted. */
+    double now = seconds_now();
+    double ms = (now - a->prev) * 1000.0;
+    a->prev = now;
+    if (a->frame > 0) {
+        a->ms_smooth = a->ms_smooth > 0.0 ? 0.9 * a->ms_smooth + 0.1 * ms : ms;
+        if (a->frame_ms && a->frame_ms_count < a->frame_ms_cap) {
+            unsigned i = a->frame_ms_count++, cap = a->frame_ms_cap;
+            a->frame_ms[i] = ms;
+            a->frame_ms[cap + i] = a->draw_ms;
+            a->frame_ms[2 * (size_t)cap + i] = a->swap_ms;
+        }
+    }
+    a->frame++;
+    if (a->st.requests & VIEW_REQ_EXIT) return false;
+    if (a->max_frames && a->frame >= a->max_frames) return false;
+    float dt = a->scripted ? VIEW_FIXED_DT : (float)fmin(fmax(ms / 1000.0, 1.0 / 240.0), 1.0 / 15.0);
+    view_input_frame(&a->st, a->inst, dt);
+    pelt_scene_instance_advance(a->inst, dt);
+    a->t += dt;
+    /* The scene file, once a second: reload when it changed. */
+    if (a->scene_path && now - a->mtime_checked >= 1.0) {
+        a->mtime_checked = now;
+        struct timespec m;
+        if (scene_mtime(a->scene_path, &m) &&
+            (m.tv_sec != a->scene_mtime.tv_sec || m.tv_nsec != a->scene_mtime.tv_nsec)) {
+            a->scene_mtime = m;
+            reload(a);
+        }
+    }
+    return true;
+}
+
+/* After the last frame: the summary, the mask, everything freed. */
+static void view_finish(void *arg)
+{
+    view_app *a = arg;
+    if (!a->o.quiet && a->frame_ms_count > 0) {
+        double med[3];
+        for (int p = 0; p < 3; p++) {
+            double *v = a->frame_ms + (size_t)p * a->frame_ms_cap;
+            qsort(v, a->frame_ms_count, sizeof *v, cmp_double);
+            med[p] = v[a->frame_ms_count / 2];
+        }
+        fprintf(stderr,
+                "pelt view: %u frames at %ux%u, median %.1f ms per frame (%.1f fps): fur drawn in "
+                "%.1f ms, swap %.1f ms\n",
+                a->frame, a->st.width, a->st.height, med[0], med[0] > 0.0 ? 1000.0 / med[0] : 0.0,
+                med[1], med[2]);
+    }
+    if (a->rc == 0 && a->o.mask_out) {
+        pelt_fur *fur = pelt_scene_instance_fur(a->inst);
+        unsigned m = pelt_fur_mask_size(fur);
+        uint8_t *mask = malloc((size_t)m * m * 4);
+        if (mask) {
+            pelt_fur_mask_picture(fur, mask);
+            if (!cli_write_png("view", a->o.mask_out, mask, m, m)) a->rc = 1;
+            free(mask);
+        }
+    }
+    view_exit_code = a->rc;
+    close_app(a);
 }
 
 int cmd_view(int argc, char **argv)
 {
-    view_app app, *a = &app;
-    memset(a, 0, sizeof *a);
+    /* On the heap: in the browser this function returns before the first
+       frame, and the frames go on with the app (view_window_run). */
+    view_app *a = calloc(1, sizeof *a);
+    if (!a) {
+        cli_error("view", "out of memory");
+        return 1;
+    }
     a->st.hud = true;
     int rc = take_view_flags(a, argc, argv);
     bool hud_flag = a->st.hud;
@@ -476,134 +626,10 @@ int cmd_view(int argc, char **argv)
     a->frame_ms_cap = 1u << 16;
     a->frame_ms = malloc(3 * (size_t)a->frame_ms_cap * sizeof *a->frame_ms);
 
-    const float fixed_dt = 1.0f / 30.0f;
-    float t = 0.0f;
-    unsigned frame = 0;
-    double prev = seconds_now();
-    a->mtime_checked = prev;
-    rc = 0;
-    for (;;) {
-        view_window_poll(a->win);
-        if (view_window_should_close(a->win)) break;
-        unsigned fw, fh;
-        view_window_framebuffer_size(a->win, &fw, &fh);
-        if (fw && fh && (fw != a->st.width || fh != a->st.height)) {
-            a->st.width = fw, a->st.height = fh;
-            pelt_scene_instance_set_camera(a->inst, &a->st.camera, fw, fh);
-        }
-        /* Input: the window's, or in a scripted run the script's alone. */
-        view_event e;
-        int script_shot_count = 0;
-        while (view_window_next_event(a->win, &e))
-            if (!a->scripted) view_input_event(&a->st, a->inst, &e);
-        while (a->script && view_script_next(a->script, t, &e)) {
-            if (e.type == VIEW_EV_SCREENSHOT) {
-                if (script_shot_count < 16)
-                    snprintf(a->script_shots[script_shot_count++], VIEW_PATH_MAX, "%s", e.path);
-                continue;
-            }
-            view_input_event(&a->st, a->inst, &e);
-            handle_requests(a); /* a drop or reload before the next event sees the new scene */
-        }
-        handle_requests(a);
-        /* After the script's last event and screenshot, the window is live. */
-        if (a->scripted && !a->has_frames && (!a->script || view_script_done(a->script))) {
-            bool pending = false;
-            for (int i = 0; i < a->shot_count; i++) pending = pending || !a->shots[i].done;
-            if (!pending && frame > 0) a->scripted = false;
-        }
-
-        /* Draw. */
-        if (frame % 15 == 0) a->wet_share = wet_share(pelt_scene_instance_fur(a->inst));
-        glBindFramebuffer(GL_FRAMEBUFFER, 0);
-        glViewport(0, 0, (GLsizei)a->st.width, (GLsizei)a->st.height);
-        const float *bg = a->o.scene.output.background;
-        glClearColor(bg[0], bg[1], bg[2], bg[3]);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_view view = pelt_scene_instance_view(a->inst);
-        pelt_draw_desc draw = a->o.scene.draw; /* the viewer's toggles over the scene's */
-        draw.no_fins = !a->st.fins;
-        draw.debug.no_inter_shadow = !a->st.shadows;
-        draw.debug.no_shadows = !a->st.light_shadows;
-        double t_draw = seconds_now();
-        pelt_renderer_draw(a->renderer, &view, &draw);
-        glFinish(); /* the draw's time apart from the swap's, for the summary */
-        a->draw_ms = (seconds_now() - t_draw) * 1000.0;
-        if (a->st.hud) draw_hud(a);
-        for (int i = 0; i < a->shot_count; i++)
-            if (!a->shots[i].done && a->shots[i].time <= t + 5e-4f) {
-                a->shots[i].done = true;
-                if (!write_screenshot(a, a->shots[i].path)) rc = 1;
-            }
-        for (int i = 0; i < script_shot_count; i++)
-            if (!write_screenshot(a, a->script_shots[i])) rc = 1;
-        if (a->st.requests & VIEW_REQ_SCREENSHOT) {
-            char path[4096];
-            unsigned k = a->screenshot_counter++;
-            if (a->has_output) cli_frame_path(a->o.output, k, path, sizeof path);
-            else snprintf(path, sizeof path, "pelt-view-%03u.png", k);
-            if (write_screenshot(a, path)) view_message(&a->st, false, "screenshot %s", path);
-            a->st.requests &= ~(unsigned)VIEW_REQ_SCREENSHOT;
-        }
-        double t_swap = seconds_now();
-        view_window_swap(a->win);
-        a->swap_ms = (seconds_now() - t_swap) * 1000.0;
-
-        /* Time: the real frame time, clamped; fixed steps when scripted. */
-        double now = seconds_now();
-        double ms = (now - prev) * 1000.0;
-        prev = now;
-        if (frame > 0) {
-            a->ms_smooth = a->ms_smooth > 0.0 ? 0.9 * a->ms_smooth + 0.1 * ms : ms;
-            if (a->frame_ms && a->frame_ms_count < a->frame_ms_cap) {
-                unsigned i = a->frame_ms_count++, cap = a->frame_ms_cap;
-                a->frame_ms[i] = ms;
-                a->frame_ms[cap + i] = a->draw_ms;
-                a->frame_ms[2 * (size_t)cap + i] = a->swap_ms;
-            }
-        }
-        frame++;
-        if (a->st.requests & VIEW_REQ_EXIT) break;
-        if (a->max_frames && frame >= a->max_frames) break;
-        float dt = a->scripted ? fixed_dt : (float)fmin(fmax(ms / 1000.0, 1.0 / 240.0), 1.0 / 15.0);
-        view_input_frame(&a->st, a->inst, dt);
-        pelt_scene_instance_advance(a->inst, dt);
-        t += dt;
-        /* The scene file, once a second: reload when it changed. */
-        if (a->scene_path && now - a->mtime_checked >= 1.0) {
-            a->mtime_checked = now;
-            struct timespec m;
-            if (scene_mtime(a->scene_path, &m) &&
-                (m.tv_sec != a->scene_mtime.tv_sec || m.tv_nsec != a->scene_mtime.tv_nsec)) {
-                a->scene_mtime = m;
-                reload(a);
-            }
-        }
-    }
-    if (!a->o.quiet && a->frame_ms_count > 0) {
-        double med[3];
-        for (int p = 0; p < 3; p++) {
-            double *v = a->frame_ms + (size_t)p * a->frame_ms_cap;
-            qsort(v, a->frame_ms_count, sizeof *v, cmp_double);
-            med[p] = v[a->frame_ms_count / 2];
-        }
-        fprintf(stderr,
-                "pelt view: %u frames at %ux%u, median %.1f ms per frame (%.1f fps): fur drawn in "
-                "%.1f ms, swap %.1f ms\n",
-                frame, a->st.width, a->st.height, med[0], med[0] > 0.0 ? 1000.0 / med[0] : 0.0,
-                med[1], med[2]);
-    }
-    if (rc == 0 && a->o.mask_out) {
-        pelt_fur *fur = pelt_scene_instance_fur(a->inst);
-        unsigned m = pelt_fur_mask_size(fur);
-        uint8_t *mask = malloc((size_t)m * m * 4);
-        if (mask) {
-            pelt_fur_mask_picture(fur, mask);
-            if (!cli_write_png("view", a->o.mask_out, mask, m, m)) rc = 1;
-            free(mask);
-        }
-    }
-    close_app(a);
-    return rc;
+    a->prev = seconds_now();
+    a->mtime_checked = a->prev;
+    a->rc = 0;
+    view_window_run(a->win, view_frame, view_finish, a);
+    return view_exit_code;
 }
 #endif

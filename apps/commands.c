@@ -5,7 +5,10 @@
 
 #include <string.h>
 
+/* The browser build (docs/web.md) has the viewer alone: its table holds
+ * view, so its --help and flag errors read as on the desktop. */
 const cli_command cli_commands[] = {
+#if !defined(__EMSCRIPTEN__)
     {"render", "[SCENE.json] [flags]",
      "render a scene (default: the Table 1 torus) to PNG or video",
      "Renders the scene (default: the paper's Table 1 torus, 800x600)\n"
@@ -30,6 +33,7 @@ const cli_command cli_commands[] = {
      "shells | strands | difference (x4) as one PNG. Takes the flags of render;\n"
      "an animation compares its last frame. docs/reference.md says how to read it.",
      cli_scene_flag, cmd_compare, "*.json", NULL, false},
+#endif
     {"view", "[SCENE.json] [flags]", "the scene in a window: orbit, comb, wet, dry, blow, live",
      "Opens the scene of render (the same file and flags) in a window with an OpenGL\n"
      "3.3 core context; the fur moves with the real frame time. Left drag uses the\n"
@@ -39,6 +43,7 @@ const cli_command cli_commands[] = {
      "--screenshot-at saves the window, --frames ends a run. Needs a display\n"
      "(DISPLAY; under Xvfb: xvfb-run -a pelt view ...).",
      cli_view_flag, cmd_view, "*.json", NULL, false},
+#if !defined(__EMSCRIPTEN__)
     {"info", "MESH", "load and validate a mesh, print what was found",
      "Loads a mesh (OBJ, PLY, OFF, STL, glTF/GLB...), validates it\n"
      "and prints its counts, bounds and what validation changed.",
@@ -54,6 +59,7 @@ const cli_command cli_commands[] = {
     {"manpage", "", "print the manual page pelt(1) as roff",
      "Prints the manual page pelt(1) as roff; the build writes it to pelt.1.",
      NULL, cmd_manpage, NULL, NULL, true},
+#endif
     {NULL, NULL, NULL, NULL, NULL, NULL, NULL, NULL, false},
 };
 

@@ -1,9 +1,8 @@
 /* The scene runner drawn into a headless context, for render and bench. */
 #include "apps/cli.h"
 
-#include <epoxy/gl.h>
+#include "gl/gl_api.h"
 #include <errno.h>
-#include <stb_image_write.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -113,20 +112,4 @@ void cli_session_draw(cli_session *s)
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     pelt_view view = pelt_scene_instance_view(s->instance);
     pelt_renderer_draw(s->renderer, &view, &s->draw);
-}
-
-bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h)
-{
-    FILE *f = fopen(path, "wb");
-    if (!f) {
-        cli_error(cmd, "cannot write '%s': %s", path, strerror(errno));
-        return false;
-    }
-    fclose(f);
-    if (!stbi_write_png(path, (int)w, (int)h, 4, rgba, (int)w * 4)) {
-        cli_error(cmd, "cannot write PNG '%s'", path);
-        remove(path);
-        return false;
-    }
-    return true;
 }

@@ -64,6 +64,10 @@ void view_window_set_title(view_window *w, const char *title);
 void view_window_read_rgba8(view_window *w, uint8_t *rgba, unsigned width, unsigned height);
 /* Seconds since GLFW started. */
 double view_window_time(void);
+/* Calls frame(user) once a frame until it returns false, then
+ * finish(user). On the desktop a loop that returns after finish; in the
+ * browser the page's animation frames drive it and it never returns. */
+void view_window_run(view_window *w, bool (*frame)(void *), void (*finish)(void *), void *user);
 
 /* ---- the script ------------------------------------------------------------ */
 

@@ -2,7 +2,7 @@
  * quads; a tiny OpenGL 3.3 core program draws them over a dark panel. */
 #include "apps/view.h"
 
-#include <epoxy/gl.h>
+#include "gl/gl_api.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -28,7 +28,8 @@ struct view_hud {
 };
 
 static const char *vs_src =
-    "#version 330 core\n"
+    PELT_GLSL_VERSION
+    "precision highp float;\n"
     "layout(location = 0) in vec2 pos;\n"
     "layout(location = 1) in vec4 color;\n"
     "uniform vec2 size;\n"
@@ -42,7 +43,8 @@ static const char *vs_src =
     "}\n";
 
 static const char *fs_src =
-    "#version 330 core\n"
+    PELT_GLSL_VERSION
+    "precision mediump float;\n"
     "in vec4 v_color;\n"
     "out vec4 frag;\n"
     "void main() { frag = v_color; }\n";

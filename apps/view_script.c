@@ -171,8 +171,8 @@ static bool parse_line(view_script *s, char *line, float dt, char *err, size_t e
     int na = n - 2;
     view_event e = {0};
     bool ok = true;
-    float x0, y0, x1, y1, secs;
-    int button, mods;
+    float x0 = 0.0f, y0 = 0.0f, x1 = 0.0f, y1 = 0.0f, secs = 0.0f; /* read only when parsed */
+    int button = 0, mods = 0;
     if (!strcmp(ev, "move")) {
         ok = na == 2 && parse_float(a[0], &e.x) && parse_float(a[1], &e.y);
         e.type = VIEW_EV_MOVE;

@@ -5,17 +5,32 @@
  * linked: linked, it brings libX11 and libxcb into every pelt command at
  * start, which headless commands have no use for, and with them loaded
  * LeakSanitizer's tracer crashed at the exit of `pelt render` on larger
- * meshes (the docs_images test). */
+ * meshes (the docs_images test).
+ *
+ * In the browser (Emscripten, docs/web.md) the same file drives the canvas
+ * through Emscripten's GLFW, linked, with a WebGL2 context; the frame loop
+ * is the browser's (view_window_run). */
 #include "apps/view.h"
 
-#include <epoxy/gl.h>
+#include "gl/gl_api.h"
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include <dlfcn.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+#if defined(__EMSCRIPTEN__)
+#include <emscripten.h>
+#include <emscripten/html5.h>
+
+static bool load_glfw(char *err, size_t err_size)
+{
+    (void)err, (void)err_size;
+    return true; /* linked */
+}
+#else
+#include <dlfcn.h>
 
 /* Every GLFW function used here, called through a pointer of its own type. */
 #define GLFW_FUNCTIONS(X)                                                                      \
@@ -76,6 +91,7 @@ static bool load_glfw(char *err, size_t err_size)
 #define glfwSwapBuffers pf_glfwSwapBuffers
 #define glfwSetWindowTitle pf_glfwSetWindowTitle
 #define glfwGetTime pf_glfwGetTime
+#endif
 
 #define QUEUE_MAX 1024
 
@@ -86,6 +102,9 @@ struct view_window {
 };
 
 static char glfw_message[512];
+#if defined(__EMSCRIPTEN__)
+static view_window *page_window; /* the page's one canvas, for pelt_web_key */
+#endif
 
 static void on_error(int code, const char *description)
 {
@@ -149,6 +168,9 @@ bool view_window_open(const char *title, unsigned w, unsigned h, unsigned sample
                       char *err, size_t err_size)
 {
     *out = NULL;
+#if defined(__EMSCRIPTEN__)
+    const char *display = "the page's canvas";
+#else
     const char *display = getenv("DISPLAY"), *wayland = getenv("WAYLAND_DISPLAY");
     if ((!display || !*display) && (!wayland || !*wayland)) {
         snprintf(err, err_size,
@@ -156,6 +178,7 @@ bool view_window_open(const char *title, unsigned w, unsigned h, unsigned sample
                  "xvfb-run -a pelt view ...; pelt render draws without one)");
         return false;
     }
+#endif
     if (!load_glfw(err, err_size)) return false;
     glfwSetErrorCallback(on_error);
     if (!glfwInit()) {
@@ -169,10 +192,16 @@ bool view_window_open(const char *title, unsigned w, unsigned h, unsigned sample
         snprintf(err, err_size, "out of memory");
         return false;
     }
+#if defined(__EMSCRIPTEN__)
+    glfwWindowHint(GLFW_CLIENT_API, GLFW_OPENGL_ES_API); /* WebGL2 */
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
+#else
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+#endif
     glfwWindowHint(GLFW_DEPTH_BITS, 24);
     glfwWindowHint(GLFW_SAMPLES, (int)samples); /* output.msaa, as render draws it */
     glfwWindowHint(GLFW_SRGB_CAPABLE, GLFW_FALSE);
@@ -192,12 +221,17 @@ bool view_window_open(const char *title, unsigned w, unsigned h, unsigned sample
     glfwSetScrollCallback(win->glfw, on_scroll);
     glfwSetKeyCallback(win->glfw, on_key);
     glfwSetDropCallback(win->glfw, on_drop);
+#if !defined(__EMSCRIPTEN__)
     if (epoxy_gl_version() < 33) {
         snprintf(err, err_size, "OpenGL 3.3 core needed, got %s",
                  (const char *)glGetString(GL_VERSION));
         view_window_close(win);
         return false;
     }
+#endif
+#if defined(__EMSCRIPTEN__)
+    page_window = win;
+#endif
     *out = win;
     return true;
 }
@@ -205,6 +239,9 @@ bool view_window_open(const char *title, unsigned w, unsigned h, unsigned sample
 void view_window_close(view_window *w)
 {
     if (!w) return;
+#if defined(__EMSCRIPTEN__)
+    page_window = NULL;
+#endif
     glfwDestroyWindow(w->glfw);
     free(w);
     /* No glfwTerminate: it unloads the GL driver (libGL, Mesa's GLX), and
@@ -233,7 +270,12 @@ bool view_window_should_close(const view_window *w) { return glfwWindowShouldClo
 void view_window_framebuffer_size(const view_window *w, unsigned *width, unsigned *height)
 {
     int fw, fh;
+#if defined(__EMSCRIPTEN__)
+    (void)w; /* the page sizes the canvas (web/page.js): follow it */
+    emscripten_get_canvas_element_size("#canvas", &fw, &fh);
+#else
     glfwGetFramebufferSize(w->glfw, &fw, &fh);
+#endif
     *width = fw > 0 ? (unsigned)fw : 0;
     *height = fh > 0 ? (unsigned)fh : 0;
 }
@@ -261,4 +303,50 @@ void view_window_read_rgba8(view_window *w, uint8_t *rgba, unsigned width, unsig
     }
 }
 
+#if defined(__EMSCRIPTEN__)
+double view_window_time(void) { return emscripten_get_now() / 1000.0; }
+
+/* The page's panel (web/page.js) presses the viewer's keys through this:
+ * a press and a release of GLFW key `key`, queued like the keyboard's. */
+EMSCRIPTEN_KEEPALIVE void pelt_web_key(int key, int mods)
+{
+    if (!page_window) return;
+    view_event e = {.type = VIEW_EV_KEY, .key = key, .mods = mods, .press = true};
+    push(page_window, &e);
+    e.press = false;
+    push(page_window, &e);
+}
+
+typedef struct run_state {
+    bool (*frame)(void *);
+    void (*finish)(void *);
+    void *user;
+} run_state;
+
+static void run_one(void *arg)
+{
+    run_state *r = arg;
+    if (r->frame(r->user)) return;
+    emscripten_cancel_main_loop();
+    r->finish(r->user);
+}
+
+void view_window_run(view_window *w, bool (*frame)(void *), void (*finish)(void *), void *user)
+{
+    (void)w;
+    static run_state r;
+    r = (run_state){frame, finish, user};
+    /* The browser calls run_one once an animation frame; this never returns. */
+    emscripten_set_main_loop_arg(run_one, &r, 0, 1);
+}
+#else
 double view_window_time(void) { return pf_glfwGetTime ? glfwGetTime() : 0.0; }
+
+void view_window_run(view_window *w, bool (*frame)(void *), void (*finish)(void *), void *user)
+{
+    (void)w;
+    while (frame(user)) {
+    }
+    finish(user);
+}
+#endif

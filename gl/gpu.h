@@ -13,7 +13,7 @@
 
 #include "gl/shaders/bindings.glsl"
 
-#include <epoxy/gl.h>
+#include "gl/gl_api.h"
 #include <stddef.h>
 
 /* ---- the GL state contract of pelt/render.h (gl/gl_state.c) ------------ */

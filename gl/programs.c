@@ -6,8 +6,15 @@
 #include "core/base/error.h"
 #include "gl/gpu.h"
 
+/* GLSL 3.30 core on the desktop, GLSL ES 3.00 in the browser (gl/gl_api.h):
+ * the shaders are written to compile as both. */
 static const char version_header[] =
-    "#version 330 core\n"
+    PELT_GLSL_VERSION
+#if PELT_GL_ES
+    "precision highp sampler2DArray;\n"
+    "precision highp usampler2D;\n"
+    "precision highp sampler2D;\n"
+#endif
     "precision highp float;\n"
     "precision highp int;\n";
 

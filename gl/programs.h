@@ -4,7 +4,7 @@
 
 #include "pelt/base.h"
 
-#include <epoxy/gl.h>
+#include "gl/gl_api.h"
 
 /* Embedded sources, generated from gl/shaders/NAME.glsl. */
 extern const char pelt__shader_bindings[];

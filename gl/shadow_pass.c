@@ -59,7 +59,8 @@ pelt_status pelt__shadow_pass_resize(pelt__shadow_pass *p, unsigned size, pelt_e
     glGenFramebuffers(1, &p->depth_fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, p->depth_fbo);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, p->depth, 0);
-    glDrawBuffer(GL_NONE);
+    static const GLenum none = GL_NONE;
+    glDrawBuffers(1, &none);
     glReadBuffer(GL_NONE);
     bool ok = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
     glGenFramebuffers(1, &p->opacity_fbo);

@@ -14,7 +14,7 @@
 
 #include <string.h>
 
-
+#if !PELT_GL_ES
 static void build(pelt__strands_pass *p, unsigned features)
 {
     char defines[PELT__FEATURE_DEFINES_MAX];
@@ -30,6 +30,8 @@ static void build(pelt__strands_pass *p, unsigned features)
     p->segments_uniform[features] = glGetUniformLocation(p->variants[features], "u_strand_segments");
 }
 
+#endif
+
 void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const pelt_hooks *hooks)
 {
     memset(p, 0, sizeof *p);
@@ -37,6 +39,18 @@ void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const
     p->fur = fur;
 }
 
+#if PELT_GL_ES
+/* GLSL ES 3.00 has no buffer textures (gl/gl_api.h): in the browser the
+ * strand reference says so once and draws nothing. */
+void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
+{
+    (void)f;
+    if (!p->broken)
+        pelt__log(&p->hooks.logger, PELT_LOG_ERROR,
+                  "the strand reference needs buffer textures, which WebGL2 does not have: not drawn");
+    p->broken = true;
+}
+#else
 /* Room for every hair of `segments` pieces: staging and the buffer
  * texture. Made on the first frame of strands and again only when the
  * curls need more pieces than there is room for. */
@@ -107,6 +121,8 @@ void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
     f->stats->strands += n;
     f->stats->triangles += n * 2 * segments;
 }
+
+#endif
 
 void pelt__strands_pass_destroy(pelt__strands_pass *p)
 {
