@@ -196,9 +196,10 @@ static void reload(view_app *a)
     view_message(&a->st, false, "reloaded %s", a->scene_path ? a->scene_path : "the scene");
 }
 
-static void load_mesh(view_app *a, const char *path)
+static void load_mesh(view_app *a, const char *dropped)
 {
-    char previous[VIEW_PATH_MAX];
+    char path[VIEW_PATH_MAX], previous[VIEW_PATH_MAX];
+    snprintf(path, sizeof path, "%s", dropped); /* dropped is the state's, which the new scene resets */
     snprintf(previous, sizeof previous, "%s", a->mesh_file);
     snprintf(a->mesh_file, sizeof a->mesh_file, "%s", path);
     pelt_scene s = build_scene(a);

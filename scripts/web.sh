@@ -24,7 +24,7 @@ esac
 
 t0=$(date +%s)
 packages=(emscripten cmake dpkg-dev libstb-dev libcjson-dev libmeshoptimizer-dev libassimp-dev
-          zlib1g-dev libminizip-dev python3)
+          zlib1g-dev libminizip-dev libutfcpp-dev python3)
 if [ "$mode" = --test ]; then
   # The test compares the page with the native `pelt render` of the scene.
   packages+=(chromium-headless-shell build-essential pkg-config libepoxy-dev libegl-dev libegl-mesa0

@@ -8,7 +8,8 @@ over the DevTools protocol (tests/web/cdp.py) and checks:
   2. a scripted water click makes the fur around it darker and clumped;
   3. a comb stroke turns the hair under it (to the right, then to the left);
   4. a broken scene file shows a readable error on the page;
-  5. no console errors on any of those pages;
+  5. a mesh dropped on the page loads, a broken one is refused with a message;
+  6. no console errors on any of those pages;
 and measures the page's frame time against native `pelt bench` on the same
 scene and size. Exit 77 (skipped) only where the browser has no WebGL2.
 
@@ -151,6 +152,14 @@ def write_script(directory, name, lines):
     return "test-scripts/" + name
 
 
+def drop_file(b, name, text):
+    """Drops a file on the canvas, as a user dragging it from their desktop."""
+    b.evaluate("(() => { const dt = new DataTransfer(); dt.items.add(new File([%s], %s));"
+               " document.getElementById('canvas').dispatchEvent(new DragEvent('drop',"
+               " {dataTransfer: dt, bubbles: true, cancelable: true})); })()"
+               % (json.dumps(text), json.dumps(name)))
+
+
 def no_console_errors(b, what):
     errors = b.console_errors()
     check("console_" + what, not errors, "no console errors" if not errors else "; ".join(errors))
@@ -274,7 +283,24 @@ def main():
             b.screenshot(os.path.join(out, "page_error.png"))
             no_console_errors(b, "broken_scene")
 
-            # 5. Speed: the page live (no script) against native pelt bench.
+            # 5. Drops: a mesh loads into the running viewer; a broken one is
+            # refused with a message naming it, and the scene stays.
+            open_page(b, base, fixed)
+            mesh = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scenes",
+                                "meshes", "sphere-and-box.obj")
+            with open(mesh) as f:
+                drop_file(b, "sphere-and-box.obj", f.read())
+            b.wait_for("window.pelt.log.some((l) => /loaded .*sphere-and-box.obj/.test(l))", timeout=300)
+            drop_file(b, "broken.obj", "v 0 0 0\nf 1 2 9\n")
+            b.wait_for("window.pelt.log.some((l) => /broken.obj: line 2/.test(l))", timeout=300)
+            frames = b.evaluate("window.pelt.frames")
+            b.wait_for("window.pelt.frames > %d" % (frames + 2), timeout=300)
+            said = [l for l in b.evaluate("window.pelt.log") if "broken.obj" in l]
+            check("drop_mesh", not b.evaluate("window.pelt.error"),
+                  "sphere-and-box.obj loaded; the broken mesh refused (%s), frames go on" % said[-1])
+            no_console_errors(b, "drop")
+
+            # 6. Speed: the page live (no script) against native pelt bench.
             open_page(b, base, "size=%dx%d&sync=1&args=%s" % (W, H, "--msaa%200"))
             b.wait_for("window.pelt.intervals.length >= 20", timeout=900)
             web_ms = b.evaluate("window.pelt.frameMs()")
