@@ -174,7 +174,9 @@ cmake_build() { # name srcdir [cmake args...]
 
 CURRENT_STEP="cJSON"
 step "cJSON (${PIN_CJSON#*=})"
+# cJSON's own warning flags (-std=c89 -pedantic -Werror) trip over Emscripten's math.h.
 cmake_build cjson "$S_CJSON" -DENABLE_CJSON_TEST=OFF -DENABLE_CJSON_UTILS=OFF \
+    -DENABLE_CUSTOM_COMPILER_FLAGS=OFF \
     -DBUILD_SHARED_AND_STATIC_LIBS=OFF -DENABLE_TARGET_EXPORT=OFF \
     -DCMAKE_C_FLAGS="$CFLAGS_WEB" >"$B/cjson.log" 2>&1 \
     || { tail -40 "$B/cjson.log" >&2; die "cJSON build failed (log: $B/cjson.log)"; }
