@@ -317,6 +317,16 @@ EMSCRIPTEN_KEEPALIVE void pelt_web_key(int key, int mods)
     push(page_window, &e);
 }
 
+/* The wheel and the pinch, in the desktop's clicks (positive: away from the
+ * user): the page measures them (Emscripten 3.1.6's GLFW hands on the
+ * browser's raw pixels with the sign flipped). */
+EMSCRIPTEN_KEEPALIVE void pelt_web_scroll(float clicks)
+{
+    if (!page_window) return;
+    view_event e = {.type = VIEW_EV_SCROLL, .y = clicks};
+    push(page_window, &e);
+}
+
 typedef struct run_state {
     bool (*frame)(void *);
     void (*finish)(void *);

@@ -173,6 +173,15 @@
     });
   }, true);
 
+  // The wheel, in clicks as on the desktop (a notch is 100 pixels or 3
+  // lines), ahead of Emscripten's GLFW, which would pass the raw pixels on.
+  canvas.addEventListener('wheel', (e) => {
+    e.preventDefault();
+    e.stopImmediatePropagation();
+    const clicks = -e.deltaY / (e.deltaMode === 0 ? 100 : e.deltaMode === 1 ? 3 : 1);
+    Module._pelt_web_scroll(Math.max(-3, Math.min(3, clicks)));
+  }, { capture: true, passive: false });
+
   // Touch: one finger drags as the left button (the tool, or orbit on the
   // background), two fingers pinch to zoom as the wheel does.
   let pinch = 0;
@@ -189,7 +198,7 @@
     if (e.touches.length === 1) mouse('mousemove', e.touches[0], 0);
     else if (e.touches.length === 2 && pinch) {
       const d = spread(e.touches);
-      canvas.dispatchEvent(new WheelEvent('wheel', { deltaY: (pinch - d) * 2, deltaMode: 0, bubbles: true }));
+      Module._pelt_web_scroll(Math.log(d / pinch) / Math.log(1 / 0.9)); // the distance follows the fingers
       pinch = d;
     }
   }, { passive: false });

@@ -9,7 +9,8 @@ over the DevTools protocol (tests/web/cdp.py) and checks:
   3. a comb stroke turns the hair under it (to the right, then to the left);
   4. a broken scene file shows a readable error on the page;
   5. a mesh dropped on the page loads, a broken one is refused with a message;
-  6. no console errors on any of those pages;
+  6. the wheel and a two-finger pinch zoom in;
+  7. no console errors on any of those pages;
 and measures the page's frame time against native `pelt bench` on the same
 scene and size. Exit 77 (skipped) only where the browser has no WebGL2.
 
@@ -160,6 +161,18 @@ def drop_file(b, name, text):
                % (json.dumps(text), json.dumps(name)))
 
 
+def fur_share(b):
+    """Share of the next frames' pixels that are not the background (two
+    frames on, so that input given before the call is drawn)."""
+    frames = b.evaluate("window.pelt.frames")
+    b.wait_for("window.pelt.frames > %d" % (frames + 2), timeout=300)
+    url = b.evaluate("window.pelt.capture()", await_promise=True, timeout=300)
+    _, _, rows = read_png(base64.b64decode(url.split(",", 1)[1]))
+    bg = rows[0][0]
+    flat = [p for row in rows for p in row]
+    return sum(max(abs(p[c] - bg[c]) for c in range(3)) > 12 for p in flat) / len(flat)
+
+
 def no_console_errors(b, what):
     errors = b.console_errors()
     check("console_" + what, not errors, "no console errors" if not errors else "; ".join(errors))
@@ -300,7 +313,26 @@ def main():
                   "sphere-and-box.obj loaded; the broken mesh refused (%s), frames go on" % said[-1])
             no_console_errors(b, "drop")
 
-            # 6. Speed: the page live (no script) against native pelt bench.
+            # 6. Zoom by the wheel and by a pinch: the ring fills more of the canvas.
+            open_page(b, base, fixed)
+            shares = [fur_share(b)]
+            b.call("Input.dispatchMouseEvent", {"type": "mouseWheel", "x": 200, "y": 150,
+                                                "deltaX": 0, "deltaY": -200})
+            shares.append(fur_share(b))
+            b.call("Emulation.setTouchEmulationEnabled", {"enabled": True, "maxTouchPoints": 2})
+            b.call("Input.dispatchTouchEvent", {"type": "touchStart",
+                                                "touchPoints": [{"x": 170, "y": 150}, {"x": 230, "y": 150}]})
+            for i in range(1, 6):
+                b.call("Input.dispatchTouchEvent", {"type": "touchMove", "touchPoints": [
+                    {"x": 170 - 6 * i, "y": 150}, {"x": 230 + 6 * i, "y": 150}]})
+            b.call("Input.dispatchTouchEvent", {"type": "touchEnd", "touchPoints": []})
+            shares.append(fur_share(b))
+            check("zoom_wheel_and_pinch", shares[1] >= 1.15 * shares[0] and shares[2] >= 1.15 * shares[1],
+                  "fur covers %.3f of the canvas, %.3f after two wheel notches in, %.3f after a pinch "
+                  "spreading the fingers 2x (each at least 1.15x the last)" % tuple(shares))
+            no_console_errors(b, "zoom")
+
+            # 7. Speed: the page live (no script) against native pelt bench.
             open_page(b, base, "size=%dx%d&sync=1&args=%s" % (W, H, "--msaa%200"))
             b.wait_for("window.pelt.intervals.length >= 20", timeout=900)
             web_ms = b.evaluate("window.pelt.frameMs()")
