@@ -13,7 +13,8 @@
 //                  read), so the readout is the frame's cost, not the pace
 //                  at which the browser hands out animation frames
 // window.pelt is the scripting hook: ready, frames, exitCode, error, log,
-// frameMs(), capture() (a PNG data URL of the next frame), readFile(path).
+// frameMs(), capture() (a PNG data URL of the next frame), readFile(path),
+// downloads (the files handed to the browser).
 (function () {
   'use strict';
   const params = new URLSearchParams(location.search);
@@ -66,8 +67,27 @@
 
   let frameStart = 0, lastEnd = 0;
   Module.canvas = canvas;
+  // What the viewer saves (P: a screenshot, Ctrl+S: the groom) lands in the
+  // page's in-memory files; the page hands it to the browser as a download.
+  pelt.downloads = [];
+  function offerDownload(path) {
+    if (!FS.analyzePath(path).exists) return;
+    const a = document.createElement('a');
+    a.href = URL.createObjectURL(new Blob([FS.readFile(path)]));
+    a.download = path.split('/').pop();
+    document.body.appendChild(a);
+    a.click();
+    a.remove();
+    setTimeout(() => URL.revokeObjectURL(a.href), 10000);
+    pelt.downloads.push(a.download);
+  }
   Module.print = (text) => { pelt.log.push(text); console.log(text); };
-  Module.printErr = (text) => { pelt.log.push(text); console.log(text); };
+  Module.printErr = (text) => {
+    pelt.log.push(text);
+    console.log(text);
+    const saved = /^pelt view: (?:screenshot|groom saved to) (.+)$/.exec(text);
+    if (saved) offerDownload(saved[1]);
+  };
   Module.onAbort = (what) => showError('pelt stopped: ' + what);
   Module.preMainLoop = () => { frameStart = performance.now(); };
   const syncFrames = params.get('sync') === '1', onePixel = new Uint8Array(4);

@@ -309,6 +309,11 @@ def main():
             frames = b.evaluate("window.pelt.frames")
             b.wait_for("window.pelt.frames > %d" % (frames + 2), timeout=300)
             said = [l for l in b.evaluate("window.pelt.log") if "broken.obj" in l]
+            b.evaluate("Module._pelt_web_key(80, 0)")  # P: a screenshot, handed over as a download
+            b.wait_for("window.pelt.downloads.length > 0", timeout=300)
+            got = b.evaluate("window.pelt.downloads")
+            check("screenshot_download", got == ["pelt-view-000.png"],
+                  "P hands the browser %s" % got)
             check("drop_mesh", not b.evaluate("window.pelt.error"),
                   "sphere-and-box.obj loaded; the broken mesh refused (%s), frames go on" % said[-1])
             no_console_errors(b, "drop")
