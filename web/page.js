@@ -193,6 +193,12 @@
     });
   }, true);
 
+  // Esc closes the desktop's window; a page has nothing to close, and the
+  // viewer would stop drawing: the page keeps it from the viewer.
+  window.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape') e.stopImmediatePropagation();
+  }, true);
+
   // The wheel, in clicks as on the desktop (a notch is 100 pixels or 3
   // lines), ahead of Emscripten's GLFW, which would pass the raw pixels on.
   canvas.addEventListener('wheel', (e) => {

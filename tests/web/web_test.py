@@ -336,6 +336,17 @@ def main():
                   "fur covers %.3f of the canvas, %.3f after two wheel notches in, %.3f after a pinch "
                   "spreading the fingers 2x (each at least 1.15x the last)" % tuple(shares))
             no_console_errors(b, "zoom")
+            b.call("Input.dispatchKeyEvent", {"type": "keyDown", "key": "Escape", "code": "Escape",
+                                              "windowsVirtualKeyCode": 27})
+            b.call("Input.dispatchKeyEvent", {"type": "keyUp", "key": "Escape", "code": "Escape",
+                                              "windowsVirtualKeyCode": 27})
+            frames = b.evaluate("window.pelt.frames")
+            try:
+                b.wait_for("window.pelt.frames > %d" % (frames + 3), timeout=120)
+                going = True
+            except TimeoutError:
+                going = False
+            check("escape_keeps_drawing", going, "the frames go on after Esc" if going else "Esc stopped the viewer")
 
             # 7. Speed: the page live (no script) against native pelt bench.
             open_page(b, base, "size=%dx%d&sync=1&args=%s" % (W, H, "--msaa%200"))
