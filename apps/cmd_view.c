@@ -132,10 +132,17 @@ static bool build(view_app *a, const pelt_scene *scene, bool keep_groom, pelt_er
     /* The light's maps are made now, so O switches them without a stall. */
     pelt_shadow_desc shadows = scene->shadows;
     shadows.enabled = true;
-    if (pelt_renderer_set_shadows(renderer, &shadows, err) != PELT_OK) {
-        pelt_renderer_destroy(renderer);
-        pelt_scene_instance_destroy(inst);
-        return false;
+    pelt_error shadow_err = {0};
+    if (pelt_renderer_set_shadows(renderer, &shadows, &shadow_err) != PELT_OK) {
+        if (shadow_err.status != PELT_ERR_GL) { /* the scene's settings: refused, as render refuses them */
+            *err = shadow_err;
+            pelt_renderer_destroy(renderer);
+            pelt_scene_instance_destroy(inst);
+            return false;
+        }
+        /* No float render targets here (a WebGL2 without EXT_color_buffer_float):
+           the fur draws without the light's shadows, and says so. */
+        fprintf(stderr, "pelt view: warning: no shadows from the light: %s\n", shadow_err.message);
     }
     pelt_renderer_set_ground(renderer, &scene->ground);
     if (keep_groom && a->inst) {
