@@ -2,7 +2,6 @@
 #include "apps/cli.h"
 
 #include "gl/gl_api.h"
-#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
 

@@ -53,20 +53,15 @@ size=320x240
 # (fd 3, even inside $(...)); stderr goes where the caller sends it.
 exec 3>&1
 view() {
-  local err tries=0 rc leaks=""
+  local err tries=0 rc asan=${ASAN_OPTIONS:-}
   err=$(mktemp)
   while :; do
-    if [ -z "$leaks" ]; then
-      "$pelt" view --size $size --msaa 0 "$@" 2>"$err"; rc=$?
-    else
-      ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}detect_leaks=0" \
-        "$pelt" view --size $size --msaa 0 "$@" 2>"$err"; rc=$?
-    fi
+    ASAN_OPTIONS=$asan "$pelt" view --size $size --msaa 0 "$@" 2>"$err"; rc=$?
     if [ $rc -ne 0 ] && [ $tries -lt 2 ] &&
        grep -q 'LeakSanitizer has encountered a fatal error' "$err"; then
       tries=$((tries + 1))
       if [ $tries -eq 2 ]; then
-        leaks=off
+        asan="${asan:+$asan:}detect_leaks=0"
         echo "  (LeakSanitizer's tracer crashed at exit twice, not a leak: once more without the leak check)" >&3
       else
         echo "  (LeakSanitizer's tracer crashed at exit, not a leak: running it again)" >&3

@@ -147,6 +147,12 @@ def page_file(b, path, timeout=600):
     return base64.b64decode(url.split(",", 1)[1])
 
 
+def save(out, name, data):
+    """Keeps a picture of the run (the docs' come from here)."""
+    with open(os.path.join(out, name), "wb") as f:
+        f.write(data)
+
+
 def write_script(directory, name, lines):
     with open(os.path.join(directory, name), "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -225,11 +231,9 @@ def main():
             open_page(b, base, fixed + "&script=" + s)
             first = page_file(b, "/page/default.png")
             print("web_test: the page's first frame in %.1f s" % (time.time() - t0), flush=True)
-            with open(os.path.join(out, "web_default.png"), "wb") as f:
-                f.write(first)
+            save(out, "web_default.png", first)
             canvas = b.evaluate("window.pelt.capture()", await_promise=True, timeout=120)
-            with open(os.path.join(out, "web_canvas.png"), "wb") as f:
-                f.write(base64.b64decode(canvas.split(",", 1)[1]))
+            save(out, "web_canvas.png", base64.b64decode(canvas.split(",", 1)[1]))
             _, _, a = read_png(first)
             with open(native_png, "rb") as f:
                 _, _, n = read_png(f.read())
@@ -247,8 +251,7 @@ def main():
             _, _, dry = read_png(page_file(b, "/page/dry.png"))
             wet_bytes = page_file(b, "/page/wet.png")
             _, _, wet = read_png(wet_bytes)
-            with open(os.path.join(out, "web_water.png"), "wb") as f:
-                f.write(wet_bytes)
+            save(out, "web_water.png", wet_bytes)
             rd, rw = region(dry, cx, cy, 24), region(wet, cx, cy, 24)
             ld, lw = mean_luma(rd), mean_luma(rw)
             gd, gw = gap_share(rd, 0.5 * ld), gap_share(rw, 0.5 * ld)
@@ -272,8 +275,7 @@ def main():
                 after_bytes = page_file(b, "/page/after.png")
                 _, _, after = read_png(after_bytes)
                 if name == "right":
-                    with open(os.path.join(out, "web_comb.png"), "wb") as f:
-                        f.write(after_bytes)
+                    save(out, "web_comb.png", after_bytes)
                 strokes[name] = (orientation(region(before, px, py, 20)), orientation(region(after, px, py, 20)))
             (b0, right), (_, left) = strokes["right"], strokes["left"]
             check("comb_moves_hair", angle_between(b0, right) >= 15.0 and angle_between(b0, left) >= 15.0,
