@@ -68,6 +68,7 @@ typedef struct cli_options {
     bool bench_brush;      /* bench --brush */
     bool bench_floor;      /* bench --floor */
     bool bench_plain;      /* bench --plain */
+    bool bench_lod_off;    /* bench --lod-off */
     bool bench_dolly;      /* bench --dolly */
     float fur_px;          /* compare --fur-px; 0: from the camera */
     bool quiet;

@@ -310,10 +310,11 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
  * without the inter-fur shadows, every shell everywhere (no view budget),
  * the floor shader, the plain shell renderer, and with the light's shadows
  * on: without them and the light pass alone. */
-static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool with_plain, bool wet)
+static int bench_variants(cli_session *s, unsigned frames, const cli_options *o, bool wet, double step_ms)
 {
     enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, PLAIN, WET_WHOLE, NO_LIGHT, LIGHT_ONLY,
-           SKIN_ONLY, VARIANTS };
+           SKIN_ONLY, LOD_OFF, VARIANTS };
+    const bool with_floor = o->bench_floor, with_plain = o->bench_plain, with_lod_off = o->bench_lod_off;
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
     pelt_draw_desc v[VARIANTS];
@@ -345,9 +346,12 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool
     v[LIGHT_ONLY].no_skin = v[LIGHT_ONLY].no_fins = v[LIGHT_ONLY].debug.no_shells = true;
     /* The skin alone: what the shells' and the floor's times stand on. */
     v[SKIN_ONLY].no_fins = v[SKIN_ONLY].debug.no_shells = true;
+    /* What level of detail saves: the same frame as fur.lod = off draws it. */
+    v[LOD_OFF].debug.lod_off = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
-    bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, with_plain, wet, light, light, true};
+    bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, with_plain, wet, light, light, true,
+                           with_lod_off};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -369,6 +373,7 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool
         print_stats("light pass", st[LIGHT_ONLY]);
     }
     print_stats("skin alone", st[SKIN_ONLY]);
+    if (with_lod_off) print_stats("lod off", st[LOD_OFF]);
     print_fragments(s, &v[FULL], &v[NO_FINS], &v[SKIN_ONLY], st[FULL].median, st[NO_FINS].median,
                     st[SKIN_ONLY].median, with_floor ? st[FLOOR].median : 0.0);
     if (fins)
@@ -389,6 +394,11 @@ static int bench_variants(cli_session *s, unsigned frames, bool with_floor, bool
         printf("  the frame takes %.2fx the plain shell renderer (every shell along the normal, one fetch, "
                "blended, no fins)\n",
                st[FULL].median / st[PLAIN].median);
+    if (with_lod_off)
+        printf("  level of detail: the draw takes 1/%.2f of fur.lod=off's; with the strand step (%.1f ms, the same "
+               "in both) the frame takes 1/%.2f\n",
+               st[LOD_OFF].median / st[FULL].median, step_ms,
+               (st[LOD_OFF].median + step_ms) / (st[FULL].median + step_ms));
     bool shadows = pelt_fur_get_desc(pelt_scene_instance_fur(s->instance)).look.inter_shadow;
     if (shadows)
         printf("  inter-fur shadows: the draw takes %.3fx as long with them\n", st[FULL].median / st[NO_INTER].median);
@@ -486,7 +496,7 @@ int cmd_bench(int argc, char **argv)
            "shell level %u (blend %.2f), back faces %s\n",
            rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.fin_rows, rs.shell_level,
            (double)rs.shell_blend, rs.culled ? "culled" : "drawn");
-    if (bench_variants(&s, frames, o.bench_floor, o.bench_plain, false)) rc = 1;
+    if (bench_variants(&s, frames, &o, false, plain[PART_STEP].median)) rc = 1;
     if (rc == 0 && sc->animation.name[0]) rc = bench_skinning(&s, sc, frames, plain[PART_FRAME].median);
     if (rc == 0 && o.bench_dolly) bench_dolly(&s, frames);
     if (o.bench_clumps) {
@@ -497,7 +507,7 @@ int cmd_bench(int argc, char **argv)
                100.0 * (wet[PART_FRAME].median / plain[PART_FRAME].median - 1.0),
                100.0 * (wet[PART_DRAW].median / plain[PART_DRAW].median - 1.0));
         printf("with the clumps, ");
-        if (bench_variants(&s, frames, o.bench_floor, o.bench_plain, true)) rc = 1;
+        if (bench_variants(&s, frames, &o, true, wet[PART_STEP].median)) rc = 1;
     }
     if (o.bench_droplets) rc = bench_droplets(mesh);
     if (rc == 0 && o.bench_brush) rc = bench_brush(&s);

@@ -38,6 +38,7 @@ typedef enum flag_kind {
     FLAG_FLOOR,
     FLAG_PLAIN,
     FLAG_DOLLY,
+    FLAG_LOD_OFF,
     FLAG_FUR_PX,
     FLAG_QUIET
 } flag_kind;
@@ -123,6 +124,8 @@ static const flag flags[] = {
      "bench: also time the frame with a one-fetch shell shader, with and without the fins, alternated (the floor)"},
     {"--plain", NULL, NULL, FLAG_PLAIN, NULL,
      "bench: also time a plain shell renderer in the same run (every shell along the normal, one fetch, blended, no fins)"},
+    {"--lod-off", NULL, NULL, FLAG_LOD_OFF, NULL,
+     "bench: also time the frame as fur.lod=off draws it (every shell over the full mesh, nothing culled), alternated"},
     {"--dolly", NULL, NULL, FLAG_DOLLY, NULL,
      "bench: time the frame as the camera backs away to 16x its distance (level of detail)"},
     {"--fur-px", NULL, "PX", FLAG_FUR_PX, NULL,
@@ -301,6 +304,9 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
         return true;
     case FLAG_DOLLY:
         o->bench_dolly = true;
+        return true;
+    case FLAG_LOD_OFF:
+        o->bench_lod_off = true;
         return true;
     case FLAG_DROPLETS:
         o->bench_droplets = true;

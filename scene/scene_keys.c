@@ -144,6 +144,7 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("dynamics.spring_k", "dynamics.spring_k"),
     PARAM("dynamics.mass", "dynamics.mass"),
     PARAM("dynamics.damping", "dynamics.damping"),
+    PARAM("dynamics.threads", "dynamics.threads"),
 
     UINT_("animation.frames", animation.frames, 1, 1000000, 0),
     FLT("animation.fps", animation.fps, 0, 1000, F_LO_OPEN),

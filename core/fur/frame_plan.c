@@ -36,7 +36,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     pelt__fur_snapshot fs;
     pelt__fur_gpu_snapshot(fur, &fs);
     const pelt__lod_chain *c = fs.lod;
-    if (fl.mode == PELT_LOD_OFF || c->count == 0) {
+    if (fl.mode == PELT_LOD_OFF || sw->lod_off || c->count == 0) {
         l.full_mesh = true;
         return l;
     }

@@ -76,6 +76,7 @@ typedef struct pelt__frame_switches {
     bool gpu_skin;      /* skin the shells in the vertex stage */
     bool strands;       /* the strand reference in place of fins and shells */
     bool flat_shells;   /* no view budget: the level's shells everywhere */
+    bool lod_off;       /* as fur.lod = off, whatever the fur's mode */
 } pelt__frame_switches;
 
 /* The renderer's state the plan reads. */

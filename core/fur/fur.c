@@ -8,6 +8,7 @@
 #include "core/fur/furtex.h"
 #include "core/mesh/triangle_area.h"
 #include "core/base/vec.h"
+#include "core/base/workers.h"
 #include "core/wet/picture.h"
 #include "pelt/dynamics.h"
 #include "pelt/wetness.h"
@@ -159,6 +160,12 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
         return st;
     }
     f->tips = pelt__strands_tip_offsets(f->strands);
+    st = pelt__workers_create(d.dynamics.threads, a, &d.hooks.logger, &f->workers, err);
+    if (st != PELT_OK) {
+        pelt_fur_destroy(f);
+        return st;
+    }
+    pelt__strands_set_workers(f->strands, f->workers);
     st = pelt__bvh_build(mesh, &f->desc.hooks.allocator, &f->bvh, err);
     pelt__water_desc wd = {d.wet.mask_size, d.wet.clumps == PELT_CLUMPS_NATURAL ? d.wet.clump_size : 0.0f, d.seed};
     if (st == PELT_OK) st = pelt__water_create(mesh, f->bvh, &wd, &f->desc.hooks.allocator, &f->water, err);
@@ -235,6 +242,7 @@ void pelt_fur_destroy(pelt_fur *f)
     pelt__free(&a, f->fur_uvs);
     pelt__free(&a, f->color_texture);
     pelt__strands_destroy(f->strands);
+    pelt__workers_destroy(f->workers);
     pelt__water_destroy(f->water);
     pelt__bvh_destroy(f->bvh);
     pelt__groom_free(&f->groom);

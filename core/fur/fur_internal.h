@@ -30,6 +30,8 @@ struct pelt_fur {
     unsigned color_version;  /* bumped when the colour texture changes */
     unsigned tips_version;   /* bumped when tips change */
     pelt__strands *strands;  /* one mass-spring strand per vertex */
+    struct pelt__workers *workers; /* threads of the per-frame CPU work
+                                (dynamics.threads; core/base/workers.h) */
     float time;              /* seconds stepped since creation or reset */
     float fur_per_uv[2];     /* fur tiles per uv unit along u and v */
     pelt__water *water;      /* mask, clump cells, droplets, rain (core/wet/water.h) */

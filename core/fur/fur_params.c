@@ -55,6 +55,7 @@ static const pelt_param fur_params[] = {
     FLT("dynamics.mass", dynamics.mass, 0, FMAX, OPEN, 1),
     DERIVED("dynamics.spring_k", dynamics.spring_k, 0, FMAX, OPEN, "mass * 9.81 / (0.4 * length)"),
     DERIVED("dynamics.damping", dynamics.damping, 0, FMAX, 0, "0.5 * sqrt(spring_k * mass)"),
+    UINT_("dynamics.threads", dynamics.threads, 0, 16, 0),
     UINT_("wet.mask_size", wet.mask_size, 1, 8192, 256),
     FLT("wet.clump_blend", wet.clump_blend, 0, 1, 0, 0.5),
     FLT("wet.clump_tightness", wet.clump_tightness, 0, 1, OPEN, 0.9),

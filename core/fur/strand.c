@@ -7,6 +7,7 @@
 #include "core/base/hooks.h"
 #include "core/base/noise.h"
 #include "core/base/vec.h"
+#include "core/base/workers.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,6 +37,7 @@ struct pelt__strands {
     float *offsets;       /* 3 per vertex, mesh-local p - p_root (interleaved for upload) */
     float *gust0[3], *gust1[3]; /* cached gust noise slices at the roots (see gust_slices) */
     float *block;
+    pelt__workers *workers; /* the owner's threads for the step, or NULL */
 
     float model[16];  /* column-major, mesh-local to world */
     float inverse[9]; /* inverse of the 3x3 part, column-major */
@@ -279,6 +281,8 @@ void pelt__strands_destroy(pelt__strands *s)
 
 size_t pelt__strands_count(const pelt__strands *s) { return s ? s->count : 0; }
 
+void pelt__strands_set_workers(pelt__strands *s, pelt__workers *w) { s->workers = w; }
+
 pelt__strand_params pelt__strands_params(const pelt__strands *s) { return s->params; }
 
 bool pelt__strands_set_transform(pelt__strands *s, const float model[16])
@@ -357,50 +361,35 @@ static void project(pelt_vec3 root, pelt_vec3 n, float len, pelt_vec3 v_root, pe
     *tip = v3_add(root, d);
 }
 
-void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float time)
+/* One step's inputs, the same for every strand: what the threads share. */
+typedef struct step_work {
+    pelt__strands *s;
+    const gust_frame *gust;
+    pelt_vec3 steady, blow, blow_c;
+    float blow_r2;
+    bool blowing, moved, refresh_gust;
+    float dt, h;
+    int substeps;
+    float inv_denom;
+} step_work;
+
+/* Steps the strands [begin, end): begin is a multiple of the block. */
+static void step_range(void *ctx, size_t begin, size_t end)
 {
-    if (!s || !(dt > 0.0f)) return; /* also rejects NaN */
-    if (dt > PELT__STRAND_MAX_DT) dt = PELT__STRAND_MAX_DT;
-    pelt_forces def;
-    if (!f) {
-        def = pelt_forces_default();
-        f = &def;
-    }
-    time = finite_or(time, 0.0f);
-
-    /* Substeps of at most PELT__STRAND_MAX_SUBSTEP, but never more than
-     * PELT__STRAND_MAX_SUBSTEPS: longer ones stay stable (implicit below). */
-    int substeps = (int)ceilf(dt / PELT__STRAND_MAX_SUBSTEP);
-    if (substeps < 1) substeps = 1;
-    if (substeps > PELT__STRAND_MAX_SUBSTEPS) substeps = PELT__STRAND_MAX_SUBSTEPS;
-    const float h = dt / (float)substeps;
-
-    const pelt_vec3 steady = v3_add(sanitize(v3_load(f->gravity), PELT__ACCEL_MAX),
-                                    sanitize(v3_load(f->wind), PELT__ACCEL_MAX));
-    /* Gusts are held over the call, sampled mid-way. The noise slices at
-     * the roots are cached while the mesh stands still, so a static mesh
-     * pays for the noise once per time cell (1 / gust_frequency s). */
-    const bool moved = s->dirty;
-    const gust_frame gust = make_gust_frame(f, s->params.seed, time + 0.5f * dt);
-    const bool refresh_gust = gust.enabled && (moved || !s->gust_valid || s->gust_t0 != gust.t0 ||
-                                               s->gust_inv_scale != gust.inv_scale);
-    /* The local blow, when there is one. */
-    const pelt_vec3 blow = sanitize(v3_load(f->blow), PELT__ACCEL_MAX);
-    const pelt_vec3 blow_c = sanitize(v3_load(f->blow_center), 1e30f);
-    const float blow_r2 = isfinite(f->blow_radius) ? f->blow_radius * f->blow_radius : 0.0f;
-    const bool blowing = blow_r2 > 0.0f && v3_dot(blow, blow) > 0.0f;
-    const float km = s->k_per_mass, cm = s->c_per_mass;
-    /* v' = (v + h (a - km (p - p0))) / (1 + h cm + h^2 km): v and p at the end. */
-    /* Implicit (backward) Euler for the linear spring-damper: stable for
-     * every h, and close to symplectic Euler when h is small. */
-    const float denom = 1.0f + h * cm + h * h * km;
-    const float inv_denom = 1.0f / denom;
+    const step_work *w = ctx;
+    pelt__strands *s = w->s;
+    const gust_frame *gust = w->gust;
+    const pelt_vec3 steady = w->steady, blow = w->blow, blow_c = w->blow_c;
+    const float blow_r2 = w->blow_r2, dt = w->dt, h = w->h, inv_denom = w->inv_denom;
+    const bool blowing = w->blowing, moved = w->moved, refresh_gust = w->refresh_gust;
+    const int substeps = w->substeps;
+    const float km = s->k_per_mass;
 
     /* Vertices go in blocks, substeps inside a block: the strands are
      * independent, so interleaving them hides the latency of each one's
      * sqrt and division, and a block's state stays in L1. */
-    for (size_t first = 0; first < s->count; first += PELT__STRAND_BLOCK) {
-        const size_t nb = s->count - first < PELT__STRAND_BLOCK ? s->count - first : PELT__STRAND_BLOCK;
+    for (size_t first = begin; first < end; first += PELT__STRAND_BLOCK) {
+        const size_t nb = end - first < PELT__STRAND_BLOCK ? end - first : PELT__STRAND_BLOCK;
         pelt_vec3 root[PELT__STRAND_BLOCK], n[PELT__STRAND_BLOCK], v_root[PELT__STRAND_BLOCK];
         pelt_vec3 accel[PELT__STRAND_BLOCK], rest[PELT__STRAND_BLOCK];
         pelt_vec3 p[PELT__STRAND_BLOCK], v[PELT__STRAND_BLOCK];
@@ -423,14 +412,14 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
             }
             pelt_vec3 g0 = v3(0.0f, 0.0f, 0.0f), g1 = g0;
             if (refresh_gust) {
-                gust_slices(&gust, root[j], &g0, &g1);
+                gust_slices(gust, root[j], &g0, &g1);
                 store_soa(s->gust0, i, g0);
                 store_soa(s->gust1, i, g1);
-            } else if (gust.enabled) {
+            } else if (gust->enabled) {
                 g0 = load_soa(s->gust0, i);
                 g1 = load_soa(s->gust1, i);
             }
-            pelt_vec3 a = v3_add(steady, gust_combine(&gust, g0, g1));
+            pelt_vec3 a = v3_add(steady, gust_combine(gust, g0, g1));
             if (blowing) {
                 pelt_vec3 dc = v3_sub(root[j], blow_c);
                 float q = 1.0f - v3_dot(dc, dc) / blow_r2;
@@ -464,6 +453,48 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
             write_offset(s, first + j, p[j], root[j]);
         }
     }
+}
+
+void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float time)
+{
+    if (!s || !(dt > 0.0f)) return; /* also rejects NaN */
+    if (dt > PELT__STRAND_MAX_DT) dt = PELT__STRAND_MAX_DT;
+    pelt_forces def;
+    if (!f) {
+        def = pelt_forces_default();
+        f = &def;
+    }
+    time = finite_or(time, 0.0f);
+
+    /* Substeps of at most PELT__STRAND_MAX_SUBSTEP, but never more than
+     * PELT__STRAND_MAX_SUBSTEPS: longer ones stay stable (implicit below). */
+    int substeps = (int)ceilf(dt / PELT__STRAND_MAX_SUBSTEP);
+    if (substeps < 1) substeps = 1;
+    if (substeps > PELT__STRAND_MAX_SUBSTEPS) substeps = PELT__STRAND_MAX_SUBSTEPS;
+    const float h = dt / (float)substeps;
+
+    const pelt_vec3 steady = v3_add(sanitize(v3_load(f->gravity), PELT__ACCEL_MAX),
+                                    sanitize(v3_load(f->wind), PELT__ACCEL_MAX));
+    /* Gusts are held over the call, sampled mid-way. The noise slices at
+     * the roots are cached while the mesh stands still, so a static mesh
+     * pays for the noise once per time cell (1 / gust_frequency s). */
+    const bool moved = s->dirty;
+    const gust_frame gust = make_gust_frame(f, s->params.seed, time + 0.5f * dt);
+    const bool refresh_gust = gust.enabled && (moved || !s->gust_valid || s->gust_t0 != gust.t0 ||
+                                               s->gust_inv_scale != gust.inv_scale);
+    /* The local blow, when there is one. */
+    const pelt_vec3 blow = sanitize(v3_load(f->blow), PELT__ACCEL_MAX);
+    const pelt_vec3 blow_c = sanitize(v3_load(f->blow_center), 1e30f);
+    const float blow_r2 = isfinite(f->blow_radius) ? f->blow_radius * f->blow_radius : 0.0f;
+    const bool blowing = blow_r2 > 0.0f && v3_dot(blow, blow) > 0.0f;
+    step_work work = {s, &gust, steady, blow, blow_c, blow_r2, blowing, moved, refresh_gust, dt, h, substeps, 0.0f};
+    /* v' = (v + h (a - km (p - p0))) / (1 + h cm + h^2 km): v and p at the end. */
+    /* Implicit (backward) Euler for the linear spring-damper: stable for
+     * every h, and close to symplectic Euler when h is small. */
+    work.inv_denom = 1.0f / (1.0f + h * s->c_per_mass + h * h * s->k_per_mass);
+    /* The strands are independent: the threads take contiguous runs of
+     * blocks, so no two write the same cache line but at a run's ends. */
+    pelt__workers_run(s->workers, step_range, &work, s->count, PELT__STRAND_BLOCK);
     s->dirty = false;
     if (refresh_gust) {
         s->gust_valid = true;

@@ -46,6 +46,12 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
 void pelt__strands_destroy(pelt__strands *s);
 
 size_t pelt__strands_count(const pelt__strands *s);
+
+/* Threads for pelt__strands_step (core/base/workers.h), owned by the
+ * caller and outliving the strands; NULL (the default) steps on the
+ * caller's thread. The result is the same to the bit either way. */
+struct pelt__workers;
+void pelt__strands_set_workers(pelt__strands *s, struct pelt__workers *w);
 pelt__strand_params pelt__strands_params(const pelt__strands *s);
 
 /* Where the mesh is now: model matrix, column-major, mesh-local to world.

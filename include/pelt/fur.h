@@ -97,6 +97,11 @@ typedef struct pelt_fur_dynamics {
     float mass;              /* default 1 */
     float spring_k;          /* default mass * 9.81 / (0.4 * length) */
     float damping;           /* default 0.5 * sqrt(spring_k * mass) */
+    unsigned threads;        /* threads the strand step runs on, the caller's
+                                included: 0 (default) = one per core, at most
+                                16; 1 = the caller's thread alone. The fur
+                                starts them at creation; the result is the
+                                same whatever the count */
 } pelt_fur_dynamics;
 
 /* How wet fur splits into clumps (pelt_fur_wet.clumps). */

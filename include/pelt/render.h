@@ -82,6 +82,9 @@ typedef struct pelt_draw_debug {
     /* The same shell count everywhere: no view budget (fewer shells where
        the fur is seen face-on, docs/lod.md), for measuring what it buys. */
     bool flat_shells;
+    /* Drawn as fur.lod = "off" draws it: every shell over the full mesh,
+       nothing culled, no view budget (pelt bench --lod-off). */
+    bool lod_off;
 } pelt_draw_debug;
 
 typedef struct pelt_draw_desc {

@@ -7,6 +7,7 @@
 #include "core/fur/fur_internal.h"
 #include "core/fur/strand.h"
 #include "core/base/vec.h"
+#include "core/base/workers.h"
 
 #include <math.h>
 #include <string.h>
@@ -605,6 +606,45 @@ static void strand_rest_offsets_are_length_times_normal_in_mesh_space(void)
     pelt_mesh_destroy(m);
 }
 
+static void strand_threads_step_the_same_bits_as_one(void)
+{
+    /* The strands are stepped in parts on several threads; each strand's
+     * arithmetic is the same, so the tips are the same to the bit: with the
+     * mesh moving (roots jump), gusts refreshed and a local blow. */
+    pelt_mesh *m = torus(97, 41); /* a vertex count that is no multiple of a block */
+    pelt__strand_params p = fur_defaults(0.1f);
+    pelt__strands *one = m ? strands_for(m, &p) : NULL, *many = m ? strands_for(m, &p) : NULL;
+    pelt__workers *w = NULL;
+    CHECK(pelt__workers_create(3, NULL, NULL, &w, NULL) == PELT_OK);
+    CHECK(one && many && w);
+    if (!one || !many || !w) goto done;
+    CHECK(pelt__workers_threads(w) == 3);
+    pelt__strands_set_workers(many, w);
+    pelt_forces f = pelt_forces_default();
+    f.wind[0] = 6.0f;
+    f.blow[1] = 30.0f;
+    f.blow_radius = 0.5f;
+    float model[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    for (int i = 0; i < 40; i++) {
+        model[12] = 0.3f * sinf(0.2f * (float)i);
+        CHECK(pelt__strands_set_transform(one, model) && pelt__strands_set_transform(many, model));
+        pelt__strands_step(one, 1.0f / 30.0f, &f, (float)i / 30.0f);
+        pelt__strands_step(many, 1.0f / 30.0f, &f, (float)i / 30.0f);
+    }
+    size_t n = pelt__strands_count(one);
+    CHECK(n % 32 != 0);
+    CHECK(memcmp(pelt__strands_tip_offsets(one), pelt__strands_tip_offsets(many), 3 * n * sizeof(float)) == 0);
+    float moved = 0.0f;
+    for (size_t i = 0; i < n; i++)
+        moved = fmaxf(moved, v3_len(v3_sub(offset_of(many, i), v3_scale(normal_of(m, i), p.length))));
+    CHECK(moved > 0.1f * p.length); /* the forces did move the tips */
+done:
+    pelt__strands_destroy(one);
+    pelt__strands_destroy(many);
+    pelt__workers_destroy(w);
+    pelt_mesh_destroy(m);
+}
+
 int main(void)
 {
     RUN(strand_params_are_checked_not_defaulted);
@@ -621,5 +661,6 @@ int main(void)
     RUN(strand_cached_gusts_match_fresh_ones);
     RUN(strand_bad_input_is_rejected_or_ignored);
     RUN(strand_constraints_hold_after_100000_random_steps);
+    RUN(strand_threads_step_the_same_bits_as_one);
     return check_summary();
 }
