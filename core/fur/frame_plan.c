@@ -43,9 +43,14 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     bool closed = c->closed && c->winding != 0;
     l.cull = closed && (sw->cull_shells > 0 || (sw->cull_shells == 0 && sw->fins));
     l.cull_skin = closed;
-    /* A closed mesh seen without fins: its back-facing shells carry the
-     * silhouette, those far round the back are hidden by the skin. */
-    l.back_reach = closed && !l.cull && sw->cull_shells == 0 ? fl.back_reach : -1.0f;
+    /* Back-facing shells far round the back are hidden by the skin: a
+     * closed mesh's front, and on an open mesh (whose skin is drawn on both
+     * sides) the patch's own skin, which stands between the eye and the
+     * fur growing away from it. Near the silhouette they stay: their hair
+     * crosses the outline (on a closed mesh the fins carry it instead, and
+     * every back-facing shell is culled). */
+    bool reach = closed ? !l.cull && sw->cull_shells == 0 : sw->cull_shells >= 0 && sw->skin;
+    l.back_reach = reach ? fl.back_reach : -1.0f;
     l.front_cw = c->winding < 0;
     unsigned shell_levels = pelt__lod_shell_levels(fd->layers);
     if (fl.mode == PELT_LOD_FIXED) {

@@ -56,7 +56,9 @@ typedef struct pelt_draw_debug {
     /* Back-facing shells of a closed mesh (level of detail, docs/lod.md):
      * 0 = culled when the fins are drawn to carry the silhouette (default),
      * 1 = culled even without fins (for measuring the fins alone),
-     * -1 = never culled. */
+     * -1 = never culled. On an open mesh 0 and 1 leave out, where the skin
+     * is drawn, the shells far round the back (lod.back_reach) that the
+     * patch's own skin hides; -1 draws them all. */
     int cull_shells;
     /* pelt bench --floor: the shells with a one-fetch shader, the fur's
      * coverage against a 0.05 threshold in a constant colour, over the same

@@ -243,6 +243,48 @@ static void back_shells_carry_the_silhouette_without_fins(pelt_fur *fur, const p
     CHECK(!p.lod.cull && p.lod.back_reach < 0.0f);
 }
 
+/* An open mesh (a subdivided square): nothing is culled whole, since
+ * there is no front to hide the back; but each back-facing patch's own skin
+ * (drawn on both sides) hides its fur, which grows away from the eye, so
+ * the shells far round the back are left out, with fins or without, as
+ * long as the skin is drawn. */
+static void open_mesh_leaves_out_the_shells_behind_their_skin(void)
+{
+    pelt_mesh *m = NULL;
+    pelt_fur *fur = NULL;
+    CHECK(pelt_mesh_square(2.0f, 24, &m, NULL) == PELT_OK);
+    pelt_fur_desc d = {.look.texture_size = 32};
+    CHECK(m && pelt_fur_create(m, &d, &fur, NULL) == PELT_OK);
+    if (!fur) {
+        pelt_mesh_destroy(m);
+        return;
+    }
+    const pelt__frame_setup setup = setup_with(false, false);
+    pelt__ground_cache cache = {0};
+    pelt__frame_plan p;
+    pelt_view near = view_at(3.0f);
+    const float reach = pelt_fur_get_desc(fur).lod.back_reach;
+    pelt__frame_plan_make(fur, &near, &everything, &setup, &cache, &p);
+    CHECK(!p.lod.cull && p.lod.back_reach == reach);
+    pelt__frame_switches sw = everything;
+    sw.fins = false;
+    pelt__frame_plan_make(fur, &near, &sw, &setup, &cache, &p);
+    CHECK(!p.lod.cull && p.lod.back_reach == reach);
+    sw.cull_shells = 1; /* pelt bench's "no fins": the same shells as with them */
+    pelt__frame_plan_make(fur, &near, &sw, &setup, &cache, &p);
+    CHECK(!p.lod.cull && p.lod.back_reach == reach);
+    sw = everything;
+    sw.skin = false; /* nothing in front of the back's fur */
+    pelt__frame_plan_make(fur, &near, &sw, &setup, &cache, &p);
+    CHECK(!p.lod.cull && p.lod.back_reach < 0.0f);
+    sw = everything;
+    sw.cull_shells = -1;
+    pelt__frame_plan_make(fur, &near, &sw, &setup, &cache, &p);
+    CHECK(!p.lod.cull && p.lod.back_reach < 0.0f);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
+}
+
 static void run_back_shells_carry_the_silhouette_without_fins(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, back_shells_carry_the_silhouette_without_fins); }
 static void run_the_view_budget_follows_the_view(void) { on_torus((pelt_fur_desc){.layers = 32, .look.texture_size = 32}, the_view_budget_follows_the_view); }
 
@@ -250,6 +292,7 @@ int main(void)
 {
     RUN(run_the_view_budget_follows_the_view);
     RUN(run_back_shells_carry_the_silhouette_without_fins);
+    RUN(open_mesh_leaves_out_the_shells_behind_their_skin);
     RUN(run_levels_of_detail_follow_the_distance);
     RUN(run_the_light_frame_holds_the_fur);
     RUN(run_the_ground_lies_under_the_mesh);
