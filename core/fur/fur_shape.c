@@ -45,6 +45,22 @@ pelt_vec3 pelt__ringlet_tangent(pelt_vec3 t, pelt_vec3 u, pelt_vec3 v, float k, 
     return len2 > 1e-30f ? v3_scale(d, 1.0f / sqrtf(len2)) : t;
 }
 
+void pelt__ringlet_dots(const float ta[3], const float tb[3], const float gram[3], float k, float omega, float h,
+                        float psi, float out[2])
+{
+    float c = cosf(omega * h + psi), s = sinf(omega * h + psi);
+    float a = k * (c - omega * h * s), b = k * (s + omega * h * c);
+    /* |t + a u + b v|^2 with t, u, v unit */
+    float len2 = 1.0f + a * a + b * b + 2.0f * (a * gram[0] + b * gram[1] + a * b * gram[2]);
+    if (!(len2 > 1e-30f)) {
+        out[0] = ta[0], out[1] = tb[0];
+        return;
+    }
+    float inv = 1.0f / sqrtf(len2);
+    out[0] = (ta[0] + a * ta[1] + b * ta[2]) * inv;
+    out[1] = (tb[0] + a * tb[1] + b * tb[2]) * inv;
+}
+
 pelt_vec3 pelt__fur_tangent(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_vec3 u, pelt_vec3 v,
                             float omega, float K, float rho, float h)
 {

@@ -48,6 +48,16 @@ float pelt__ringlet_phase(float id);
 pelt_vec3 pelt__ringlet_tangent(pelt_vec3 t, pelt_vec3 u, pelt_vec3 v, float k, float omega, float h,
                                 float psi);
 
+/* pelt__ringlet_tangent's T dotted with two directions a and b, from the
+ * frame's unit vectors dotted with them, ta = (t.a, u.a, v.a) and
+ * tb = (t.b, u.b, v.b), and with each other, gram = (t.u, t.v, u.v):
+ * out = (T.a, T.b). The shells' fragment stage lights a dry ringlet so,
+ * from dots the vertex stage interpolates, where it normalised the
+ * frame's three vectors and the tangent per fragment. Mirrors
+ * ringlet_dots in fur_shape.glsl. */
+void pelt__ringlet_dots(const float ta[3], const float tb[3], const float gram[3], float k, float omega, float h,
+                        float psi, float out[2]);
+
 /* Shading tangent T(h): the unit derivative d/dh (beta + phi) of the whole
  * displaced curve, so highlights follow bends and curls (Silva Fig. 6);
  * n when that derivative vanishes. */

@@ -34,6 +34,18 @@ vec3 ringlet_tangent(vec3 t, vec3 u, vec3 v, float k, float omega, float h, floa
     return len2 > 1e-30 ? d * inversesqrt(len2) : t;
 }
 
+// ringlet_tangent's T dotted with two directions, from the frame's unit
+// vectors dotted with them (ta, tb) and with each other (gram = t.u, t.v,
+// u.v). Mirrors pelt__ringlet_dots.
+vec2 ringlet_dots(vec3 ta, vec3 tb, vec3 gram, float k, float omega, float h, float psi)
+{
+    float c = cos(omega * h + psi), s = sin(omega * h + psi);
+    float a = k * (c - omega * h * s), b = k * (s + omega * h * c);
+    float len2 = 1.0 + a * a + b * b + 2.0 * (a * gram.x + b * gram.y + a * b * gram.z);
+    if (!(len2 > 1e-30)) return vec2(ta.x, tb.x);
+    return vec2(dot(ta, vec3(1.0, a, b)), dot(tb, vec3(1.0, a, b))) * inversesqrt(len2);
+}
+
 // Unit d/dh (beta + phi): the shading tangent of the displaced strand
 // (Silva Fig. 6); n where the derivative vanishes.
 // Lengyel et al. §3 combing: a shear along the comb direction u; slant is

@@ -1,12 +1,16 @@
 // Silva et al. Eq. 6 (Kajiya-Kay) and the shadow factor gamma; mirrored by
 // core/fur/shading.c. E points from the eye towards the shaded point.
-vec2 kajiya_kay(vec3 T, vec3 L, vec3 E, float p)
+// From the dots T.L and T.E (ringlet_dots gives them for a curl).
+vec2 kajiya_kay_dots(float tl, float te, float p)
 {
-    float tl = dot(T, L);
-    float te = dot(T, E);
     float sin_tl = sqrt(max(0.0, 1.0 - tl * tl));
     float sin_te = sqrt(max(0.0, 1.0 - te * te));
     return vec2(sin_tl, pow(max(0.0, tl * te + sin_tl * sin_te), p));
+}
+
+vec2 kajiya_kay(vec3 T, vec3 L, vec3 E, float p)
+{
+    return kajiya_kay_dots(dot(T, L), dot(T, E), p);
 }
 
 // Wet fur's highlight: (exponent, specular gain) at wetness rho, the

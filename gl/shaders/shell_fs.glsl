@@ -12,7 +12,12 @@ flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
 in float v_alpha;
 in float v_view;
-#if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
+#if defined(PELT_RINGLETS) && !defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+in vec3 v_ring_l;   // a dry ringlet's own light from dots (shell_vs.glsl)
+in vec3 v_ring_e;
+in vec3 v_ring_g;
+in vec2 v_light;
+#elif (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
 in vec3 v_hair_t;   // a tuft's or ringlet's own light (shell_vs.glsl)
 in vec3 v_tuft_u;
 in vec3 v_tuft_v;
@@ -70,8 +75,11 @@ vec4 wet_hair(vec2 fur_uv, float rho)
 // lies in its tuft (docs/wetness.md, Tuft light) or curls in its ringlet
 // (docs/method.md, Ringlets) rather than the free hair's, which the vertex
 // stage lit: the diffuse is scaled by the ratio of the two and the
-// highlight is T's. Other hair models keep the free hair's light.
-void own_light(vec3 T, float rho, inout vec3 base, inout float spec)
+// highlight is T's. Other hair models keep the free hair's light. From
+// the dots of the hair's own tangent with the light and the eye's
+// direction, own = (T.L, T.E), and 1 / the free hair's light (ambient +
+// diffuse), which the vertex stage folded into base.
+void own_light_dots(vec2 own, vec3 inv_free, float rho, inout vec3 base, inout float spec)
 {
 #if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
     return;
@@ -81,14 +89,23 @@ void own_light(vec3 T, float rho, inout vec3 base, inout float spec)
 #ifdef PELT_SHADING_TABLE
     if (u_shading_model > 0.5) return;
 #endif
-    vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
     vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
-    vec2 tuft = kajiya_kay(T, L, E, shine.x), free_hair = kajiya_kay(normalize(v_hair_t), L, E, shine.x);
-    vec3 lit_free = u_ambient + free_hair.x * v_light.x * u_light_color;
-    base *= (u_ambient + tuft.x * v_light.x * u_light_color) / max(lit_free, vec3(1e-4));
+    vec2 tuft = kajiya_kay_dots(own.x, own.y, shine.x);
+    base *= (u_ambient + tuft.x * v_light.x * u_light_color) * inv_free;
     spec = v_light.y * shine.y * tuft.y * v_light.x;
 #endif
 }
+
+#if !defined(PELT_RINGLETS) || defined(PELT_WET)
+void own_light(vec3 T, float rho, inout vec3 base, inout float spec)
+{
+    vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
+    vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
+    float free_hair = kajiya_kay(normalize(v_hair_t), L, E, shine.x).x;
+    vec3 lit_free = u_ambient + free_hair * v_light.x * u_light_color;
+    own_light_dots(vec2(dot(T, L), dot(T, E)), 1.0 / max(lit_free, vec3(1e-4)), rho, base, spec);
+}
+#endif
 #endif
 
 #if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
@@ -105,9 +122,16 @@ void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 void ringlet_light(float id, float rho, inout vec3 base, inout float spec)
 {
     float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
+#ifdef PELT_WET
     vec3 T = ringlet_tangent(normalize(v_hair_t), normalize(v_tuft_u), normalize(v_tuft_v), k, u_curl_frequency,
                              v_h, ringlet_phase(id));
     own_light(T, rho, base, spec);
+#else
+    // Dry: the same tangent's dots from the vertex stage's (ringlet_dots);
+    // the vertex stage left the free hair's light out of base (shell_vs.glsl).
+    vec2 own = ringlet_dots(v_ring_l, v_ring_e, v_ring_g, k, u_curl_frequency, v_h, ringlet_phase(id));
+    own_light_dots(own, vec3(1.0), rho, base, spec);
+#endif
 }
 #endif
 

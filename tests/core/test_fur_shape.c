@@ -157,6 +157,36 @@ static void curl_presets_cover_fig7_and_differ(void)
     CHECK(keep_o == 123.0f && keep_r == 456.0f);
 }
 
+/* The ringlet's tangent lit from dots (what the shells' fragment stage
+ * gets from the vertex stage) is the tangent itself dotted with the two
+ * directions, on frames that are neither orthogonal nor the same. */
+static void ringlet_dots_are_the_tangent_dotted(void)
+{
+    double worst = 0.0;
+    int turned = 0;
+    for (int i = 0; i < 2000; i++) {
+        float x = (float)i;
+        pelt_vec3 t = v3_norm_or(v3(sinf(x), 1.0f + 0.3f * cosf(1.3f * x), 0.4f * sinf(0.7f * x)), v3(0, 1, 0));
+        pelt_vec3 u = v3_norm_or(v3(1.0f, 0.2f * sinf(2.1f * x), 0.5f * cosf(x)), v3(1, 0, 0));
+        pelt_vec3 v = v3_norm_or(v3(0.3f * cosf(0.9f * x), 0.25f * sinf(x), 1.0f), v3(0, 0, 1));
+        pelt_vec3 a = v3_norm_or(v3(0.5f, 1.0f, 0.8f * sinf(0.3f * x)), v3(0, 1, 0));
+        pelt_vec3 b = v3_norm_or(v3(cosf(0.2f * x), -0.4f, sinf(0.2f * x)), v3(1, 0, 0));
+        float k = 0.05f + 0.5f * (float)(i % 7) / 6.0f, omega = 3.0f + (float)(i % 11), h = (float)(i % 13) / 12.0f;
+        float psi = 6.2831853f * (float)(i % 17) / 17.0f;
+        pelt_vec3 T = pelt__ringlet_tangent(t, u, v, k, omega, h, psi);
+        const float ta[3] = {v3_dot(t, a), v3_dot(u, a), v3_dot(v, a)};
+        const float tb[3] = {v3_dot(t, b), v3_dot(u, b), v3_dot(v, b)};
+        const float gram[3] = {v3_dot(t, u), v3_dot(t, v), v3_dot(u, v)};
+        float d[2];
+        pelt__ringlet_dots(ta, tb, gram, k, omega, h, psi, d);
+        worst = fmax(worst, fmax(fabs(d[0] - v3_dot(T, a)), fabs(d[1] - v3_dot(T, b))));
+        turned += v3_dot(T, t) < 0.95f;
+    }
+    printf("  %d of 2000 tangents turned by their curl; worst |dots - tangent . direction| = %.3g\n", turned, worst);
+    CHECK(turned > 500);
+    CHECK(worst < 1e-5);
+}
+
 int main(void)
 {
     RUN(fur_bend_at_rest_spaces_layers_evenly);
@@ -168,5 +198,6 @@ int main(void)
     RUN(fur_tangent_falls_back_to_normal_when_derivative_vanishes);
     RUN(fur_tangent_of_straight_rest_fur_is_normal);
     RUN(curl_presets_cover_fig7_and_differ);
+    RUN(ringlet_dots_are_the_tangent_dotted);
     return check_summary();
 }

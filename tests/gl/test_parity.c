@@ -330,6 +330,44 @@ static void ringlet_tangent_glsl_matches_c(void)
     CHECK(worst < 5e-4);
 }
 
+static const char ringlet_dots_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, t, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
+    "  vec3 u = normalize(n + 0.3 * t), v = normalize(cross(t, n) + 0.2 * n);\n"
+    "  vec3 a = normalize(vec3(0.5, 1.0, 0.8)), b = normalize(tip - vec3(0.0, 2.0, 0.0));\n"
+    "  vec2 d = ringlet_dots(vec3(dot(t, a), dot(u, a), dot(v, a)), vec3(dot(t, b), dot(u, b), dot(v, b)),\n"
+    "                        vec3(dot(t, u), dot(t, v), dot(u, v)), 0.5 * s, 37.7 * h, h, ringlet_phase(s));\n"
+    "  o = vec4(d, 0.0, 0.0);\n"
+    "}\n";
+
+/* The ringlet's dots (the shells' dry ringlet light), in GLSL as in C. */
+static void ringlet_dots_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_fur_shape, inputs_glsl, ringlet_dots_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, t, tip;
+            float h, s;
+            cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
+            pelt_vec3 u = v3_norm_or(v3_add(n, v3_scale(t, 0.3f)), v3(1, 0, 0));
+            pelt_vec3 v = v3_norm_or(v3_add(v3_cross(t, n), v3_scale(n, 0.2f)), v3(0, 0, 1));
+            pelt_vec3 a = v3_norm_or(v3(0.5f, 1.0f, 0.8f), v3(0, 1, 0)), b = v3_norm_or(v3_sub(tip, v3(0, 2, 0)), a);
+            const float ta[3] = {v3_dot(t, a), v3_dot(u, a), v3_dot(v, a)};
+            const float tb[3] = {v3_dot(t, b), v3_dot(u, b), v3_dot(v, b)};
+            const float gram[3] = {v3_dot(t, u), v3_dot(t, v), v3_dot(u, v)};
+            float d[2];
+            pelt__ringlet_dots(ta, tb, gram, 0.5f * s, 37.7f * h, h, pelt__ringlet_phase(s), d);
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fmax(fabs(g[0] - d[0]), fabs(g[1] - d[1])));
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 5e-4);
+}
+
 static const char ringlet_main[] =
     "out vec4 o;\n"
     "void main() {\n"
@@ -731,6 +769,7 @@ int main(void)
     RUN(clump_coverage_glsl_matches_c);
     RUN(ringlet_levels_glsl_matches_c);
     RUN(ringlet_tangent_glsl_matches_c);
+    RUN(ringlet_dots_glsl_matches_c);
     RUN(groom_glsl_matches_c);
     RUN(inter_shadow_glsl_matches_c);
     RUN(shell_lod_glsl_matches_c);
