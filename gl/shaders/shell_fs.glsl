@@ -12,17 +12,19 @@ flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
 in float v_alpha;
 in float v_view;
-#if defined(PELT_RINGLETS) && !defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
-in vec3 v_ring_l;   // a dry ringlet's own light from dots (shell_vs.glsl)
+#if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
+in vec2 v_light;    // a tuft's or ringlet's own light (shell_vs.glsl)
+#endif
+#if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
+in vec3 v_ring_l;   // a ringlet's, from dots
 in vec3 v_ring_e;
 in vec3 v_ring_g;
-in vec2 v_light;
-#elif (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
-in vec3 v_hair_t;   // a tuft's or ringlet's own light (shell_vs.glsl)
+#endif
+#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+in vec3 v_hair_t;   // a tuft's, from vectors
 in vec3 v_tuft_u;
 in vec3 v_tuft_v;
 in vec3 v_world;
-in vec2 v_light;
 #endif
 #if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
 flat in float v_clump_slope;
@@ -96,7 +98,7 @@ void own_light_dots(vec2 own, vec3 inv_free, float rho, inout vec3 base, inout f
 #endif
 }
 
-#if !defined(PELT_RINGLETS) || defined(PELT_WET)
+#ifdef PELT_WET
 void own_light(vec3 T, float rho, inout vec3 base, inout float spec)
 {
     vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
@@ -122,16 +124,18 @@ void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 void ringlet_light(float id, float rho, inout vec3 base, inout float spec)
 {
     float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
-#ifdef PELT_WET
-    vec3 T = ringlet_tangent(normalize(v_hair_t), normalize(v_tuft_u), normalize(v_tuft_v), k, u_curl_frequency,
-                             v_h, ringlet_phase(id));
-    own_light(T, rho, base, spec);
-#else
-    // Dry: the same tangent's dots from the vertex stage's (ringlet_dots);
-    // the vertex stage left the free hair's light out of base (shell_vs.glsl).
+    // The ringlet's tangent's dots from the vertex stage's (ringlet_dots).
     vec2 own = ringlet_dots(v_ring_l, v_ring_e, v_ring_g, k, u_curl_frequency, v_h, ringlet_phase(id));
-    own_light_dots(own, vec3(1.0), rho, base, spec);
+#ifdef PELT_WET
+    // base carries the free hair's light, divided out here.
+    vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
+    float free_hair = kajiya_kay_dots(v_ring_l.x, v_ring_e.x, shine.x).x;
+    vec3 inv_free = 1.0 / max(u_ambient + free_hair * v_light.x * u_light_color, vec3(1e-4));
+#else
+    // Dry, the vertex stage left it out of base (shell_vs.glsl).
+    vec3 inv_free = vec3(1.0);
 #endif
+    own_light_dots(own, inv_free, rho, base, spec);
 }
 #endif
 

@@ -37,23 +37,26 @@ out float v_spec;       // fur_light_terms' specular weight
 out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
 flat out float v_clump_profile; // the tuft's profile f(h) (Eq. 5 above its base), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
-#if defined(PELT_RINGLETS) && !defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
-// A dry ringlet's own light (docs/method.md, Ringlets) from dots: the
-// hair's frame (unit tangent t, the surface's u and v, world) dotted with
-// the light, with the eye's direction and with itself, for ringlet_dots.
-out vec3 v_ring_l;      // (t.L, u.L, v.L)
-out vec3 v_ring_e;      // (t.E, u.E, v.E)
-out vec3 v_ring_g;      // (t.u, t.v, u.v)
-out vec2 v_light;       // fur_light_terms' facing and gamma
-#elif (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
+#if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
 // A tuft's or a ringlet's own light (docs/wetness.md, Tuft light;
 // docs/method.md, Ringlets): what the fragment stage needs to light the
 // hair along its own tangent.
+out vec2 v_light;       // fur_light_terms' facing and gamma
+#endif
+#if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
+// A ringlet's, from dots: the hair's frame (unit tangent t, the surface's
+// u and v, world) dotted with the light, with the eye's direction and with
+// itself, for ringlet_dots.
+out vec3 v_ring_l;      // (t.L, u.L, v.L)
+out vec3 v_ring_e;      // (t.E, u.E, v.E)
+out vec3 v_ring_g;      // (t.u, t.v, u.v)
+#endif
+#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+// A tuft's, from the vectors (a tuft bends the hair towards its centre).
 out vec3 v_hair_t;      // the hair's unit tangent, world
 out vec3 v_tuft_u;      // world vectors of one mask-uv unit over the hair's length
 out vec3 v_tuft_v;      // (along the tangent frame's u and v)
 out vec3 v_world;       // the point, world
-out vec2 v_light;       // fur_light_terms' facing and gamma
 #endif
 #if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
 flat out float v_clump_slope; // clump_tuft_slope(h): the same for the whole layer
@@ -114,15 +117,17 @@ void main()
     gl_Position = vec4(lc * 2.0 - 1.0, 1.0);
 #else
     fur_light_terms(mat3(u_model) * t, mat3(u_model) * n, world.xyz, h, light_mul, v_spec);
-#if defined(PELT_RINGLETS) && !defined(PELT_WET)
+#if defined(PELT_WET) || defined(PELT_RINGLETS)
+    v_light = fur_light_reach.xz; // the reach the free hair was just lit with
+#endif
+#ifdef PELT_RINGLETS
     vec3 ring_t = normalize(mat3(u_model) * t), ring_u = normalize(mat3(u_model) * u);
     vec3 ring_v = normalize(mat3(u_model) * v);
     vec3 to_light = normalize(u_light_dir), from_eye = normalize(world.xyz - u_eye);
     v_ring_l = vec3(dot(ring_t, to_light), dot(ring_u, to_light), dot(ring_v, to_light));
     v_ring_e = vec3(dot(ring_t, from_eye), dot(ring_u, from_eye), dot(ring_v, from_eye));
     v_ring_g = vec3(dot(ring_t, ring_u), dot(ring_t, ring_v), dot(ring_u, ring_v));
-    v_light = fur_light_reach.xz;
-#ifdef PELT_SHADING_KK
+#if defined(PELT_SHADING_KK) && !defined(PELT_WET)
     // The fragment stage lights the ringlet in place of the free hair
     // (ringlet_light): the colours carry only gamma, where Kajiya-Kay's
     // light_mul is gamma (ambient + diffuse), the part it replaces.
@@ -131,7 +136,8 @@ void main()
 #endif
         light_mul = vec3(fur_light_reach.z);
 #endif
-#elif defined(PELT_WET) || defined(PELT_RINGLETS)
+#endif
+#ifdef PELT_WET
     // The mask's uv runs along the fur uv, which tiles u_fur_per_uv tiles
     // per uv unit and u_tiling per world unit along the tangent frame.
     v_hair_t = normalize(mat3(u_model) * t);
@@ -139,7 +145,6 @@ void main()
     v_tuft_u = mat3(u_model) * u * world_per_uv.x;
     v_tuft_v = mat3(u_model) * v * world_per_uv.y;
     v_world = world.xyz;
-    v_light = fur_light_reach.xz; // the reach the free hair was just lit with
 #endif
 #ifdef PELT_WET
     v_clump_slope = clump_tuft_slope(h, u_clump_blend, u_layers);
