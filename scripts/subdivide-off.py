@@ -6,6 +6,12 @@ installs it):
 
     tar -xzf /usr/share/doc/libcgal-dev/data.tar.gz -C /tmp data/meshes/refined_elephant.off
     scripts/subdivide-off.py /tmp/data/meshes/refined_elephant.off 1 elephant-355k.off
+
+With --open-below F it then drops every triangle that reaches into the lowest
+fraction F of the mesh's height (along +Y): an open mesh, such as a bunny with
+no bottom (N may be 0):
+
+    scripts/subdivide-off.py /tmp/data/meshes/bunny00.off 0 open-bunny.off --open-below 0.04
 """
 import sys
 
@@ -54,17 +60,30 @@ def subdivide(verts, tris):
     return verts, out
 
 
+def open_below(verts, tris, fraction):
+    ys = [v[1] for v in verts]
+    cut = min(ys) + fraction * (max(ys) - min(ys))
+    return [t for t in tris if min(verts[i][1] for i in t) > cut]
+
+
 def main():
-    if len(sys.argv) != 4:
+    args = sys.argv[1:]
+    fraction = None
+    if len(args) == 5 and args[3] == '--open-below':
+        fraction = float(args[4])
+        args = args[:3]
+    if len(args) != 3:
         sys.exit(__doc__)
-    verts, tris = read_off(sys.argv[1])
-    for _ in range(int(sys.argv[2])):
+    verts, tris = read_off(args[0])
+    for _ in range(int(args[1])):
         verts, tris = subdivide(verts, tris)
-    with open(sys.argv[3], 'w') as f:
+    if fraction is not None:
+        tris = open_below(verts, tris, fraction)
+    with open(args[2], 'w') as f:
         f.write(f"OFF\n{len(verts)} {len(tris)} 0\n")
         f.writelines(f"{x:.7g} {y:.7g} {z:.7g}\n" for x, y, z in verts)
         f.writelines(f"3 {a} {b} {c}\n" for a, b, c in tris)
-    print(f"{sys.argv[3]}: {len(verts)} vertices, {len(tris)} triangles")
+    print(f"{args[2]}: {len(verts)} vertices, {len(tris)} triangles")
 
 
 if __name__ == '__main__':
