@@ -308,8 +308,9 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
  * them alike: with and without fins (their share of the frame), the
  * back-facing shells in their place, with and
  * without the inter-fur shadows, every shell everywhere (no view budget),
- * the floor shader, the plain shell renderer, and with the light's shadows
- * on: without them and the light pass alone. */
+ * the floor shader, the plain shell renderer, the frame as fur.lod = off
+ * draws it, and with the light's shadows on: without them and the light
+ * pass alone. */
 static int bench_variants(cli_session *s, unsigned frames, const cli_options *o, bool wet, double step_ms)
 {
     enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, PLAIN, WET_WHOLE, NO_LIGHT, LIGHT_ONLY,
