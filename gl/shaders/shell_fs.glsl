@@ -99,13 +99,19 @@ void own_light_dots(vec2 own, vec3 inv_free, float rho, inout vec3 base, inout f
 }
 
 #ifdef PELT_WET
+// 1 / the free hair's light (ambient + its Kajiya-Kay diffuse), which the
+// vertex stage folded into base: own_light_dots' inv_free for wet fur.
+vec3 free_light_inverse(float free_diffuse)
+{
+    return 1.0 / max(u_ambient + free_diffuse * v_light.x * u_light_color, vec3(1e-4));
+}
+
 void own_light(vec3 T, float rho, inout vec3 base, inout float spec)
 {
     vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
     vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
     float free_hair = kajiya_kay(normalize(v_hair_t), L, E, shine.x).x;
-    vec3 lit_free = u_ambient + free_hair * v_light.x * u_light_color;
-    own_light_dots(vec2(dot(T, L), dot(T, E)), 1.0 / max(lit_free, vec3(1e-4)), rho, base, spec);
+    own_light_dots(vec2(dot(T, L), dot(T, E)), free_light_inverse(free_hair), rho, base, spec);
 }
 #endif
 #endif
@@ -130,7 +136,7 @@ void ringlet_light(float id, float rho, inout vec3 base, inout float spec)
     // base carries the free hair's light, divided out here.
     vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
     float free_hair = kajiya_kay_dots(v_ring_l.x, v_ring_e.x, shine.x).x;
-    vec3 inv_free = 1.0 / max(u_ambient + free_hair * v_light.x * u_light_color, vec3(1e-4));
+    vec3 inv_free = free_light_inverse(free_hair);
 #else
     // Dry, the vertex stage left it out of base (shell_vs.glsl).
     vec3 inv_free = vec3(1.0);
