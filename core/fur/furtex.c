@@ -106,6 +106,23 @@ static int subsamples(const pelt__furtex_desc *d)
     return n < SUBSAMPLES ? SUBSAMPLES : n > 64.0f ? 64 : (int)n;
 }
 
+/* The share one sub-sample of the tall filter adds under its disc. A
+ * texel that a strand crosses all the way through the slab is hit by
+ * the m sub-samples whose discs cover it, and is covered 1 - 2^-4 (as
+ * four hits of a half cover it): a hair is opaque, however it runs. A
+ * straight strand stands over the same texels at every sub-sample (m =
+ * samples); a curled one sweeps past, m = (2 r + 1) / step, so each of
+ * its few hits must add more. One share for every hit, 2 / samples,
+ * made curled hair a third as opaque as straight hair (curls read as
+ * felt). A strand that ends inside the slab makes fewer hits: partial. */
+float pelt__furtex_hit_weight(float step, float r, int samples)
+{
+    float m = (2.0f * r + 1.0f) / fmaxf(step, 1e-6f);
+    if (m > (float)samples) m = (float)samples;
+    if (m < 1.0f) m = 1.0f;
+    return 1.0f - exp2f(-(float)SUBSAMPLES / m);
+}
+
 /* Adds a soft-edged disc of radius r at (cx, cy) to a w x h image, wrapping
  * in x, and in y when wrap_y (else clipped). Coverage is accumulated as a
  * union in the alpha byte; the strand covering a texel most sets its shade,
@@ -177,18 +194,21 @@ void pelt__furtex_generate(const pelt__furtex_desc *d, uint8_t *rgba)
         for (size_t s = 0; s < count; s++) {
             strand st = strands_next(&stream);
             if (z_lo >= st.length) continue;
+            float dz = (z_hi - z_lo) / (float)samples, c[2], next[2];
+            pelt__furtex_strand_center(d, &st, z_lo + 0.5f * dz, next);
             for (int k = 0; k < samples; k++) {
-                float z = z_lo + (z_hi - z_lo) * ((float)k + 0.5f) / (float)samples;
+                float z = z_lo + dz * ((float)k + 0.5f);
                 if (z > st.length) break;
                 float along = z / st.length;
                 float r = d->strand_radius * (1.0f - d->taper * along);
                 if (r < 0.15f) r = 0.15f;
-                float c[2];
-                pelt__furtex_strand_center(d, &st, z, c);
+                c[0] = next[0];
+                c[1] = next[1];
+                pelt__furtex_strand_center(d, &st, z + dz, next);
                 /* Thin discs still cover a fraction of a texel. */
                 float weight = r < 0.5f ? r * 2.0f : 1.0f;
-                /* Sub-samples of the tall filter each add a share. */
-                splat(slice, d->size, d->size, true, c[0], c[1], r, weight * (2.0f / (float)samples),
+                splat(slice, d->size, d->size, true, c[0], c[1], r,
+                      weight * pelt__furtex_hit_weight(hypotf(next[0] - c[0], next[1] - c[1]), r, samples),
                       st.shade, along, st.id);
             }
         }

@@ -53,6 +53,12 @@ size_t pelt__furtex_strands(const pelt__furtex_desc *d, pelt__furtex_strand *out
 void pelt__furtex_strand_center(const pelt__furtex_desc *d, const pelt__furtex_strand *s, float z,
                                 float out[2]);
 
+/* The coverage one sub-sample of a slice's tall filter adds under a disc
+ * of radius r (texels) whose centre moves `step` texels to the next of
+ * the slice's `samples`: a strand crossing the slab covers the texels it
+ * passes over 1 - 2^-4, straight or curled. */
+float pelt__furtex_hit_weight(float step, float r, int samples);
+
 /* Number of bytes of the volume: size * size * (layers + 1) * 4, or 0 when
  * that overflows. */
 size_t pelt__furtex_bytes(const pelt__furtex_desc *d);
