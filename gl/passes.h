@@ -36,7 +36,7 @@ void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFIN
 /* The fins use the features that concern them. */
 #define PELT__FIN_FEATURES                                                                                \
     (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE |    \
-     PELT__SHELL_SHADOW_MAP)
+     PELT__SHELL_SHADOW_MAP | PELT__SHELL_RINGLETS)
 
 /* The skin uses these: a branch it never takes still costs llvmpipe every
  * fragment (docs/lod.md), so the shadow-map taps are compiled in only

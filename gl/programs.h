@@ -21,6 +21,7 @@ extern const char pelt__shader_shell_plain_vs[];
 extern const char pelt__shader_shell_plain_fs[];
 extern const char pelt__shader_shell_lod[];
 extern const char pelt__shader_fur_light[];
+extern const char pelt__shader_own_light[];
 extern const char pelt__shader_fin_vs[];
 extern const char pelt__shader_fin_fs[];
 extern const char pelt__shader_shadow_map[];

@@ -29,10 +29,12 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     char defines[PELT__FEATURE_DEFINES_MAX];
     pelt__shell_feature_defines(features, defines);
     const char *vs[] = {defines,          pelt__shader_shading,   pelt__shader_shadow_map,
-                        pelt__shader_fur_light, pelt__shader_fur_shape, pelt__shader_clump,
-                        pelt__shader_shell_lod, pelt__shader_skin_blend, pelt__shader_shell_vs, NULL};
-    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_fur_shape,
-                        pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_shell_fs, NULL};
+                        pelt__shader_fur_light, pelt__shader_fur_shape, pelt__shader_own_light,
+                        pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_skin_blend,
+                        pelt__shader_shell_vs, NULL};
+    const char *fs[] = {defines,           pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_fur_shape,
+                        pelt__shader_own_light, pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_shell_fs,
+                        NULL};
     const char *floor_fs[] = {pelt__shader_shell_floor_fs, NULL};
     pelt_status st = pelt__gl_program_create(floor ? "shell floor" : "shell", vs, floor ? floor_fs : fs, hooks,
                                              &sp->program, err);

@@ -20,6 +20,15 @@ out float v_fade;
 out vec3 v_root;      // groomed root and tip colours, lit per vertex as on
 out vec3 v_tip;       // the shells (fur_light_terms' mul folded in)
 out float v_spec;     // fur_light_terms' specular weight
+#ifdef PELT_RINGLETS
+// The ringlet's own light (own_light.glsl), as the shells': the reach the
+// free hair was lit with and the hair frame's dots; the frame's u runs
+// along the fin, the way the fin texture draws the curl sideways.
+out vec2 v_light;
+out vec3 v_ring_l;
+out vec3 v_ring_e;
+out vec3 v_ring_g;
+#endif
 
 ivec2 table_at(int i)
 {
@@ -55,12 +64,30 @@ void main()
     vec4 world = u_model * vec4(p, 1.0);
     fur_wetness = textureLod(u_mask, ex.xy, 0.0).a;
     vec3 light_mul;
-    fur_light_terms(mat3(u_model) * t, mat3(u_model) * nd.xyz, world.xyz, h, light_mul, v_spec);
-    v_root = groom_root_color(u_color, hair_color) * light_mul;
-    v_tip = groom_tip_color(u_color, u_tip_color, hair_color) * light_mul;
+    vec3 world_t = mat3(u_model) * t, world_n = mat3(u_model) * nd.xyz;
+    fur_light_terms(world_t, world_n, world.xyz, h, light_mul, v_spec);
     // Along the fin: the edge's world length at the shells' texture scale.
     vec3 root_a = fin_vertex(e.x, 0).xyz, root_b = fin_vertex(e.y, 0).xyz;
-    float edge = length(mat3(u_model) * (root_b - root_a)) * u_tiling;
+    vec3 along = mat3(u_model) * (root_b - root_a);
+    float edge = length(along) * u_tiling;
+#ifdef PELT_RINGLETS
+    v_light = fur_light_reach.xz;
+    vec3 ring_n = normalize(world_n);
+    vec3 ring_u = along - ring_n * dot(along, ring_n);
+    ring_u = dot(ring_u, ring_u) > 1e-20 ? normalize(ring_u) : normalize(cross(ring_n, vec3(0.3, 0.5, 0.8)));
+    ringlet_frame_dots(normalize(world_t), ring_u, cross(ring_n, ring_u), normalize(u_light_dir),
+                       normalize(world.xyz - u_eye), v_ring_l, v_ring_e, v_ring_g);
+#if defined(PELT_SHADING_KK) && !defined(PELT_WET)
+    // As the shells' (shell_vs.glsl): the fragment stage lights the ringlet
+    // in place of the free hair, so the colours carry only gamma.
+#ifdef PELT_SHADING_TABLE
+    if (u_shading_model < 0.5)
+#endif
+        light_mul = vec3(fur_light_reach.z);
+#endif
+#endif
+    v_root = groom_root_color(u_color, hair_color) * light_mul;
+    v_tip = groom_tip_color(u_color, u_tip_color, hair_color) * light_mul;
     v_fin_uv = vec2(uintBitsToFloat(e.z) + float(side) * edge, h);
     gl_Position = u_view_proj * world;
 }

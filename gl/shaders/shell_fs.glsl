@@ -72,51 +72,16 @@ vec4 wet_hair(vec2 fur_uv, float rho)
 #endif
 }
 
-#if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
-// A hair's own light: Kajiya-Kay along the tangent T of the hair as it
-// lies in its tuft (docs/wetness.md, Tuft light) or curls in its ringlet
-// (docs/method.md, Ringlets) rather than the free hair's, which the vertex
-// stage lit: the diffuse is scaled by the ratio of the two and the
-// highlight is T's. Other hair models keep the free hair's light. From
-// the dots of the hair's own tangent with the light and the eye's
-// direction, own = (T.L, T.E), and 1 / the free hair's light (ambient +
-// diffuse), which the vertex stage folded into base.
-void own_light_dots(vec2 own, vec3 inv_free, float rho, inout vec3 base, inout float spec)
-{
-#if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
-    return;
-#elif !defined(PELT_SHADING_KK)
-    return;
-#else
-#ifdef PELT_SHADING_TABLE
-    if (u_shading_model > 0.5) return;
-#endif
-    vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
-    vec2 tuft = kajiya_kay_dots(own.x, own.y, shine.x);
-    base *= (u_ambient + tuft.x * v_light.x * u_light_color) * inv_free;
-    spec = v_light.y * shine.y * tuft.y * v_light.x;
-#endif
-}
-
-#ifdef PELT_WET
-// 1 / the free hair's light (ambient + its Kajiya-Kay diffuse), which the
-// vertex stage folded into base: own_light_dots' inv_free for wet fur.
-vec3 free_light_inverse(float free_diffuse)
-{
-    return 1.0 / max(u_ambient + free_diffuse * v_light.x * u_light_color, vec3(1e-4));
-}
-
+#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+// A tuft's hair lit along its tangent T in the tuft (own_light.glsl).
 void own_light(vec3 T, float rho, inout vec3 base, inout float spec)
 {
     vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
     vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
     float free_hair = kajiya_kay(normalize(v_hair_t), L, E, shine.x).x;
-    own_light_dots(vec2(dot(T, L), dot(T, E)), free_light_inverse(free_hair), rho, base, spec);
+    own_light_dots(vec2(dot(T, L), dot(T, E)), v_light, free_light_inverse(free_hair, v_light), rho, base, spec);
 }
-#endif
-#endif
 
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
 void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 {
     own_light(tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, to_centre, u_clump_tightness * rho * v_clump_slope), rho,
@@ -125,23 +90,17 @@ void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 #endif
 
 #if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
-// The ringlet of the hair with this id, at this shell's height: water
-// takes out the curl as it does from the volume's levels (1 - rho).
-void ringlet_light(float id, float rho, inout vec3 base, inout float spec)
+// The ringlet of the hair with this id at this shell's height. Wet, base
+// carries the free hair's light; dry, the vertex stage left it out
+// (shell_vs.glsl).
+void shell_ringlet_light(float id, float rho, inout vec3 base, inout float spec)
 {
-    float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
-    // The ringlet's tangent's dots from the vertex stage's (ringlet_dots).
-    vec2 own = ringlet_dots(v_ring_l, v_ring_e, v_ring_g, k, u_curl_frequency, v_h, ringlet_phase(id));
 #ifdef PELT_WET
-    // base carries the free hair's light, divided out here.
-    vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
-    float free_hair = kajiya_kay_dots(v_ring_l.x, v_ring_e.x, shine.x).x;
-    vec3 inv_free = free_light_inverse(free_hair);
+    const bool free_in_base = true;
 #else
-    // Dry, the vertex stage left it out of base (shell_vs.glsl).
-    vec3 inv_free = vec3(1.0);
+    const bool free_in_base = false;
 #endif
-    own_light_dots(own, inv_free, rho, base, spec);
+    ringlet_light(id, rho, v_h, v_light, v_ring_l, v_ring_e, v_ring_g, free_in_base, base, spec);
 }
 #endif
 
@@ -230,10 +189,10 @@ void main()
 #ifdef PELT_WET
     if (clump == CLUMP_DISPLACED) tuft_light(t.xy - q, rho, base, spec);
 #ifdef PELT_RINGLETS
-    else ringlet_light(hair.b, rho, base, spec);
+    else shell_ringlet_light(hair.b, rho, base, spec);
 #endif
 #elif defined(PELT_RINGLETS)
-    ringlet_light(hair.b, rho, base, spec);
+    shell_ringlet_light(hair.b, rho, base, spec);
 #endif
     o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), hair.a);
 #endif

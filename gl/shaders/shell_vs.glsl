@@ -123,10 +123,8 @@ void main()
 #ifdef PELT_RINGLETS
     vec3 ring_t = normalize(mat3(u_model) * t), ring_u = normalize(mat3(u_model) * u);
     vec3 ring_v = normalize(mat3(u_model) * v);
-    vec3 to_light = normalize(u_light_dir), from_eye = normalize(world.xyz - u_eye);
-    v_ring_l = vec3(dot(ring_t, to_light), dot(ring_u, to_light), dot(ring_v, to_light));
-    v_ring_e = vec3(dot(ring_t, from_eye), dot(ring_u, from_eye), dot(ring_v, from_eye));
-    v_ring_g = vec3(dot(ring_t, ring_u), dot(ring_t, ring_v), dot(ring_u, ring_v));
+    ringlet_frame_dots(ring_t, ring_u, ring_v, normalize(u_light_dir), normalize(world.xyz - u_eye), v_ring_l,
+                       v_ring_e, v_ring_g);
 #if defined(PELT_SHADING_KK) && !defined(PELT_WET)
     // The fragment stage lights the ringlet in place of the free hair
     // (ringlet_light): the colours carry only gamma, where Kajiya-Kay's

@@ -1,0 +1,64 @@
+// A hair's own light, shared by the shells' and the fins' stages: a
+// ringlet lit along its curl (docs/method.md, Ringlets) and a tuft's hair
+// along its tuft (docs/wetness.md, Tuft light), in place of the free
+// hair's light that the vertex stage worked out. Comes after blocks.glsl,
+// shading.glsl and fur_shape.glsl.
+
+// The vertex stage's part: the hair frame's unit vectors (t, u, v) dotted
+// with the direction towards the light L, the eye's E and each other,
+// for ringlet_dots per fragment: l = (t.L, u.L, v.L), e = (t.E, u.E, v.E),
+// g = (t.u, t.v, u.v).
+void ringlet_frame_dots(vec3 t, vec3 u, vec3 v, vec3 L, vec3 E, out vec3 l, out vec3 e, out vec3 g)
+{
+    l = vec3(dot(t, L), dot(u, L), dot(v, L));
+    e = vec3(dot(t, E), dot(u, E), dot(v, E));
+    g = vec3(dot(t, u), dot(t, v), dot(u, v));
+}
+
+// Kajiya-Kay along the hair's own tangent T from its dots own = (T.L,
+// T.E): the diffuse is scaled by the ratio of the two lights (inv_free:
+// 1 / the free hair's light that base carries, or 1 where the vertex
+// stage left it out) and the highlight is T's. reach = (facing, gamma)
+// of fur_reach at the vertex. Other hair models keep the free hair's
+// light.
+void own_light_dots(vec2 own, vec2 reach, vec3 inv_free, float rho, inout vec3 base, inout float spec)
+{
+#if defined(PELT_SHADING_TABLE) && !defined(PELT_SHADING_KK)
+    return;
+#elif !defined(PELT_SHADING_KK)
+    return;
+#else
+#ifdef PELT_SHADING_TABLE
+    if (u_shading_model > 0.5) return;
+#endif
+    vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
+    vec2 kk = kajiya_kay_dots(own.x, own.y, shine.x);
+    base *= (u_ambient + kk.x * reach.x * u_light_color) * inv_free;
+    spec = reach.y * shine.y * kk.y * reach.x;
+#endif
+}
+
+// 1 / the free hair's light (ambient + its Kajiya-Kay diffuse free_diffuse),
+// for own_light_dots where the vertex stage folded it into base.
+vec3 free_light_inverse(float free_diffuse, vec2 reach)
+{
+    return 1.0 / max(u_ambient + free_diffuse * reach.x * u_light_color, vec3(1e-4));
+}
+
+// The ringlet of the hair with this id at height h (over the full length),
+// from the frame's dots (ringlet_frame_dots): water takes out the curl as
+// it does from the volume's levels (1 - rho). free_in_base: the vertex
+// stage folded the free hair's light into base (wet variants), else it
+// left it out (dry Kajiya-Kay).
+void ringlet_light(float id, float rho, float h, vec2 reach, vec3 ring_l, vec3 ring_e, vec3 ring_g,
+                   bool free_in_base, inout vec3 base, inout float spec)
+{
+    float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
+    vec2 own = ringlet_dots(ring_l, ring_e, ring_g, k, u_curl_frequency, h, ringlet_phase(id));
+    vec3 inv_free = vec3(1.0);
+    if (free_in_base) {
+        vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
+        inv_free = free_light_inverse(kajiya_kay_dots(ring_l.x, ring_e.x, shine.x).x, reach);
+    }
+    own_light_dots(own, reach, inv_free, rho, base, spec);
+}
