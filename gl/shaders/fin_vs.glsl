@@ -77,14 +77,7 @@ void main()
     ring_u = dot(ring_u, ring_u) > 1e-20 ? normalize(ring_u) : normalize(cross(ring_n, vec3(0.3, 0.5, 0.8)));
     ringlet_frame_dots(normalize(world_t), ring_u, cross(ring_n, ring_u), normalize(u_light_dir),
                        normalize(world.xyz - u_eye), v_ring_l, v_ring_e, v_ring_g);
-#if defined(PELT_SHADING_KK) && !defined(PELT_WET)
-    // As the shells' (shell_vs.glsl): the fragment stage lights the ringlet
-    // in place of the free hair, so the colours carry only gamma.
-#ifdef PELT_SHADING_TABLE
-    if (u_shading_model < 0.5)
-#endif
-        light_mul = vec3(fur_light_reach.z);
-#endif
+    light_mul = ringlet_light_mul(light_mul, fur_light_reach.z);
 #endif
     v_root = groom_root_color(u_color, hair_color) * light_mul;
     v_tip = groom_tip_color(u_color, u_tip_color, hair_color) * light_mul;

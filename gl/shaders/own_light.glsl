@@ -15,6 +15,21 @@ void ringlet_frame_dots(vec3 t, vec3 u, vec3 v, vec3 L, vec3 E, out vec3 l, out 
     g = vec3(dot(t, u), dot(t, v), dot(u, v));
 }
 
+// The vertex stage's light factor for the colours it passes on where the
+// fragment stage lights ringlets (ringlet_light): dry Kajiya-Kay carries
+// gamma alone (its light_mul is gamma (ambient + diffuse), the part the
+// ringlet's light replaces); other variants keep light_mul.
+vec3 ringlet_light_mul(vec3 light_mul, float gamma)
+{
+#if defined(PELT_SHADING_KK) && !defined(PELT_WET)
+#ifdef PELT_SHADING_TABLE
+    if (u_shading_model < 0.5)
+#endif
+        return vec3(gamma);
+#endif
+    return light_mul;
+}
+
 // Kajiya-Kay along the hair's own tangent T from its dots own = (T.L,
 // T.E): the diffuse is scaled by the ratio of the two lights (inv_free:
 // 1 / the free hair's light that base carries, or 1 where the vertex

@@ -125,15 +125,7 @@ void main()
     vec3 ring_v = normalize(mat3(u_model) * v);
     ringlet_frame_dots(ring_t, ring_u, ring_v, normalize(u_light_dir), normalize(world.xyz - u_eye), v_ring_l,
                        v_ring_e, v_ring_g);
-#if defined(PELT_SHADING_KK) && !defined(PELT_WET)
-    // The fragment stage lights the ringlet in place of the free hair
-    // (ringlet_light): the colours carry only gamma, where Kajiya-Kay's
-    // light_mul is gamma (ambient + diffuse), the part it replaces.
-#ifdef PELT_SHADING_TABLE
-    if (u_shading_model < 0.5)
-#endif
-        light_mul = vec3(fur_light_reach.z);
-#endif
+    light_mul = ringlet_light_mul(light_mul, fur_light_reach.z);
 #endif
 #ifdef PELT_WET
     // The mask's uv runs along the fur uv, which tiles u_fur_per_uv tiles
