@@ -109,3 +109,9 @@ float pelt__clump_coverage(float a, float k)
 {
     return 1.0f - powf(fmaxf(1.0f - a, 0.0f), 1.0f / k);
 }
+
+float pelt__clump_fin_shift(const float d[2], const float dir[2])
+{
+    float len2 = dir[0] * dir[0] + dir[1] * dir[1];
+    return len2 > 1e-20f ? (d[0] * dir[0] + d[1] * dir[1]) / len2 : 0.0f;
+}

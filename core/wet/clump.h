@@ -87,4 +87,12 @@ pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
  * haze; see docs/wetness.md. */
 float pelt__clump_coverage(float a, float k);
 
+/* A fin shows the hair rooted along its edge from the side (docs/wetness.md,
+ * Tufts on the outline): the hair a tuft pulls from q = p + d lies along
+ * the fin by d's component along the edge. `dir` is the edge's mask uv per
+ * unit of the fin texture's u (uv_b - uv_a over the edge's length in fur
+ * tiles); the result is that component in fin-texture units,
+ * dot(d, dir) / dot(dir, dir), and 0 where dir has no length. */
+float pelt__clump_fin_shift(const float d[2], const float dir[2]);
+
 #endif

@@ -110,3 +110,13 @@ float clump_coverage(float a, float k)
 {
     return 1.0 - pow(max(1.0 - a, 0.0), 1.0 / k);
 }
+
+// A fin shows the hair rooted along its edge from the side: the hair a
+// tuft pulls from q = p + d lies along the fin by d's component along the
+// edge, in fin-texture units; `dir` is the edge's mask uv per fin-texture
+// unit. Mirrors pelt__clump_fin_shift.
+float clump_fin_shift(vec2 d, vec2 dir)
+{
+    float len2 = dot(dir, dir);
+    return len2 > 1e-20 ? dot(d, dir) / len2 : 0.0;
+}

@@ -1,6 +1,7 @@
 // Fin fragments: the fin texture (the same hair seen from the side), faded
 // in near the silhouette, lit like the shells (fur_light.glsl): ringlets
-// along their curl (own_light.glsl); wet fins darken like the shells.
+// along their curl (own_light.glsl); wet fins darken like the shells and
+// show the tufts the shells draw, from the side (docs/wetness.md).
 in vec2 v_uv;
 in vec2 v_fin_uv;
 in float v_density;
@@ -14,6 +15,9 @@ in vec3 v_ring_l;
 in vec3 v_ring_e;
 in vec3 v_ring_g;
 #endif
+#ifdef PELT_WET
+flat in vec2 v_clump_dir; // mask uv per fin-texture u (fin_vs.glsl)
+#endif
 
 uniform sampler2D u_fin_tex;   // PELT_UNIT_FIN
 uniform sampler2D u_color_tex; // PELT_UNIT_COLOR
@@ -23,9 +27,40 @@ out vec4 o_color;
 
 void main()
 {
-    vec4 hair = texture(u_fin_tex, v_fin_uv);
+    vec2 fin_uv = v_fin_uv;
+    float rho = 0.0;
+#ifdef PELT_WET
+    // Tufts on the outline (Silva Eq. 5, Alg. 2 as on the shells): the fin
+    // shows the hair that the tuft at this point of its edge pulls in from
+    // q, moved along the fin by the pull's share along the edge; between
+    // the tufts, above their base, the gaps open.
+    vec2 q;
+    vec4 t = clump_texel(u_mask, v_uv);
+    rho = t.a;
+    float profile = clump_tuft_profile(v_fin_uv.y * u_fin_length, u_clump_blend, u_layers);
+    int clump = clump_lookup_texel(u_mask, t, v_uv, profile, u_clump_tightness, q);
+    if (clump == CLUMP_DISPLACED) fin_uv.x += clump_fin_shift(q - v_uv, v_clump_dir);
+#endif
+    vec4 hair = texture(u_fin_tex, fin_uv);
+#ifdef PELT_WET
+    if (clump != CLUMP_KEEP) {
+        // Strays stay out of the tufts and stand where they grew.
+        if (clump == CLUMP_DISCARD || clump_stray(hair.b / max(hair.a, 1e-3), u_wet_strays)) hair = vec4(0.0);
+        vec4 own = texture(u_fin_tex, v_fin_uv);
+        if (own.a > hair.a && clump_stray(own.b / max(own.a, 1e-3), u_wet_strays)) {
+            hair = own;
+            clump = CLUMP_KEEP;
+        }
+        if (!(hair.a > 0.0)) discard;
+    }
+#endif
     hair.rgb /= max(hair.a, 1e-3); // premultiplied
     if (!groom_keeps(hair.b, v_density)) discard;
+#ifdef PELT_WET
+    // The tuft's hair squeezed together is denser, as on the shells.
+    if (clump == CLUMP_DISPLACED)
+        hair.a = clump_coverage(hair.a, 1.0 - min(u_clump_tightness * rho * profile, CLUMP_MAX_PULL));
+#endif
     if (hair.a < 0.05) discard;
     float a = hair.a * v_fade;
     vec3 base = mix(v_root, v_tip, hair.g) * shade_decode(hair.r); // linear light
@@ -33,9 +68,8 @@ void main()
 #ifdef PELT_COLOR_TEXTURE
     base *= texture(u_color_tex, v_uv * u_color_scale).rgb;
 #endif
-    float rho = 0.0, spec = v_spec;
+    float spec = v_spec;
 #ifdef PELT_WET
-    rho = textureLod(u_mask, v_uv, 0.0).a;
     base = wet_color(base, rho, u_wet_darken);
 #endif
 #ifdef PELT_RINGLETS

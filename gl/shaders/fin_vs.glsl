@@ -29,6 +29,11 @@ out vec3 v_ring_l;
 out vec3 v_ring_e;
 out vec3 v_ring_g;
 #endif
+#ifdef PELT_WET
+// The edge's mask uv per unit of the fin texture's u: the way along the fin
+// a tuft's pull moves the hair the fin shows (clump_fin_shift).
+flat out vec2 v_clump_dir;
+#endif
 
 ivec2 table_at(int i)
 {
@@ -70,6 +75,10 @@ void main()
     vec3 root_a = fin_vertex(e.x, 0).xyz, root_b = fin_vertex(e.y, 0).xyz;
     vec3 along = mat3(u_model) * (root_b - root_a);
     float edge = length(along) * u_tiling;
+#ifdef PELT_WET
+    vec2 uv_a = fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS + 1).xy, uv_b = fin_vertex(e.y, 2 * PELT_FIN_HEIGHTS + 1).xy;
+    v_clump_dir = edge > 0.0 ? (uv_b - uv_a) / edge : vec2(0.0);
+#endif
 #ifdef PELT_RINGLETS
     v_light = fur_light_reach.xz;
     vec3 ring_n = normalize(world_n);

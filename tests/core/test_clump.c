@@ -216,6 +216,19 @@ static void ringlet_levels_follow_the_wetness(void)
     CHECK(o[0] == 0.0f && o[1] == 0.0f && o[2] == 0.0f);
 }
 
+/* A fin shows a tuft's pull by its share along the fin's edge, in fin
+ * texture units: along the edge it is |d| / |dir|, across it nothing, and
+ * an edge without uv length (a seam) moves nothing. */
+static void clump_fin_shift_is_the_pull_along_the_edge(void)
+{
+    const float dir[2] = {0.006f, 0.008f}; /* |dir| = 0.01 uv per fin unit */
+    const float along[2] = {0.03f, 0.04f}, across[2] = {-0.04f, 0.03f}, none[2] = {0.0f, 0.0f};
+    CHECK_NEAR(pelt__clump_fin_shift(along, dir), 5.0f, 1e-4f);
+    CHECK_NEAR(pelt__clump_fin_shift((const float[2]){-0.03f, -0.04f}, dir), -5.0f, 1e-4f);
+    CHECK_NEAR(pelt__clump_fin_shift(across, dir), 0.0f, 1e-5f);
+    CHECK_NEAR(pelt__clump_fin_shift(along, none), 0.0f, 0.0f);
+}
+
 int main(void)
 {
     RUN(clump_profile_is_zero_at_first_layer_and_one_at_tip);
@@ -231,5 +244,6 @@ int main(void)
     RUN(clump_root_in_dry_fur_is_discarded);
     RUN(clump_coverage_thins_toward_the_tips);
     RUN(ringlet_levels_follow_the_wetness);
+    RUN(clump_fin_shift_is_the_pull_along_the_edge);
     return check_summary();
 }

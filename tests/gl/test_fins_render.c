@@ -2,7 +2,7 @@
  * by what they are for: fins widen the silhouette, fade away where the
  * surface faces the viewer, stay on the strands under a gale, and are one
  * draw call; inter-fur shadows make single hairs stand out on constant-
- * colour fur. */
+ * colour fur; wet fins gather their hair into the shells' tufts. */
 #include "support/gl_test.h"
 
 #include "core/base/vec.h"
@@ -292,6 +292,62 @@ static void all_fins_are_one_draw_call(void)
     }
 }
 
+static void soak_all_over(pelt_fur *fur, void *user)
+{
+    (void)user;
+    pelt_droplet d = {{0.5f, 0.5f}, 0.75f, 1.0f};
+    pelt_fur_add_droplet(fur, &d, NULL);
+}
+
+/* How much of the band between r0 and r1 px outside the covered pixels of
+ * `skin` (square windows, as near_covered) `img` shows, as band_amount. */
+static double ring_amount(const uint8_t *skin, int r0, int r1, const uint8_t *img)
+{
+    double amount = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            if (near_covered(skin, x, y, r0 - 1) || !near_covered(skin, x, y, r1)) continue;
+            amount += gl_test_off_background(img + 4 * ((size_t)y * W + (size_t)x)) / 255.0;
+        }
+    return amount;
+}
+
+/* (v) Wet fins show the shells' tufts from the side (docs/wetness.md,
+ * Tufts on the outline): a soaked sphere's fins alone, against the same
+ * fins with the tufts held open (tightness 0.01, the same wetness and
+ * darkening). Near the skin the roots stay spread: the band 1..3 px out
+ * keeps at least 0.9 of its hair; towards the tips the hair gathers into
+ * tufts with gaps between: the band at 60-90% of the fur's reach shows at
+ * most 0.85 of the open fins' hair. Fins that ignored the clumps would
+ * show the same hair in both. */
+static void wet_fins_gather_into_tufts(void)
+{
+    const pelt_camera cam = {0.0f, 0.0f, 3.2f, 40.0f, {0, 0, 0}};
+    pelt_fur_desc tufts = {.length = 0.15f}, open = tufts;
+    open.wet.clump_tightness = 0.01f;
+    const pelt_draw_desc skin_only = {.no_fins = true, .debug.no_shells = true};
+    const pelt_draw_desc fins_only = {.no_skin = true, .debug.no_shells = true, .fins_unfaded = true};
+    uint8_t *skin = gl_test_render(gl, sphere, &tufts, &cam, &skin_only, NULL, NULL);
+    uint8_t *a = gl_test_render(gl, sphere, &tufts, &cam, &fins_only, soak_all_over, NULL);
+    uint8_t *b = gl_test_render(gl, sphere, &open, &cam, &fins_only, soak_all_over, NULL);
+    CHECK(skin && a && b);
+    if (skin && a && b) {
+        /* The fur's reach in pixels: 0.15 world units at distance 3.2, fov 40. */
+        float reach = 0.15f * (float)H / (2.0f * 3.2f * tanf(20.0f * 3.14159265f / 180.0f));
+        int r0 = (int)(0.6f * reach + 0.5f), r1 = (int)(0.9f * reach + 0.5f);
+        double roots_tufts = ring_amount(skin, 1, 3, a), roots_open = ring_amount(skin, 1, 3, b);
+        double tips_tufts = ring_amount(skin, r0, r1, a), tips_open = ring_amount(skin, r0, r1, b);
+        printf("  reach %.1f px; roots (1-3 px): %.1f tufted / %.1f open = %.3f; "
+               "tips (%d-%d px): %.1f / %.1f = %.3f\n",
+               reach, roots_tufts, roots_open, roots_tufts / roots_open, r0, r1, tips_tufts, tips_open,
+               tips_tufts / tips_open);
+        CHECK(roots_open > 50.0 && tips_open > 20.0);
+        CHECK(roots_tufts >= 0.9 * roots_open);
+        CHECK(tips_tufts <= 0.85 * tips_open);
+    }
+    free(skin), free(a), free(b);
+}
+
 int main(void)
 {
     gl = gl_test_open(W, H, false);
@@ -304,6 +360,7 @@ int main(void)
     RUN(inter_fur_shadows_make_hairs_stand_out);
     RUN(all_fins_are_one_draw_call);
     RUN(fins_add_up_alike_on_fine_and_coarse_meshes);
+    RUN(wet_fins_gather_into_tufts);
     pelt_mesh_destroy(torus);
     pelt_mesh_destroy(square);
     pelt_mesh_destroy(sphere);

@@ -417,6 +417,36 @@ static void clump_coverage_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+static const char fin_shift_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  vec2 d = vec2(c.x / 31.5 - 1.0, c.y / 23.5 - 1.0) * 0.02;\n"
+    "  vec2 dir = vec2(cos(c.x * 0.37 + c.y), sin(c.x * 0.37 + c.y)) * (c.y < 4.0 ? 0.0 : 1e-3 * (0.5 + c.y / 47.0));\n"
+    "  o = vec4(clump_fin_shift(d, dir), 0.0, 0.0, 0.0);\n"
+    "}\n";
+
+/* A tuft's pull along a fin (the fins' tufts), GLSL vs C, the rows without
+ * an edge direction included. */
+static void clump_fin_shift_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_clump, fin_shift_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0, largest = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float d[2] = {((float)x / 31.5f - 1.0f) * 0.02f, ((float)y / 23.5f - 1.0f) * 0.02f};
+            float angle = (float)x * 0.37f + (float)y, len = y < 4 ? 0.0f : 1e-3f * (0.5f + (float)y / 47.0f);
+            float dir[2] = {cosf(angle) * len, sinf(angle) * len};
+            float c = pelt__clump_fin_shift(d, dir);
+            largest = fmax(largest, fabs(c));
+            worst = fmax(worst, fabs(out[4 * (y * W + x)] - c) / fmax(1.0, fabs(c)));
+        }
+    printf("  worst |GLSL - C| = %.3g (relative above 1), shifts up to %.1f\n", worst, largest);
+    CHECK(largest > 1.0);
+    CHECK(worst < 2e-4);
+}
+
 static const char groom_main[] =
     "out vec4 o;\n"
     "void main() {\n"
@@ -767,6 +797,7 @@ int main(void)
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
+    RUN(clump_fin_shift_glsl_matches_c);
     RUN(ringlet_levels_glsl_matches_c);
     RUN(ringlet_tangent_glsl_matches_c);
     RUN(ringlet_dots_glsl_matches_c);
