@@ -61,18 +61,19 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
     pelt_status st = build(p, PELT__FIN_FEATURES, err);
     if (st != PELT_OK) return st;
 
-    /* The fin texture: repeats along the fin, clamped at root and tip. */
+    /* The fin texture: repeats along the fin, clamped at root and tip; a
+     * layer a ringlet level, as the fur volume (wet fins lose their curl). */
     pelt__gl_unpack_defaults();
     glGenTextures(1, &p->texture);
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
-    glBindTexture(GL_TEXTURE_2D, p->texture);
-    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, (GLsizei)fs->fin_width, (GLsizei)fs->fin_height, 0, GL_RGBA,
-                 GL_UNSIGNED_BYTE, fs->fin_texture);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glGenerateMipmap(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, p->texture);
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)fs->fin_width, (GLsizei)fs->fin_height,
+                 (GLsizei)fs->ringlet_levels, 0, GL_RGBA, GL_UNSIGNED_BYTE, fs->fin_texture);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
 
     /* Room for the most fins and fin vertices any level has. */
     _Static_assert(PELT__FIN_HEIGHTS == PELT_FIN_HEIGHTS && PELT__FIN_VERTEX_TEXELS == PELT_FIN_VERTEX_TEXELS &&
@@ -156,7 +157,7 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     f->stats->upload_bytes += 16 * (count + l->fin_vertex_count * PELT_FIN_VERTEX_TEXELS);
     pelt__gl_blended_hair_state();
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
-    glBindTexture(GL_TEXTURE_2D, p->texture);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, p->texture);
     unsigned features = f->shell_features & PELT__FIN_FEATURES;
     if (!p->variants[features] && !p->failed[features]) build(p, features, NULL);
     if (!p->variants[features]) features = PELT__FIN_FEATURES;

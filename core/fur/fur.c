@@ -183,7 +183,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     pelt__fintex_desc fd = {td, d.look.texture_size / 4 < 8 ? 8 : d.look.texture_size / 4, d.fins.density,
                             d.fins.curl, d.fins.curl_turns};
     size_t fin_bytes = pelt__fintex_bytes(&fd);
-    f->fin_texture = fin_bytes ? pelt__alloc(a, fin_bytes) : NULL;
+    f->fin_texture = fin_bytes ? pelt__alloc_zero(a, f->ringlet_levels, fin_bytes) : NULL;
     if (!f->texture || !f->fur_uvs || !f->fin_texture) {
         pelt_fur_destroy(f);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
@@ -210,7 +210,13 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
             pelt__lod_shell_composite(f->texture + (size_t)k * bytes, d.look.texture_size, d.layers,
                                       f->lod_slices + (size_t)k * lod_bytes);
     }
-    pelt__fintex_generate(&fd, f->fin_texture);
+    /* The fins hold the same ringlet levels: wet fins lose their curl too. */
+    for (unsigned k = 0; k < f->ringlet_levels; k++) {
+        pelt__fintex_desc level = fd;
+        if (f->ringlet_levels > 1)
+            level.hair.ringlet_radius = full * (1.0f - (float)k / (float)(f->ringlet_levels - 1));
+        pelt__fintex_generate(&level, f->fin_texture + (size_t)k * fin_bytes);
+    }
     f->fin_width = d.look.texture_size;
     f->fin_height = fd.height;
     compute_fur_uvs(&mesh_data, d.look.tiling, f->fur_uvs, f->fur_per_uv);

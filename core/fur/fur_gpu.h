@@ -63,7 +63,8 @@ typedef struct pelt__fur_snapshot {
     pelt__gpu_skin skin;
     const void *groom;        /* one pelt__groom_vertex a vertex (core/fur/groom.h), */
     size_t groom_stride;      /* this many bytes apart */
-    const uint8_t *fin_texture; /* RGBA8, premultiplied, row 0 at the root */
+    const uint8_t *fin_texture; /* RGBA8, premultiplied, row 0 at the root;
+                                 one fin_width x fin_height image per ringlet level */
     unsigned fin_width, fin_height;
     const uint8_t *color;     /* the colour texture, RGBA8, or NULL */
     unsigned color_width, color_height, color_version;

@@ -45,7 +45,8 @@ struct pelt_fur {
     float *pose;             /* NULL, or the mesh posed (pelt_fur_set_pose): 10
                                 floats a vertex, position, normal, tangent */
     unsigned pose_version;   /* bumped when the pose changes */
-    uint8_t *fin_texture;    /* RGBA8 fin texture, see pelt__fintex_generate */
+    uint8_t *fin_texture;    /* RGBA8 fin texture, see pelt__fintex_generate,
+                                one image a ringlet level as `texture` */
     unsigned fin_width, fin_height;
 };
 

@@ -19,11 +19,24 @@ in vec3 v_ring_g;
 flat in vec2 v_clump_dir; // mask uv per fin-texture u (fin_vs.glsl)
 #endif
 
-uniform sampler2D u_fin_tex;   // PELT_UNIT_FIN
+uniform highp sampler2DArray u_fin_tex; // PELT_UNIT_FIN: a layer a ringlet level
 uniform sampler2D u_color_tex; // PELT_UNIT_COLOR
 uniform sampler2D u_mask;      // PELT_UNIT_MASK
 
 out vec4 o_color;
+
+// The fin's hair at uv under wetness rho: with ringlets, water takes the
+// curl out between the levels the fin texture holds, as on the shells
+// (shell_fs.glsl's wet_hair). Dry fins read the full-curl level alone.
+vec4 fin_hair(vec2 uv, float rho)
+{
+#if defined(PELT_RINGLETS) && defined(PELT_WET)
+    vec3 level = ringlet_levels(rho, u_ringlets.x, 1.0);
+    return mix(texture(u_fin_tex, vec3(uv, level.x)), texture(u_fin_tex, vec3(uv, level.y)), level.z);
+#else
+    return texture(u_fin_tex, vec3(uv, 0.0));
+#endif
+}
 
 void main()
 {
@@ -41,12 +54,12 @@ void main()
     int clump = clump_lookup_texel(u_mask, t, v_uv, profile, u_clump_tightness, q);
     if (clump == CLUMP_DISPLACED) fin_uv.x += clump_fin_shift(q - v_uv, v_clump_dir);
 #endif
-    vec4 hair = texture(u_fin_tex, fin_uv);
+    vec4 hair = fin_hair(fin_uv, rho);
 #ifdef PELT_WET
     if (clump != CLUMP_KEEP) {
         // Strays stay out of the tufts and stand where they grew.
         if (clump == CLUMP_DISCARD || clump_stray(hair.b / max(hair.a, 1e-3), u_wet_strays)) hair = vec4(0.0);
-        vec4 own = texture(u_fin_tex, v_fin_uv);
+        vec4 own = fin_hair(v_fin_uv, rho);
         if (own.a > hair.a && clump_stray(own.b / max(own.a, 1e-3), u_wet_strays)) {
             hair = own;
             clump = CLUMP_KEEP;

@@ -421,8 +421,8 @@ static void wet_fur_highlight_peak_rises_with_wetness(void)
 /* Ringlets (docs/method.md): water takes the curl out. Square fur curled
  * as ringlets, evenly wet with the clumps held open and wet shading off,
  * renders soaked as the same fur without curl; half wet, between that and
- * the dry ringlets. The shells only: the fins keep their texture whatever
- * the water (as they do not clump either). */
+ * the dry ringlets. The shells, then the fins alone (every fin unfaded):
+ * the fin texture holds the same ringlet levels as the fur volume. */
 static void soaked_ringlets_render_as_straight_fur(void)
 {
     const pelt_camera cam = {0.0f, 35.0f, 2.6f, 45.0f, {0, 0, 0}};
@@ -432,22 +432,27 @@ static void soaked_ringlets_render_as_straight_fur(void)
     pelt_fur_desc straight = curly;
     straight.look.curl_radius = 0.0f;
     float dry = 0.0f, half = 0.5f, soaked = 1.0f;
-    pelt_draw_desc nf = {.no_fins = true};
-    uint8_t *c0 = gl_test_render(gl, square, &curly, &cam, &nf, wet_all_over, &dry);
-    uint8_t *c5 = gl_test_render(gl, square, &curly, &cam, &nf, wet_all_over, &half);
-    uint8_t *c1 = gl_test_render(gl, square, &curly, &cam, &nf, wet_all_over, &soaked);
-    uint8_t *s1 = gl_test_render(gl, square, &straight, &cam, &nf, wet_all_over, &soaked);
-    CHECK(c0 && c5 && c1 && s1);
-    if (c0 && c5 && c1 && s1) {
-        double d_dry = mean_diff_in(c0, s1, 0, W), d_half = mean_diff_in(c5, s1, 0, W);
-        double d_soaked = mean_diff_in(c1, s1, 0, W);
-        printf("  mean difference from straight fur: dry ringlets %.3f, half wet %.3f, soaked %.3f\n",
-               d_dry, d_half, d_soaked);
-        CHECK(d_dry > 3.0);
-        CHECK(d_half < 0.8 * d_dry && d_half > d_soaked);
-        CHECK(d_soaked < 0.3);
+    const pelt_draw_desc passes[2] = {{.no_fins = true},
+                                      {.no_skin = true, .debug.no_shells = true, .fins_unfaded = true}};
+    const char *names[2] = {"shells", "fins"};
+    for (int k = 0; k < 2; k++) {
+        const pelt_draw_desc *dd = &passes[k];
+        uint8_t *c0 = gl_test_render(gl, square, &curly, &cam, dd, wet_all_over, &dry);
+        uint8_t *c5 = gl_test_render(gl, square, &curly, &cam, dd, wet_all_over, &half);
+        uint8_t *c1 = gl_test_render(gl, square, &curly, &cam, dd, wet_all_over, &soaked);
+        uint8_t *s1 = gl_test_render(gl, square, &straight, &cam, dd, wet_all_over, &soaked);
+        CHECK(c0 && c5 && c1 && s1);
+        if (c0 && c5 && c1 && s1) {
+            double d_dry = mean_diff_in(c0, s1, 0, W), d_half = mean_diff_in(c5, s1, 0, W);
+            double d_soaked = mean_diff_in(c1, s1, 0, W);
+            printf("  %s: mean difference from straight fur: dry ringlets %.3f, half wet %.3f, soaked %.3f\n",
+                   names[k], d_dry, d_half, d_soaked);
+            CHECK(d_dry > 3.0);
+            CHECK(d_half < 0.8 * d_dry && d_half > d_soaked);
+            CHECK(d_soaked < 0.3);
+        }
+        free(c0), free(c5), free(c1), free(s1);
     }
-    free(c0), free(c5), free(c1), free(s1);
 }
 
 /* Blobs of covered pixels (4-connected) of at least `min_px` pixels. */
