@@ -133,7 +133,7 @@ typedef struct pelt__fur_block {
     float skin_color[3], tiling;
     float fin_length, inter_shadow, inter_shadow_step, shading_model;
     float ringlets[2], occlusion, wet_strays;
-    float ringlet_radius, pad_[3]; /* std140 rounds the block up to 16 bytes */
+    float ringlet_radius, strand_curl_radius, strand_curl_omega, strand_curl_wave;
 } pelt__fur_block;
 
 

@@ -48,6 +48,9 @@ OFFSET(pelt__fur_block, ringlets, 128);
 OFFSET(pelt__fur_block, occlusion, 136);
 OFFSET(pelt__fur_block, wet_strays, 140);
 OFFSET(pelt__fur_block, ringlet_radius, 144);
+OFFSET(pelt__fur_block, strand_curl_radius, 148);
+OFFSET(pelt__fur_block, strand_curl_omega, 152);
+OFFSET(pelt__fur_block, strand_curl_wave, 156);
 _Static_assert(sizeof(pelt__fur_block) == 160, "std140 size of pelt_fur_block");
 #undef OFFSET
 
@@ -130,6 +133,12 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.ringlets[1] = (float)(fs->volume_slices + fs->lod_slices);
     k.occlusion = fs->occlusion_depth;
     k.ringlet_radius = fs->ringlet_levels > 1 ? d.look.curl_radius : 0.0f;
+    /* The texture's own curl, texels over texels a world unit times the
+     * fur's length: lit along the curl with the ringlets (own_light.glsl). */
+    float texels_per_length = (float)d.look.texture_size * d.look.tiling * d.length;
+    k.strand_curl_radius = texels_per_length > 0.0f ? d.look.strand_curl / texels_per_length : 0.0f;
+    k.strand_curl_omega = 6.2831853f * d.look.strand_curl_turns;
+    k.strand_curl_wave = d.look.strand_curl_shape == PELT_STRAND_CURL_WAVE ? 1.0f : 0.0f;
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

@@ -58,8 +58,9 @@ enum {
     PELT__SHELL_KAJIYA_KAY = 1 << 4,    /* the hair lighting models: one of these, */
     PELT__SHELL_LIGHT_TABLE = 1 << 5,   /* neither (Scheuermann-Marschner) or both (any) */
     PELT__SHELL_SHADOW_MAP = 1 << 6,    /* the light's shadow maps darken the direct light */
-    PELT__SHELL_RINGLETS = 1 << 7,      /* ringlets: each hair lit along its curl; with _WET
-                                           two curl levels blended */
+    PELT__SHELL_RINGLETS = 1 << 7,      /* curly hair (ringlets or the texture's own curl):
+                                           each hair lit along its curl; with _WET
+                                           two ringlet levels blended */
     PELT__SHELL_GENERIC = (1 << 8) - 1, /* everything, chosen per fragment */
     PELT__SHELL_LIGHT_PASS = 1 << 8,    /* drawn from the light into its opacity slices */
     PELT__SHELL_GPU_SKIN = 1 << 9,      /* skinned in the vertex stage (for measuring) */

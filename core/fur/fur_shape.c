@@ -45,11 +45,18 @@ pelt_vec3 pelt__ringlet_tangent(pelt_vec3 t, pelt_vec3 u, pelt_vec3 v, float k, 
     return len2 > 1e-30f ? v3_scale(d, 1.0f / sqrtf(len2)) : t;
 }
 
-void pelt__ringlet_dots(const float ta[3], const float tb[3], const float gram[3], float k, float omega, float h,
-                        float psi, float out[2])
+void pelt__strand_curl_slope(float radius, float omega, bool wave, float h, float psi, float out[2])
 {
     float c = cosf(omega * h + psi), s = sinf(omega * h + psi);
-    float a = k * (c - omega * h * s), b = k * (s + omega * h * c);
+    out[0] = wave ? radius * omega * c : -radius * omega * s;
+    out[1] = wave ? 0.0f : radius * omega * c;
+}
+
+void pelt__ringlet_dots(const float ta[3], const float tb[3], const float gram[3], float k, float omega, float h,
+                        float psi, const float extra[2], float out[2])
+{
+    float c = cosf(omega * h + psi), s = sinf(omega * h + psi);
+    float a = k * (c - omega * h * s) + extra[0], b = k * (s + omega * h * c) + extra[1];
     /* |t + a u + b v|^2 with t, u, v unit */
     float len2 = 1.0f + a * a + b * b + 2.0f * (a * gram[0] + b * gram[1] + a * b * gram[2]);
     if (!(len2 > 1e-30f)) {

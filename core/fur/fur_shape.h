@@ -48,15 +48,25 @@ float pelt__ringlet_phase(float id);
 pelt_vec3 pelt__ringlet_tangent(pelt_vec3 t, pelt_vec3 u, pelt_vec3 v, float k, float omega, float h,
                                 float psi);
 
-/* pelt__ringlet_tangent's T dotted with two directions a and b, from the
- * frame's unit vectors dotted with them, ta = (t.a, u.a, v.a) and
- * tb = (t.b, u.b, v.b), and with each other, gram = (t.u, t.v, u.v):
- * out = (T.a, T.b). The shells' fragment stage lights a dry ringlet so,
- * from dots the vertex stage interpolates, where it normalised the
- * frame's three vectors and the tangent per fragment. Mirrors
- * ringlet_dots in fur_shape.glsl. */
+/* The slope of the fur texture's own curl (Lengyel §2.2, look.strand_curl;
+ * pelt__furtex_strand_center) along (u, v) per unit of the hair's length at
+ * height h: `radius` the curl's radius over the hair's length, omega = 2 pi
+ * turns, psi the strand's phase: a helix winds as radius (cos, sin)(omega h
+ * + psi), so out = radius omega (-sin, cos); a wave (wave true) runs along
+ * u alone, out = (radius omega cos, 0). Mirrors strand_curl_slope in
+ * fur_shape.glsl. */
+void pelt__strand_curl_slope(float radius, float omega, bool wave, float h, float psi, float out[2]);
+
+/* pelt__ringlet_tangent's T, plus a further slope `extra` along (u, v)
+ * (the texture's own curl, pelt__strand_curl_slope), dotted with two
+ * directions a and b, from the frame's unit vectors dotted with them,
+ * ta = (t.a, u.a, v.a) and tb = (t.b, u.b, v.b), and with each other,
+ * gram = (t.u, t.v, u.v): out = (T.a, T.b). The shells' and fins' fragment
+ * stages light a dry curl so, from dots the vertex stage interpolates,
+ * where it normalised the frame's three vectors and the tangent per
+ * fragment. Mirrors ringlet_dots in fur_shape.glsl. */
 void pelt__ringlet_dots(const float ta[3], const float tb[3], const float gram[3], float k, float omega, float h,
-                        float psi, float out[2]);
+                        float psi, const float extra[2], float out[2]);
 
 /* Shading tangent T(h): the unit derivative d/dh (beta + phi) of the whole
  * displaced curve, so highlights follow bends and curls (Silva Fig. 6);

@@ -50,4 +50,7 @@ layout(std140) uniform pelt_fur_block {
     float u_occlusion;       // the fur's optical depth (fur_occlusion)
     float u_wet_strays;      // the share of hairs that stays out of the tufts
     float u_ringlet_radius;  // the ringlets' radius at the tip, world units (0: none)
+    float u_strand_curl_radius; // the fur texture's own curl: its radius over the
+    float u_strand_curl_omega;  // fur's length (0: none), 2 pi turns, and
+    float u_strand_curl_wave;   // 1 for a wave along u, 0 for a helix
 };

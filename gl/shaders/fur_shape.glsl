@@ -34,13 +34,22 @@ vec3 ringlet_tangent(vec3 t, vec3 u, vec3 v, float k, float omega, float h, floa
     return len2 > 1e-30 ? d * inversesqrt(len2) : t;
 }
 
-// ringlet_tangent's T dotted with two directions, from the frame's unit
-// vectors dotted with them (ta, tb) and with each other (gram = t.u, t.v,
-// u.v). Mirrors pelt__ringlet_dots.
-vec2 ringlet_dots(vec3 ta, vec3 tb, vec3 gram, float k, float omega, float h, float psi)
+// The slope of the fur texture's own curl along (u, v) per unit of the
+// hair's length at h: a helix radius (cos, sin)(omega h + psi) or a wave
+// along u (wave true). Mirrors pelt__strand_curl_slope.
+vec2 strand_curl_slope(float radius, float omega, bool wave, float h, float psi)
 {
     float c = cos(omega * h + psi), s = sin(omega * h + psi);
-    float a = k * (c - omega * h * s), b = k * (s + omega * h * c);
+    return wave ? vec2(radius * omega * c, 0.0) : radius * omega * vec2(-s, c);
+}
+
+// ringlet_tangent's T, plus the slope `extra` along (u, v), dotted with
+// two directions, from the frame's unit vectors dotted with them (ta, tb)
+// and with each other (gram = t.u, t.v, u.v). Mirrors pelt__ringlet_dots.
+vec2 ringlet_dots(vec3 ta, vec3 tb, vec3 gram, float k, float omega, float h, float psi, vec2 extra)
+{
+    float c = cos(omega * h + psi), s = sin(omega * h + psi);
+    float a = k * (c - omega * h * s) + extra.x, b = k * (s + omega * h * c) + extra.y;
     float len2 = 1.0 + a * a + b * b + 2.0 * (a * gram.x + b * gram.y + a * b * gram.z);
     if (!(len2 > 1e-30)) return vec2(ta.x, tb.x);
     return vec2(dot(ta, vec3(1.0, a, b)), dot(tb, vec3(1.0, a, b))) * inversesqrt(len2);

@@ -60,16 +60,19 @@ vec3 free_light_inverse(float free_diffuse, vec2 reach)
     return 1.0 / max(u_ambient + free_diffuse * reach.x * u_light_color, vec3(1e-4));
 }
 
-// The ringlet of the hair with this id at height h (over the full length),
-// from the frame's dots (ringlet_frame_dots): water takes out the curl as
-// it does from the volume's levels (1 - rho). free_in_base: the vertex
-// stage folded the free hair's light into base (wet variants), else it
-// left it out (dry Kajiya-Kay).
+// The curl of the hair with this id at height h (over the full length):
+// its ringlet and the fur texture's own curl (strand_curl_slope), from the
+// frame's dots (ringlet_frame_dots). Water takes out the ringlet as it
+// does from the volume's levels (1 - rho); the texture's curl stays, as
+// in the texture. free_in_base: the vertex stage folded the free hair's
+// light into base (wet variants), else it left it out (dry Kajiya-Kay).
 void ringlet_light(float id, float rho, float h, vec2 reach, vec3 ring_l, vec3 ring_e, vec3 ring_g,
                    bool free_in_base, inout vec3 base, inout float spec)
 {
     float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
-    vec2 own = ringlet_dots(ring_l, ring_e, ring_g, k, u_curl_frequency, h, ringlet_phase(id));
+    float psi = ringlet_phase(id);
+    vec2 extra = strand_curl_slope(u_strand_curl_radius, u_strand_curl_omega, u_strand_curl_wave > 0.5, h, psi);
+    vec2 own = ringlet_dots(ring_l, ring_e, ring_g, k, u_curl_frequency, h, psi, extra);
     vec3 inv_free = vec3(1.0);
     if (free_in_base) {
         vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);

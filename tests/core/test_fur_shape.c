@@ -159,7 +159,8 @@ static void curl_presets_cover_fig7_and_differ(void)
 
 /* The ringlet's tangent lit from dots (what the shells' fragment stage
  * gets from the vertex stage) is the tangent itself dotted with the two
- * directions, on frames that are neither orthogonal nor the same. */
+ * directions, on frames that are neither orthogonal nor the same; so is
+ * the hair's tangent bent by the texture's own curl. */
 static void ringlet_dots_are_the_tangent_dotted(void)
 {
     double worst = 0.0;
@@ -177,10 +178,16 @@ static void ringlet_dots_are_the_tangent_dotted(void)
         const float ta[3] = {v3_dot(t, a), v3_dot(u, a), v3_dot(v, a)};
         const float tb[3] = {v3_dot(t, b), v3_dot(u, b), v3_dot(v, b)};
         const float gram[3] = {v3_dot(t, u), v3_dot(t, v), v3_dot(u, v)};
-        float d[2];
-        pelt__ringlet_dots(ta, tb, gram, k, omega, h, psi, d);
+        float d[2], e[2], none[2] = {0.0f, 0.0f};
+        pelt__ringlet_dots(ta, tb, gram, k, omega, h, psi, none, d);
         worst = fmax(worst, fmax(fabs(d[0] - v3_dot(T, a)), fabs(d[1] - v3_dot(T, b))));
         turned += v3_dot(T, t) < 0.95f;
+        /* The texture's own curl alone: t plus its slope along u and v. */
+        float slope[2];
+        pelt__strand_curl_slope(0.02f * (float)(i % 5), 6.2831853f * (float)(1 + i % 3), i % 2 == 0, h, psi, slope);
+        pelt_vec3 S = v3_norm_or(v3_add(t, v3_add(v3_scale(u, slope[0]), v3_scale(v, slope[1]))), t);
+        pelt__ringlet_dots(ta, tb, gram, 0.0f, omega, h, psi, slope, e);
+        worst = fmax(worst, fmax(fabs(e[0] - v3_dot(S, a)), fabs(e[1] - v3_dot(S, b))));
     }
     printf("  %d of 2000 tangents turned by their curl; worst |dots - tangent . direction| = %.3g\n", turned, worst);
     CHECK(turned > 500);

@@ -361,6 +361,38 @@ static void furtex_curled_strands_are_as_opaque_as_straight_ones(void)
     CHECK(pelt__furtex_hit_weight(0.0f, 1.6f, 4) == 0.5f); /* straight: four hits of a half */
 }
 
+/* The slope the shells light the texture's own curl with (its helix or
+ * wave, look.strand_curl) is the derivative of the curl each strand of the
+ * texture is drawn along, with the strand's own phase: the centre's
+ * offset from its leaning axis, differenced over the height. */
+static void strand_curl_slope_is_the_drawn_curl_derivative(void)
+{
+    double worst = 0.0, largest = 0.0;
+    for (int wave = 0; wave < 2; wave++) {
+        pelt__furtex_desc d = base;
+        d.curl_radius = 5.0f;
+        d.curl_turns = 3.0f;
+        d.curl_wave = wave != 0;
+        pelt__furtex_strand st[40];
+        size_t n = pelt__furtex_strands(&d, st, 40);
+        CHECK(n >= 40);
+        for (size_t i = 0; i < 40; i++)
+            for (int k = 1; k < 20; k++) {
+                float z = (float)k / 20.0f, dz = 1e-3f, a[2], b[2], slope[2];
+                pelt__furtex_strand_center(&d, &st[i], z - dz, a);
+                pelt__furtex_strand_center(&d, &st[i], z + dz, b);
+                /* less the lean, which the slope leaves to the strand's axis */
+                float fd[2] = {(b[0] - a[0]) / (2.0f * dz) - st[i].lean_x, (b[1] - a[1]) / (2.0f * dz) - st[i].lean_y};
+                pelt__strand_curl_slope(d.curl_radius, 6.2831853f * d.curl_turns, d.curl_wave, z, st[i].phase, slope);
+                worst = fmax(worst, fmax(fabs(fd[0] - slope[0]), fabs(fd[1] - slope[1])));
+                largest = fmax(largest, fabs(slope[0]));
+            }
+    }
+    printf("  slopes up to %.1f texels per unit height; worst |finite difference - slope| = %.3g\n", largest, worst);
+    CHECK(largest > 50.0);
+    CHECK(worst < 0.05 * largest);
+}
+
 int main(void)
 {
     RUN(furtex_innermost_slice_is_opaque_skin);
@@ -373,5 +405,6 @@ int main(void)
     RUN(furtex_wave_moves_strands_along_u_only);
     RUN(ringlets_turn_neighbouring_strands_out_of_step);
     RUN(furtex_curled_strands_are_as_opaque_as_straight_ones);
+    RUN(strand_curl_slope_is_the_drawn_curl_derivative);
     return check_summary();
 }

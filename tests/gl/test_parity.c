@@ -338,11 +338,13 @@ static const char ringlet_dots_main[] =
     "  vec3 u = normalize(n + 0.3 * t), v = normalize(cross(t, n) + 0.2 * n);\n"
     "  vec3 a = normalize(vec3(0.5, 1.0, 0.8)), b = normalize(tip - vec3(0.0, 2.0, 0.0));\n"
     "  vec2 d = ringlet_dots(vec3(dot(t, a), dot(u, a), dot(v, a)), vec3(dot(t, b), dot(u, b), dot(v, b)),\n"
-    "                        vec3(dot(t, u), dot(t, v), dot(u, v)), 0.5 * s, 37.7 * h, h, ringlet_phase(s));\n"
+    "                        vec3(dot(t, u), dot(t, v), dot(u, v)), 0.5 * s, 37.7 * h, h, ringlet_phase(s),\n"
+    "                        strand_curl_slope(0.08 * s, 18.8, s > 0.5, h, ringlet_phase(h)));\n"
     "  o = vec4(d, 0.0, 0.0);\n"
     "}\n";
 
-/* The ringlet's dots (the shells' dry ringlet light), in GLSL as in C. */
+/* The curl's dots (the shells' and fins' dry curl light: a ringlet and the
+ * texture's own curl, helix and wave), in GLSL as in C. */
 static void ringlet_dots_glsl_matches_c(void)
 {
     const char *fs[] = {pelt__shader_fur_shape, inputs_glsl, ringlet_dots_main, NULL};
@@ -360,7 +362,9 @@ static void ringlet_dots_glsl_matches_c(void)
             const float tb[3] = {v3_dot(t, b), v3_dot(u, b), v3_dot(v, b)};
             const float gram[3] = {v3_dot(t, u), v3_dot(t, v), v3_dot(u, v)};
             float d[2];
-            pelt__ringlet_dots(ta, tb, gram, 0.5f * s, 37.7f * h, h, pelt__ringlet_phase(s), d);
+            float extra[2];
+            pelt__strand_curl_slope(0.08f * s, 18.8f, s > 0.5f, h, pelt__ringlet_phase(h), extra);
+            pelt__ringlet_dots(ta, tb, gram, 0.5f * s, 37.7f * h, h, pelt__ringlet_phase(s), extra, d);
             const float *g = out + 4 * (y * W + x);
             worst = fmax(worst, fmax(fabs(g[0] - d[0]), fabs(g[1] - d[1])));
         }

@@ -729,6 +729,9 @@ static void uniform_blocks_match_their_c_structs(void)
         {"u_ringlets", offsetof(pelt__fur_block, ringlets)},
         {"u_wet_strays", offsetof(pelt__fur_block, wet_strays)},
         {"u_ringlet_radius", offsetof(pelt__fur_block, ringlet_radius)},
+        {"u_strand_curl_radius", offsetof(pelt__fur_block, strand_curl_radius)},
+        {"u_strand_curl_omega", offsetof(pelt__fur_block, strand_curl_omega)},
+        {"u_strand_curl_wave", offsetof(pelt__fur_block, strand_curl_wave)},
     };
     for (size_t i = 0; i < sizeof members / sizeof members[0]; i++) {
         GLuint index = GL_INVALID_INDEX;
