@@ -41,7 +41,7 @@ void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFIN
 /* The skin uses these: a branch it never takes still costs llvmpipe every
  * fragment (docs/lod.md), so the shadow-map taps are compiled in only
  * when the light's maps are on. */
-#define PELT__SKIN_FEATURES (PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_SHADOW_MAP)
+#define PELT__SKIN_FEATURES (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_SHADOW_MAP)
 
 /* Opaque skin with depth write: the mesh with the innermost fur slice, in
  * variants by the PELT__SKIN_FEATURES bits (the generic one, all of them,

@@ -12,7 +12,8 @@ static pelt_status build(pelt__skin_pass *p, unsigned features, pelt_error *err)
     char defines[PELT__FEATURE_DEFINES_MAX];
     pelt__shell_feature_defines(features & PELT__SKIN_FEATURES, defines);
     const char *vs[] = {pelt__shader_skin_vs, NULL};
-    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_skin_fs, NULL};
+    const char *fs[] = {defines, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_clump,
+                        pelt__shader_skin_fs, NULL};
     pelt_status st = pelt__gl_program_create("skin", vs, fs, &p->hooks, &p->variants[features], err);
     if (st != PELT_OK) p->failed[features] = true;
     return st;

@@ -19,6 +19,13 @@ void pelt__wet_shine(float rho, float p, float sharpness, float gloss, float *p_
     *gain = 1.0f + (gloss - 1.0f) * r;
 }
 
+float pelt__wet_skin_sheen(float n_dot_h, float rho, float p, float sharpness, float gloss)
+{
+    float p_wet, gain;
+    pelt__wet_shine(rho, p, sharpness, gloss, &p_wet, &gain);
+    return fminf(fmaxf(rho, 0.0f), 1.0f) * gain * powf(fminf(fmaxf(n_dot_h, 0.0f), 1.0f), p_wet * sharpness);
+}
+
 pelt_vec3 pelt__wet_color(pelt_vec3 c, float rho, float darken)
 {
     float r = fminf(fmaxf(rho, 0.0f), 1.0f);

@@ -24,6 +24,15 @@ void pelt__kajiya_kay(pelt_vec3 t, pelt_vec3 l, pelt_vec3 e, float p, float *dif
  * (the cone's width falls as 1 / sqrt(p)); pelt's defaults are 2 and 4. */
 void pelt__wet_shine(float rho, float p, float sharpness, float gloss, float *p_wet, float *gain);
 
+/* Wet skin's sheen (docs/wetness.md, Wet optics): the film of water on
+ * the skin between the tufts is a smooth mirror, lit as Blinn-Phong at the
+ * wet hair's exponent times `sharpness` (the film on the skin is flatter
+ * than the one round a hair) and the wet hair's gain (pelt__wet_shine),
+ * over the film's cover r = clamp(rho, 0, 1): r gain clamp(n.h, 0, 1)^(p'
+ * sharpness), with n.h the skin normal dotted with the half vector; 0 on
+ * dry skin. GLSL: wet_skin_sheen. */
+float pelt__wet_skin_sheen(float n_dot_h, float rho, float p, float sharpness, float gloss);
+
 /* Wet hair's colour (docs/wetness.md, Wet optics), linear light: with r =
  * clamp(rho, 0, 1) and m the largest channel of c, each channel becomes
  * m (c / m)^(1 + PELT__WET_SATURATION r) (1 - darken r): darker and more

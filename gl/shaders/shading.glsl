@@ -22,6 +22,16 @@ vec2 wet_shine(float rho, float p, float sharpness, float gloss)
     return vec2(p * (1.0 + (sharpness - 1.0) * r), 1.0 + (gloss - 1.0) * r);
 }
 
+// Wet skin's sheen (docs/wetness.md, Wet optics): the water film between
+// the tufts, Blinn-Phong at the wet hair's exponent times sharpness (a
+// flatter film) and its gain, over the film's cover rho. Mirrors
+// pelt__wet_skin_sheen.
+float wet_skin_sheen(float n_dot_h, float rho, float p, float sharpness, float gloss)
+{
+    vec2 shine = wet_shine(rho, p, sharpness, gloss);
+    return clamp(rho, 0.0, 1.0) * shine.y * pow(clamp(n_dot_h, 0.0, 1.0), shine.x * sharpness);
+}
+
 // Wet hair's colour (docs/wetness.md, Wet optics): water fills the gaps
 // between the hairs, so less light scatters back out (darker by darken
 // rho), and what does has passed through more hair (more saturated: each

@@ -1,7 +1,8 @@
 // Opaque skin: the innermost fur slice lit by Lambert, under gamma(0) (or
 // the hair model's occlusion at the roots), in linear light.
 // Where grooming thins the hair (density below 1) the bare skin colour
-// shows through in proportion.
+// shows through in proportion. Wet skin is darker and carries the water
+// film's sheen (docs/wetness.md, Wet optics).
 in vec3 v_normal;
 in vec2 v_uv;
 in vec2 v_fur_uv;
@@ -11,6 +12,7 @@ in vec3 v_world;
 
 uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
+uniform sampler2D u_mask;          // PELT_UNIT_MASK: wetness, rho in alpha
 
 out vec4 o_color;
 
@@ -38,5 +40,16 @@ void main()
         gamma = mix(1.0, gamma, u_shadow_slab.w);
     }
 #endif
-    o_color = vec4(display_color(base * gamma * (u_ambient + lambert * u_light_color), u_exposure, u_tone), 1.0);
+    vec3 light = base * gamma * (u_ambient + lambert * u_light_color);
+#ifdef PELT_WET
+    // The water film: the roots and skin darken as the hair does, and the
+    // light the film mirrors has come down through the fur (gamma).
+    float rho = clump_texel(u_mask, v_uv).a;
+    vec3 H = normalize(L + normalize(u_eye - v_world));
+    light = wet_color(base, rho, u_wet_darken) * gamma * (u_ambient + lambert * u_light_color);
+    if (lambert > 0.0)
+        light += u_specular * u_light_color * gamma *
+                 wet_skin_sheen(dot(n, H), rho, u_shininess, u_wet_sharpness, u_wet_gloss);
+#endif
+    o_color = vec4(display_color(light, u_exposure, u_tone), 1.0);
 }

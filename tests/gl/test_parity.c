@@ -421,6 +421,33 @@ static void clump_coverage_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+static const char skin_sheen_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  float ndh = c.x / 63.0 * 1.2 - 0.1, rho = c.y / 47.0 * 1.2 - 0.1;\n"
+    "  o = vec4(wet_skin_sheen(ndh, rho, 20.0, 4.0, 2.0), wet_skin_sheen(ndh, rho, 7.0, 1.0, 1.0), 0.0, 0.0);\n"
+    "}\n";
+
+/* Wet skin's sheen, GLSL vs C, outside [0, 1] too. */
+static void wet_skin_sheen_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_shading, skin_sheen_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0, largest = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float ndh = (float)x / 63.0f * 1.2f - 0.1f, rho = (float)y / 47.0f * 1.2f - 0.1f;
+            float a = pelt__wet_skin_sheen(ndh, rho, 20.0f, 4.0f, 2.0f), b = pelt__wet_skin_sheen(ndh, rho, 7.0f, 1.0f, 1.0f);
+            const float *g = out + 4 * (y * W + x);
+            largest = fmax(largest, a);
+            worst = fmax(worst, fmax(fabs(g[0] - a), fabs(g[1] - b)));
+        }
+    printf("  worst |GLSL - C| = %.3g, sheen up to %.2f\n", worst, largest);
+    CHECK(largest > 1.5);
+    CHECK(worst < 2e-4);
+}
+
 static const char fin_shift_main[] =
     "out vec4 o;\n"
     "void main() {\n"
@@ -802,6 +829,7 @@ int main(void)
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
     RUN(clump_fin_shift_glsl_matches_c);
+    RUN(wet_skin_sheen_glsl_matches_c);
     RUN(ringlet_levels_glsl_matches_c);
     RUN(ringlet_tangent_glsl_matches_c);
     RUN(ringlet_dots_glsl_matches_c);

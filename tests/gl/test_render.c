@@ -418,6 +418,30 @@ static void wet_fur_highlight_peak_rises_with_wetness(void)
     CHECK(median[2] < median[0]);
 }
 
+/* Wet skin carries the water film's sheen (docs/wetness.md, Wet optics):
+ * the torus's skin alone, evenly wet at rising wetness. Where the skin
+ * mirrors the light a highlight appears and rises with the wetness (the
+ * brightest 0.2% of the picture), while the skin as a whole darkens (its
+ * median); dry skin has none. */
+static void wet_skin_sheen_rises_with_wetness(void)
+{
+    const pelt_fur_desc d = {0};
+    const pelt_draw_desc skin_only = {.no_fins = true, .debug.no_shells = true};
+    const float wetness[] = {0.0f, 0.5f, 1.0f};
+    double peak[3], median[3];
+    for (int k = 0; k < 3; k++) {
+        float rho = wetness[k];
+        uint8_t *px = gl_test_render(gl, torus, &d, &torus_cam, &skin_only, wet_all_over, &rho);
+        CHECK(px != NULL);
+        peak[k] = px ? luma_percentile(px, 0, W, 0.998) : 0.0;
+        median[k] = px ? luma_percentile(px, 0, W, 0.5) : 0.0;
+        printf("  wetness %.1f: skin highlight peak %.1f, median %.1f\n", (double)rho, peak[k], median[k]);
+        free(px);
+    }
+    CHECK(peak[1] > peak[0] + 10.0 && peak[2] > peak[1] + 5.0);
+    CHECK(median[2] <= median[0]);
+}
+
 /* Ringlets (docs/method.md): water takes the curl out. Square fur curled
  * as ringlets, evenly wet with the clumps held open and wet shading off,
  * renders soaked as the same fur without curl; half wet, between that and
@@ -1021,6 +1045,7 @@ int main(void)
         RUN(tufts_keep_their_roots_and_gather_at_the_tips);
         RUN(drying_loosens_the_tufts_step_by_step);
         RUN(tuft_highlight_rises_with_wetness);
+        RUN(wet_skin_sheen_rises_with_wetness);
         RUN(renderer_allocates_through_its_hooks);
         RUN(program_errors_reach_the_logger);
         RUN(uniform_blocks_match_their_c_structs);
