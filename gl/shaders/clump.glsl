@@ -70,6 +70,20 @@ bool clump_stray(float id, float share)
     return fract(id * 7.31) < share;
 }
 
+// Strays at a fragment the clump lookup did not keep (docs/wetness.md,
+// Strays): the tuft's hair pulled in from q (`hair`) is dropped where the
+// lookup discarded or if it is a stray; the hair growing here (`own`)
+// stands instead if it is a stray. True where `own` is the hair drawn.
+bool clump_stray_hair(int clump, inout vec4 hair, vec4 own, float share)
+{
+    if (clump == CLUMP_DISCARD || clump_stray(hair.b / max(hair.a, 1e-3), share)) hair = vec4(0.0);
+    if (own.a > hair.a && clump_stray(own.b / max(own.a, 1e-3), share)) {
+        hair = own;
+        return true;
+    }
+    return false;
+}
+
 // The texel GL's NEAREST + CLAMP_TO_EDGE picks: clamp(floor(uv*size), 0, size-1),
 // clamped as a float so no out-of-range float reaches the int conversion.
 vec4 clump_texel(sampler2D mask, vec2 uv)

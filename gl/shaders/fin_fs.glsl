@@ -58,12 +58,7 @@ void main()
 #ifdef PELT_WET
     if (clump != CLUMP_KEEP) {
         // Strays stay out of the tufts and stand where they grew.
-        if (clump == CLUMP_DISCARD || clump_stray(hair.b / max(hair.a, 1e-3), u_wet_strays)) hair = vec4(0.0);
-        vec4 own = fin_hair(v_fin_uv, rho);
-        if (own.a > hair.a && clump_stray(own.b / max(own.a, 1e-3), u_wet_strays)) {
-            hair = own;
-            clump = CLUMP_KEEP;
-        }
+        if (clump_stray_hair(clump, hair, fin_hair(v_fin_uv, rho), u_wet_strays)) clump = CLUMP_KEEP;
         if (!(hair.a > 0.0)) discard;
     }
 #endif

@@ -127,12 +127,7 @@ void main()
     vec4 hair = wet_hair(fur_uv, rho);
 #ifdef PELT_WET
     if (clump != CLUMP_KEEP) {
-        // Strays (docs/wetness.md, Tufts): the hair rooted at q is not in
-        // the tuft if it is a stray; one growing here that is, stands here.
-        if (clump == CLUMP_DISCARD || clump_stray(hair.b / max(hair.a, 1e-3), u_wet_strays)) hair = vec4(0.0);
-        vec4 own = wet_hair(v_fur_uv, rho);
-        if (own.a > hair.a && clump_stray(own.b / max(own.a, 1e-3), u_wet_strays)) {
-            hair = own;
+        if (clump_stray_hair(clump, hair, wet_hair(v_fur_uv, rho), u_wet_strays)) {
             d = vec2(0.0);
             fur_uv = v_fur_uv;
             clump = CLUMP_KEEP;
