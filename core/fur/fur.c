@@ -129,6 +129,13 @@ pelt__furtex_desc pelt__fur_texture_desc(const pelt_fur_desc *d)
     return td;
 }
 
+/* Level k of the ringlets holds the curl at 1 - k / (levels - 1) of its
+ * full radius; without ringlets the one level is the texture as it is. */
+static float ringlet_level_radius(float full, unsigned k, unsigned levels)
+{
+    return levels > 1 ? full * (1.0f - (float)k / (float)(levels - 1)) : full;
+}
+
 pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pelt_fur **out,
                             pelt_error *err)
 {
@@ -188,12 +195,10 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
         pelt_fur_destroy(f);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture (%zu bytes)", bytes);
     }
-    /* Level k of the ringlets holds the curl at 1 - k / (levels - 1) of
-     * its amplitude; without ringlets the one level is the volume. */
     float full = td.ringlet_radius;
     for (unsigned k = 0; k < f->ringlet_levels; k++) {
         pelt__furtex_desc level = td;
-        if (f->ringlet_levels > 1) level.ringlet_radius = full * (1.0f - (float)k / (float)(f->ringlet_levels - 1));
+        level.ringlet_radius = ringlet_level_radius(full, k, f->ringlet_levels);
         pelt__furtex_generate(&level, f->texture + (size_t)k * bytes);
     }
     /* Lengyel §2.4: the coarser shell levels, composited from the volume,
@@ -213,8 +218,7 @@ pelt_status pelt_fur_create(const pelt_mesh *mesh, const pelt_fur_desc *desc, pe
     /* The fins hold the same ringlet levels: wet fins lose their curl too. */
     for (unsigned k = 0; k < f->ringlet_levels; k++) {
         pelt__fintex_desc level = fd;
-        if (f->ringlet_levels > 1)
-            level.hair.ringlet_radius = full * (1.0f - (float)k / (float)(f->ringlet_levels - 1));
+        level.hair.ringlet_radius = ringlet_level_radius(full, k, f->ringlet_levels);
         pelt__fintex_generate(&level, f->fin_texture + (size_t)k * fin_bytes);
     }
     f->fin_width = d.look.texture_size;

@@ -83,12 +83,7 @@ void main()
 #ifdef PELT_RINGLETS
     // The hair the fin shows curls: lit along its ringlet, as the shells'
     // (own_light.glsl); the fin texture's id gives its phase.
-#ifdef PELT_WET
-    const bool free_in_base = true;
-#else
-    const bool free_in_base = false;
-#endif
-    ringlet_light(hair.b, rho, v_fin_uv.y, v_light, v_ring_l, v_ring_e, v_ring_g, free_in_base, base, spec);
+    ringlet_light(hair.b, rho, v_fin_uv.y, v_light, v_ring_l, v_ring_e, v_ring_g, base, spec);
 #endif
     o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), a);
 }

@@ -64,11 +64,16 @@ vec3 free_light_inverse(float free_diffuse, vec2 reach)
 // its ringlet and the fur texture's own curl (strand_curl_slope), from the
 // frame's dots (ringlet_frame_dots). Water takes out the ringlet as it
 // does from the volume's levels (1 - rho); the texture's curl stays, as
-// in the texture. free_in_base: the vertex stage folded the free hair's
-// light into base (wet variants), else it left it out (dry Kajiya-Kay).
+// in the texture. The wet variants' vertex stage folded the free hair's
+// light into base; the dry one left it out (ringlet_light_mul).
 void ringlet_light(float id, float rho, float h, vec2 reach, vec3 ring_l, vec3 ring_e, vec3 ring_g,
-                   bool free_in_base, inout vec3 base, inout float spec)
+                   inout vec3 base, inout float spec)
 {
+#ifdef PELT_WET
+    const bool free_in_base = true;
+#else
+    const bool free_in_base = false;
+#endif
     float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
     float psi = ringlet_phase(id);
     vec2 extra = strand_curl_slope(u_strand_curl_radius, u_strand_curl_omega, u_strand_curl_wave > 0.5, h, psi);

@@ -90,17 +90,10 @@ void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 #endif
 
 #if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
-// The ringlet of the hair with this id at this shell's height. Wet, base
-// carries the free hair's light; dry, the vertex stage left it out
-// (shell_vs.glsl).
+// The ringlet of the hair with this id at this shell's height.
 void shell_ringlet_light(float id, float rho, inout vec3 base, inout float spec)
 {
-#ifdef PELT_WET
-    const bool free_in_base = true;
-#else
-    const bool free_in_base = false;
-#endif
-    ringlet_light(id, rho, v_h, v_light, v_ring_l, v_ring_e, v_ring_g, free_in_base, base, spec);
+    ringlet_light(id, rho, v_h, v_light, v_ring_l, v_ring_e, v_ring_g, base, spec);
 }
 #endif
 

@@ -40,13 +40,15 @@ void main()
         gamma = mix(1.0, gamma, u_shadow_slab.w);
     }
 #endif
-    vec3 light = base * gamma * (u_ambient + lambert * u_light_color);
 #ifdef PELT_WET
     // The water film: the roots and skin darken as the hair does, and the
     // light the film mirrors has come down through the fur (gamma).
     float rho = clump_texel(u_mask, v_uv).a;
+    base = wet_color(base, rho, u_wet_darken);
+#endif
+    vec3 light = base * gamma * (u_ambient + lambert * u_light_color);
+#ifdef PELT_WET
     vec3 H = normalize(L + normalize(u_eye - v_world));
-    light = wet_color(base, rho, u_wet_darken) * gamma * (u_ambient + lambert * u_light_color);
     if (lambert > 0.0)
         light += u_specular * u_light_color * gamma *
                  wet_skin_sheen(dot(n, H), rho, u_shininess, u_wet_sharpness, u_wet_gloss);

@@ -392,6 +392,23 @@ static void wet_all_over(pelt_fur *fur, void *user)
     if (rho > 0.0f) pelt_fur_add_droplet(fur, &d, NULL);
 }
 
+/* Renders `mesh` evenly wet at rho 0, 0.5 and 1 (wet_all_over) and gives
+ * the brightest 0.2% of each picture (a highlight's peak) and its median. */
+static void peak_by_wetness(const pelt_mesh *mesh, const pelt_fur_desc *d, const pelt_camera *cam,
+                            const pelt_draw_desc *dd, const char *what, double peak[3], double median[3])
+{
+    const float wetness[] = {0.0f, 0.5f, 1.0f};
+    for (int k = 0; k < 3; k++) {
+        float rho = wetness[k];
+        uint8_t *px = gl_test_render(gl, mesh, d, cam, dd, wet_all_over, &rho);
+        CHECK(px != NULL);
+        peak[k] = px ? luma_percentile(px, 0, W, 0.998) : 0.0;
+        median[k] = px ? luma_percentile(px, 0, W, 0.5) : 0.0;
+        printf("  wetness %.1f: %s peak %.1f, median %.1f\n", (double)rho, what, peak[k], median[k]);
+        free(px);
+    }
+}
+
 /* Wet fur looks wet (docs/wetness.md, Wet shine): the square of combed fur
  * evenly wet at rising wetness, the clumps held open (tightness ~0) so that
  * only the shading changes. The highlight's peak (the brightest 0.2% of the
@@ -403,17 +420,8 @@ static void wet_fur_highlight_peak_rises_with_wetness(void)
     /* Seen from -X, the camera's rays meet the strands (combed 60 degrees
      * along +X) near the cone of mirror directions of the light. */
     const pelt_camera cam = {-90.0f, 25.0f, 2.6f, 45.0f, {0, 0, 0}};
-    const float wetness[] = {0.0f, 0.5f, 1.0f};
     double peak[3], median[3];
-    for (int k = 0; k < 3; k++) {
-        float rho = wetness[k];
-        uint8_t *px = gl_test_render(gl, square, &d, &cam, NULL, wet_all_over, &rho);
-        CHECK(px != NULL);
-        peak[k] = px ? luma_percentile(px, 0, W, 0.998) : 0.0;
-        median[k] = px ? luma_percentile(px, 0, W, 0.5) : 0.0;
-        printf("  wetness %.1f: highlight peak %.1f, median %.1f\n", (double)rho, peak[k], median[k]);
-        free(px);
-    }
+    peak_by_wetness(square, &d, &cam, NULL, "highlight", peak, median);
     CHECK(peak[1] > peak[0] + 3.0 && peak[2] > peak[1] + 3.0);
     CHECK(median[2] < median[0]);
 }
@@ -427,17 +435,8 @@ static void wet_skin_sheen_rises_with_wetness(void)
 {
     const pelt_fur_desc d = {0};
     const pelt_draw_desc skin_only = {.no_fins = true, .debug.no_shells = true};
-    const float wetness[] = {0.0f, 0.5f, 1.0f};
     double peak[3], median[3];
-    for (int k = 0; k < 3; k++) {
-        float rho = wetness[k];
-        uint8_t *px = gl_test_render(gl, torus, &d, &torus_cam, &skin_only, wet_all_over, &rho);
-        CHECK(px != NULL);
-        peak[k] = px ? luma_percentile(px, 0, W, 0.998) : 0.0;
-        median[k] = px ? luma_percentile(px, 0, W, 0.5) : 0.0;
-        printf("  wetness %.1f: skin highlight peak %.1f, median %.1f\n", (double)rho, peak[k], median[k]);
-        free(px);
-    }
+    peak_by_wetness(torus, &d, &torus_cam, &skin_only, "skin highlight", peak, median);
     CHECK(peak[1] > peak[0] + 10.0 && peak[2] > peak[1] + 5.0);
     CHECK(median[2] <= median[0]);
 }
