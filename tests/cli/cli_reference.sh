@@ -4,9 +4,10 @@
 # shells and strands agree on how far the fur reaches past a sphere's
 # outline, hair crosses that outline in the shell picture as it does in the
 # reference, the silhouette profiles agree band by band, and a grazing rim
-# shows less stripe energy than 16 plain shells give it.
+# shows less stripe energy than 16 plain shells give it, and curls shape
+# the outline seen from the side as they shape the reference's.
 set -u
-pelt=$1 png_diff=$2 out=$3
+pelt=$1 png_diff=$2 out=$3 png_region=$4
 fails=0 passes=0
 check() { if [ "$2" -eq 0 ]; then echo "ok   $1"; passes=$((passes+1)); else echo "FAIL $1: $3"; fails=$((fails+1)); fi; }
 field() { awk -v k="$1" '$1 == k { $1 = ""; sub(/^ /, ""); print }' <<<"$2"; }
@@ -56,6 +57,33 @@ ours=$("$pelt" compare $long 2>&1) || echo "$ours"
 sp=$(field stripe_shells "$plain") so=$(field stripe_shells "$ours")
 awk -v p="$sp" -v o="$so" 'BEGIN { exit !(p > 0 && o >= 0 && o < 0.5 * p) }'
 check no_stripes_edge_on $? "stripe energy: 16 plain shells $sp, default $so (bound: half of the plain shells')"
+
+# Curls on the outline (Silva Fig. 7, seen from the side): sparse, long fur
+# on a square whose far edge stands against the sky. The fur texture's
+# strands vary in length, so straight hair ends in a row of spikes; curls
+# fold the tips over into a level fleece, and the outline's roughness falls
+# with the curl (the strand reference shows it so; it does not rise). The
+# shells and fins must draw each preset's outline as rough as the strands
+# (within half), and straight hair's at least 1.6x as rough as either
+# curl's. Fur without its curls would keep straight hair's roughness.
+side="--mesh square --set fur.density=500 --set fur.strand_radius=2.5 --set fur.length=0.3 --set fur.layers=48
+  --set fur.taper=0.3 --gravity 0,0,0 --yaw 0 --pitch 0 --distance 2.2 --light 0.3,0.8,1 --size 360x180"
+declare -A rough_shells rough_strands
+for preset in straight few-large-curls many-small-curls; do
+  "$pelt" compare $side --set fur.preset=$preset -o "$d/side_$preset.png" >/dev/null 2>&1
+  rough_shells[$preset]=$("$png_region" --outline "$d/side_$preset.png" 36 324 8 | sed 's/roughness=\([0-9.]*\).*/\1/')
+  rough_strands[$preset]=$("$png_region" --outline "$d/side_$preset.png" 396 684 8 | sed 's/roughness=\([0-9.]*\).*/\1/')
+done
+ok=1 seen=""
+for preset in straight few-large-curls many-small-curls; do
+  a=${rough_shells[$preset]:-0} b=${rough_strands[$preset]:-0}
+  seen="$seen $preset: shells $a px, strands $b px;"
+  awk -v a="$a" -v b="$b" 'BEGIN { exit !(b > 0 && a >= 0.5 * b && a <= 1.5 * b) }' || ok=0
+done
+[ $ok -eq 1 ]; check curled_outline_follows_the_strands $? "$seen"
+awk -v s="${rough_shells[straight]:-0}" -v l="${rough_shells[few-large-curls]:-0}" -v m="${rough_shells[many-small-curls]:-0}" \
+  'BEGIN { exit !(l > 0 && m > 0 && s >= 1.6 * l && s >= 1.6 * m) }'
+check curls_level_the_outline $? "$seen (bound: straight at least 1.6x either curl)"
 
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]

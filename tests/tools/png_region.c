@@ -19,6 +19,13 @@
  *   png_region --red A.png X0 Y0 X1 Y1
  *       Prints red=N: pixels in the box that are clearly red (R > 180,
  *       G and B < 110): the HUD's error colour.
+ *   png_region --outline A.png X0 X1 R
+ *       Prints roughness=P top=T: the top outline of the picture in the
+ *       columns X0..X1-1 (per column, the first row from the top whose
+ *       largest channel differs from the background, the column's top
+ *       pixel, by more than 24), T its mean row, P its roughness: the RMS
+ *       of each column's row less the mean over the 2R + 1 columns around
+ *       it, in pixels (hair tips standing above their neighbours).
  * Exit 0, or 2 on bad usage or an unreadable image. */
 #include <stb_image.h>
 
@@ -43,6 +50,45 @@ static int diff(const unsigned char *a, const unsigned char *b)
         if (d > m) m = d;
     }
     return m;
+}
+
+static int outline(const char *path, int x0, int x1, int r)
+{
+    int w, h;
+    unsigned char *a = load(path, &w, &h);
+    if (!a) return 2;
+    if (x0 < 0) x0 = 0;
+    if (x1 > w) x1 = w;
+    if (x1 - x0 < 2 || r < 1) {
+        fprintf(stderr, "png_region: --outline needs 2 or more columns and R >= 1\n");
+        stbi_image_free(a);
+        return 2;
+    }
+    int n = x1 - x0;
+    double *top = malloc(sizeof *top * (size_t)n);
+    if (!top) {
+        stbi_image_free(a);
+        return 2;
+    }
+    double mean = 0.0;
+    for (int x = x0; x < x1; x++) {
+        int y = 0;
+        while (y < h && diff(a + 4 * ((size_t)y * w + x), a + 4 * (size_t)x) <= 24) y++;
+        top[x - x0] = y;
+        mean += y;
+    }
+    double sq = 0.0;
+    for (int i = 0; i < n; i++) {
+        int lo = i - r < 0 ? 0 : i - r, hi = i + r + 1 > n ? n : i + r + 1;
+        double local = 0.0;
+        for (int j = lo; j < hi; j++) local += top[j];
+        local /= hi - lo;
+        sq += (top[i] - local) * (top[i] - local);
+    }
+    printf("roughness=%.3f top=%.2f\n", sqrt(sq / n), mean / n);
+    free(top);
+    stbi_image_free(a);
+    return 0;
 }
 
 int main(int argc, char **argv)
@@ -86,8 +132,10 @@ int main(int argc, char **argv)
         stbi_image_free(a);
         return 0;
     }
+    if (argc == 6 && !strcmp(argv[1], "--outline")) return outline(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]));
     if (argc != 6) {
-        fprintf(stderr, "usage: png_region A.png B.png CX CY R | png_region --red A.png X0 Y0 X1 Y1\n");
+        fprintf(stderr, "usage: png_region A.png B.png CX CY R | png_region --red A.png X0 Y0 X1 Y1 | "
+                        "png_region --axis A.png CX CY R | png_region --outline A.png X0 X1 R\n");
         return 2;
     }
     int w, h, w2, h2;
