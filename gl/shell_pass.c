@@ -46,6 +46,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     sp->shells_next = glGetUniformLocation(sp->program, "u_shells_next");
     sp->shell_view = glGetUniformLocation(sp->program, "u_shell_view");
     sp->back_reach = glGetUniformLocation(sp->program, "u_back_reach");
+    sp->instance_base = glGetUniformLocation(sp->program, "u_instance_base");
     sp->no_inter_shadow = glGetUniformLocation(sp->program, "u_no_inter_shadow");
     return PELT_OK;
 }
@@ -98,18 +99,52 @@ const pelt__shell_program *pelt__shell_pass_program(pelt__shell_pass *p, unsigne
     return features & PELT__SHELL_LIGHT_PASS ? NULL : &p->variants[PELT__SHELL_GENERIC];
 }
 
-/* draw_instanced with sp and the shell pass's uniforms. */
-static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, const float shells[4],
-                      const float next[2], size_t offset, size_t triangles, unsigned count)
+/* sp in use with the shell pass's uniforms, its shells from instance 0. */
+static void use_program(const pelt__shell_program *sp, const pelt__pass_frame *f, const float shells[4],
+                        const float next[2])
 {
-    if (triangles == 0) return;
     glUseProgram(sp->program);
     glUniform4fv(sp->shells, 1, shells);
     glUniform2fv(sp->shells_next, 1, next);
     glUniform2fv(sp->shell_view, 1, f->lod.shell_view);
     glUniform1f(sp->back_reach, f->lod.back_reach);
+    glUniform1f(sp->instance_base, 0.0f);
     glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
+}
+
+/* draw_instanced with sp and the shell pass's uniforms. */
+static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, const float shells[4],
+                      const float next[2], size_t offset, size_t triangles, unsigned count)
+{
+    if (triangles == 0) return;
+    use_program(sp, f, shells, next);
     draw_instanced(f, offset, triangles, count);
+}
+
+/* Wet and dry drawn apart, a shell at a time: the dry triangles' shell i
+ * with the dry shader, then the wet ones' with the wet shader, from the
+ * inside out. The shells blend in the order one draw of every triangle
+ * gives them; two instanced draws, all dry shells and then all wet ones,
+ * laid a wet patch's inner shells over the dry fur in front of it (dark
+ * patches where fur is seen at a grazing angle). */
+static void draw_split(const pelt__shell_program *dry_sp, const pelt__shell_program *wet_sp,
+                       const pelt__pass_frame *f, const float shells[4], const float next[2], size_t offset,
+                       size_t dry, size_t wet, unsigned count)
+{
+    const size_t wet_offset = offset + dry * 3 * sizeof(uint32_t);
+    use_program(wet_sp, f, shells, next);
+    use_program(dry_sp, f, shells, next);
+    for (unsigned i = 0; i < count; i++) {
+        glUseProgram(dry_sp->program);
+        glUniform1f(dry_sp->instance_base, (float)i);
+        draw_instanced(f, offset, dry, 1);
+        glUseProgram(wet_sp->program);
+        glUniform1f(wet_sp->instance_base, (float)i);
+        draw_instanced(f, wet_offset, wet, 1);
+    }
+    glUniform1f(wet_sp->instance_base, 0.0f);
+    glUseProgram(dry_sp->program);
+    glUniform1f(dry_sp->instance_base, 0.0f);
 }
 
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
@@ -146,8 +181,10 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
         triangles == m->triangle_count && 3 * m->split.dry_count >= triangles) {
         size_t dry = m->split.dry_count;
         const pelt__shell_program *dry_sp = pelt__shell_pass_program(p, f->shell_features & ~wet_bits);
-        draw_part(dry_sp, f, shells, next, m->split_offset, dry, count);
-        draw_part(sp, f, shells, next, m->split_offset + dry * 3 * sizeof(uint32_t), triangles - dry, count);
+        if (dry == triangles)
+            draw_part(dry_sp, f, shells, next, m->split_offset, dry, count);
+        else
+            draw_split(dry_sp, sp, f, shells, next, m->split_offset, dry, triangles - dry, count);
     } else {
         draw_part(sp, f, shells, next, offset, triangles, count);
     }

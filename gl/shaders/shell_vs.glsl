@@ -1,4 +1,5 @@
-// All shells in one instanced draw: the layer is gl_InstanceID.
+// All shells in one instanced draw: the layer is gl_InstanceID (plus
+// u_instance_base where wet and dry are drawn apart, a layer at a time).
 // Silva et al. Eq. 1: offset(h) = beta(h) + phi(h), sheared by the comb and
 // the groom (Lengyel et al. §3): the groom's length scale s shortens the
 // whole strand (its rest length, bent tip and curl radius), its lean adds
@@ -21,6 +22,7 @@ uniform vec2 u_shells_next; // the next level: x: its first slice, y: its shell 
 uniform vec2 u_shell_view;  // the view's budget (shell_view_blend): x: the level's spacing
                             // side-on in pixels times clip w, per unit of groom length
                             // (0: off), y: the spacing it aims at, pixels
+uniform float u_instance_base; // the instance of this draw's first shell (0 but in the wet split)
 uniform float u_back_reach; // back-facing shells drawn only within the fur's reach of the
                             // silhouette: where N.V >= -u_back_reach (negative: everywhere)
 uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
@@ -76,7 +78,8 @@ void main()
     skin_vertex(position, normal, tangent);
 #endif
     vec3 n = normalize(normal);
-    float layer = shell_instance(float(gl_InstanceID), u_shells, u_shells_next, u_layers, v_slices, v_alpha);
+    float instance = float(gl_InstanceID) + u_instance_base;
+    float layer = shell_instance(instance, u_shells, u_shells_next, u_layers, v_slices, v_alpha);
     v_view = 0.0;
 #ifndef PELT_LIGHT_PASS
     vec3 root = (u_model * vec4(position, 1.0)).xyz;
@@ -86,7 +89,7 @@ void main()
         // (from the outside) fade and the even ones stand for them.
         float w_clip = max((u_view_proj * vec4(root, 1.0)).w, 1e-6);
         float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_shell_view.y);
-        bool odd = mod(u_shells.x - 1.0 - float(gl_InstanceID), 2.0) > 0.5;
+        bool odd = mod(u_shells.x - 1.0 - instance, 2.0) > 0.5;
         v_alpha *= odd ? 1.0 - w : 1.0;
         v_view = odd ? 0.0 : w;
     }

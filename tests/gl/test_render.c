@@ -157,12 +157,12 @@ static void wet_left_half(pelt_fur *fur, void *user)
 }
 
 /* Wet and dry drawn apart: a torus wet on one half draws its dry triangles
- * with the dry shader (two shell draws) and the picture is the one every
- * triangle drawn wet gives, within mean 0.5 and 1% of pixels off by more
- * than 32: where the two parts overlap on screen they blend in another
- * order (an inner shell of one after an outer one of the other), a few
- * pixels along the boundary. Towelled dry, one draw; wet again elsewhere,
- * the triangles follow. */
+ * with the dry shader (two shell draws a shell, dry then wet) and the
+ * picture is the one every triangle drawn wet gives, within mean 0.1 and
+ * 0.2% of pixels off by more than 32: within a shell, triangles where the
+ * two parts overlap on screen may blend in another order (two instanced
+ * draws, all dry shells then all wet, were 0.23 and 0.35% off here).
+ * Towelled dry, one draw; wet again elsewhere, the triangles follow. */
 static void wet_and_dry_drawn_apart(void)
 {
     pelt_fur_desc d = {0};
@@ -184,7 +184,7 @@ static void wet_and_dry_drawn_apart(void)
         pelt_renderer_draw(r, &v, &split);
         pelt_headless_read_rgba8(gl, apart);
         pelt_render_stats st = pelt_renderer_get_stats(r);
-        CHECK(st.shell_draw_calls == 2);
+        CHECK(st.shell_instances > 1 && st.shell_draw_calls == 2 * st.shell_instances);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         pelt_renderer_draw(r, &v, &whole);
         pelt_headless_read_rgba8(gl, together);
@@ -192,7 +192,7 @@ static void wet_and_dry_drawn_apart(void)
         double mean, frac;
         gl_test_compare(apart, together, (size_t)W * H, &mean, &frac);
         printf("  apart against together: mean %.3f, %.4f of pixels off by more than 32\n", mean, frac);
-        CHECK(mean < 0.5 && frac < 0.01);
+        CHECK(mean < 0.1 && frac < 0.002);
         /* Towelled dry, then wet where it had been dry (the front of the
          * ring): the triangles follow the mask's changed rectangles. */
         pelt_fur_clear_wetness(fur);
@@ -206,13 +206,14 @@ static void wet_and_dry_drawn_apart(void)
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         pelt_renderer_draw(r, &v, &split);
         pelt_headless_read_rgba8(gl, apart);
-        CHECK(pelt_renderer_get_stats(r).shell_draw_calls == 2);
+        st = pelt_renderer_get_stats(r);
+        CHECK(st.shell_instances > 1 && st.shell_draw_calls == 2 * st.shell_instances);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         pelt_renderer_draw(r, &v, &whole);
         pelt_headless_read_rgba8(gl, together);
         gl_test_compare(apart, together, (size_t)W * H, &mean, &frac);
         printf("  wet again elsewhere: mean %.3f, %.4f off\n", mean, frac);
-        CHECK(mean < 0.5 && frac < 0.01);
+        CHECK(mean < 0.1 && frac < 0.002);
     }
     free(apart);
     free(together);
@@ -267,6 +268,37 @@ static double mean_diff_in(const uint8_t *a, const uint8_t *b, int x0, int x1)
                 s += fabs((double)a[i] - (double)b[i]);
             }
     return s / (3.0 * (double)(x1 - x0) * H);
+}
+
+static void one_droplet_in_the_middle(pelt_fur *fur, void *user)
+{
+    (void)user;
+    pelt_droplet drop = {{0.5f, 0.5f}, 0.06f, 1.0f};
+    pelt_fur_add_droplet(fur, &drop, NULL);
+}
+
+/* The same at a grazing angle, where the fur in front of a wet patch hangs
+ * over it on screen: long fur on the square with one droplet, seen from
+ * 25 degrees above its plane. Drawn as two instanced draws, every dry
+ * shell and then every wet one, the wet patch's inner shells lay over the
+ * tips of the dry fur in front of it (dark rectangles, mean 3.3 and 5% of
+ * pixels off); a shell at a time they keep the order of one draw. */
+static void wet_and_dry_drawn_apart_at_a_grazing_angle(void)
+{
+    const pelt_camera cam = {0.0f, 25.0f, 1.0f, 30.0f, {0.0f, 0.05f, 0.0f}};
+    pelt_fur_desc d = {.length = 0.15f, .layers = 32, .wet.clumps = PELT_CLUMPS_DROPLET};
+    pelt_draw_desc whole = {.debug.no_wet_split = true};
+    uint8_t *apart = gl_test_render(gl, square, &d, &cam, NULL, one_droplet_in_the_middle, NULL);
+    uint8_t *together = gl_test_render(gl, square, &d, &cam, &whole, one_droplet_in_the_middle, NULL);
+    CHECK(apart && together);
+    if (apart && together) {
+        double mean, frac;
+        gl_test_compare(apart, together, (size_t)W * H, &mean, &frac);
+        printf("  apart against together: mean %.3f, %.4f of pixels off by more than 32\n", mean, frac);
+        CHECK(mean < 0.1 && frac < 0.002);
+    }
+    free(apart);
+    free(together);
 }
 
 /* Clumps open gaps (Silva Fig. 8, 13): seen at an angle, dry fur hides
@@ -1035,6 +1067,7 @@ int main(void)
         RUN(shells_are_one_instanced_draw);
         RUN(plain_renderer_draws_every_shell);
         RUN(wet_and_dry_drawn_apart);
+        RUN(wet_and_dry_drawn_apart_at_a_grazing_angle);
         RUN(wet_clumps_show_skin_and_leave_dry_fur_alone);
         RUN(dried_fur_matches_dry_render);
         RUN(clumps_grow_thinner_toward_the_tips);
