@@ -178,6 +178,7 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("wetness.clump_size", "wet.clump_size"),
     PARAM("wetness.gloss", "wet.gloss"),
     PARAM("wetness.gloss_sharpness", "wet.gloss_sharpness"),
+    PARAM("wetness.weight", "wet.weight"),
     PATH("wetness.mask_image", wetness.mask_image),
     FLT("wetness.mask_image_wetness", wetness.mask_image_wetness, -1, 1, 0),
 

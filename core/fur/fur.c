@@ -9,6 +9,7 @@
 #include "core/mesh/triangle_area.h"
 #include "core/base/vec.h"
 #include "core/base/workers.h"
+#include "core/wet/clump.h"
 #include "core/wet/picture.h"
 #include "pelt/dynamics.h"
 #include "pelt/wetness.h"
@@ -298,9 +299,28 @@ pelt_status pelt_fur_set_pose(pelt_fur *f, const float *positions, const float *
     return PELT_OK;
 }
 
+/* Water's weight on the strands (docs/dynamics.md, Wet fur hangs): the
+ * strand of a vertex at wetness rho carries wet.weight * rho of its tip's
+ * mass, rho the mask's texel at the vertex's uv (the one the shells'
+ * vertex stage reads). Dry fur costs one test a step. */
+static void water_load(pelt_fur *f)
+{
+    const pelt__wetness *mask = pelt__water_mask(f->water);
+    const bool wet = !pelt__rect_empty(mask->wet);
+    if (!wet && !f->water_loaded) return;
+    float *load = pelt__strands_water_load(f->strands);
+    const pelt_mesh_data m = pelt_mesh_get_data(f->mesh);
+    const float weight = f->desc.wet.weight;
+    for (size_t i = 0; i < m.vertex_count; i++)
+        load[i] = wet ? weight * pelt__clump_texel(mask->texels, mask->width, mask->height, m.uvs + 2 * i)[3]
+                      : 0.0f;
+    f->water_loaded = wet;
+}
+
 void pelt_fur_step(pelt_fur *f, float dt, const pelt_forces *forces)
 {
     if (!(dt > 0.0f)) return;
+    water_load(f);
     pelt__strands_step(f->strands, dt, forces, f->time);
     pelt__water_step(f->water, dt);
     f->time += dt;

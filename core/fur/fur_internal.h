@@ -30,6 +30,7 @@ struct pelt_fur {
     unsigned color_version;  /* bumped when the colour texture changes */
     unsigned tips_version;   /* bumped when tips change */
     pelt__strands *strands;  /* one mass-spring strand per vertex */
+    bool water_loaded;       /* the strands carry water (water_load, fur.c) */
     struct pelt__workers *workers; /* threads of the per-frame CPU work
                                 (dynamics.threads; core/base/workers.h) */
     float time;              /* seconds stepped since creation or reset */

@@ -34,6 +34,7 @@ struct pelt__strands {
     float *length;        /* world L0 (transform scale included) */
     float *tip[3];        /* world tip position p */
     float *vel[3];        /* world tip velocity */
+    float *load;          /* water carried, a multiple of the tip's mass (0: dry) */
     float *offsets;       /* 3 per vertex, mesh-local p - p_root (interleaved for upload) */
     float *gust0[3], *gust1[3]; /* cached gust noise slices at the roots (see gust_slices) */
     float *block;
@@ -229,8 +230,9 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
     s->c_per_mass = fminf(s->params.damping / s->params.mass, PELT__RATE_MAX);
 
     /* 3 (root_local) + 3 (rest_local) + 3 (root) + 3 (normal) + 1 (length)
-     * + 3 (tip) + 3 (vel) + 6 (gust slices) + 3 (offsets) floats per vertex. */
-    const size_t per_vertex = 28;
+     * + 3 (tip) + 3 (vel) + 6 (gust slices) + 1 (load) + 3 (offsets)
+     * floats per vertex. */
+    const size_t per_vertex = 29;
     if (n > (size_t)-1 / per_vertex) {
         pelt__free(alloc, s);
         return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "%s: %zu vertices overflow the strand arrays", fn, n);
@@ -249,7 +251,7 @@ pelt_status pelt__strands_create(const pelt_mesh *mesh, const pelt__strand_param
                         &s->tip[2],        &s->vel[0],        &s->vel[1],
                         &s->vel[2],        &s->gust0[0],      &s->gust0[1],
                         &s->gust0[2],      &s->gust1[0],      &s->gust1[1],
-                        &s->gust1[2]};
+                        &s->gust1[2],      &s->load};
     for (size_t a = 0; a < sizeof arrays / sizeof arrays[0]; a++) {
         *arrays[a] = cursor;
         cursor += n;
@@ -365,7 +367,7 @@ static void project(pelt_vec3 root, pelt_vec3 n, float len, pelt_vec3 v_root, pe
 typedef struct step_work {
     pelt__strands *s;
     const gust_frame *gust;
-    pelt_vec3 steady, blow, blow_c;
+    pelt_vec3 steady, gravity, blow, blow_c;
     float blow_r2;
     bool blowing, moved, refresh_gust;
     float dt, h;
@@ -379,11 +381,11 @@ static void step_range(void *ctx, size_t begin, size_t end)
     const step_work *w = ctx;
     pelt__strands *s = w->s;
     const gust_frame *gust = w->gust;
-    const pelt_vec3 steady = w->steady, blow = w->blow, blow_c = w->blow_c;
+    const pelt_vec3 steady = w->steady, gravity = w->gravity, blow = w->blow, blow_c = w->blow_c;
     const float blow_r2 = w->blow_r2, dt = w->dt, h = w->h, inv_denom = w->inv_denom;
     const bool blowing = w->blowing, moved = w->moved, refresh_gust = w->refresh_gust;
     const int substeps = w->substeps;
-    const float km = s->k_per_mass;
+    const float km = s->k_per_mass, cm = s->c_per_mass;
 
     /* Vertices go in blocks, substeps inside a block: the strands are
      * independent, so interleaving them hides the latency of each one's
@@ -394,6 +396,7 @@ static void step_range(void *ctx, size_t begin, size_t end)
         pelt_vec3 accel[PELT__STRAND_BLOCK], rest[PELT__STRAND_BLOCK];
         pelt_vec3 p[PELT__STRAND_BLOCK], v[PELT__STRAND_BLOCK];
         float len[PELT__STRAND_BLOCK], vmax[PELT__STRAND_BLOCK];
+        float k_j[PELT__STRAND_BLOCK], inv_denom_j[PELT__STRAND_BLOCK];
         for (size_t j = 0; j < nb; j++) {
             const size_t i = first + j;
             v_root[j] = v3(0.0f, 0.0f, 0.0f);
@@ -425,6 +428,19 @@ static void step_range(void *ctx, size_t begin, size_t end)
                 float q = 1.0f - v3_dot(dc, dc) / blow_r2;
                 if (q > 0.0f) a = v3_mad(a, blow, q * q);
             }
+            k_j[j] = km;
+            inv_denom_j[j] = inv_denom;
+            const float load = s->load[i];
+            if (load > 0.0f) {
+                /* Water's weight (docs/dynamics.md, Wet fur hangs): the tip
+                 * is 1 + load times as heavy; gravity pulls every gram
+                 * alike, the spring, the drag and the air's push move the
+                 * heavier tip less. */
+                const float inv_m = 1.0f / (1.0f + load);
+                a = v3_add(gravity, v3_scale(v3_sub(a, gravity), inv_m));
+                k_j[j] = km * inv_m;
+                inv_denom_j[j] = 1.0f / (1.0f + h * cm * inv_m + h * h * k_j[j]);
+            }
             accel[j] = sanitize(a, PELT__ACCEL_MAX);
             rest[j] = v3_mad(root[j], n[j], len[j]); /* p0 of Silva §3.2.1 */
             /* Relative speeds above this cross the tip's whole range in one
@@ -436,8 +452,8 @@ static void step_range(void *ctx, size_t begin, size_t end)
         for (int k = 0; k < substeps; k++) {
             for (size_t j = 0; j < nb; j++) {
                 /* Silva Eq. 2 with f = m a_ext - k (p - p0) - c v. */
-                pelt_vec3 force = v3_add(accel[j], v3_scale(v3_sub(p[j], rest[j]), -km));
-                pelt_vec3 vj = v3_scale(v3_mad(v[j], force, h), inv_denom);
+                pelt_vec3 force = v3_add(accel[j], v3_scale(v3_sub(p[j], rest[j]), -k_j[j]));
+                pelt_vec3 vj = v3_scale(v3_mad(v[j], force, h), inv_denom_j[j]);
                 pelt_vec3 rel = v3_sub(vj, v_root[j]);
                 float rel2 = v3_dot(rel, rel);
                 if (rel2 > vmax[j] * vmax[j]) vj = v3_mad(v_root[j], rel, vmax[j] / sqrtf(rel2));
@@ -473,8 +489,8 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
     if (substeps > PELT__STRAND_MAX_SUBSTEPS) substeps = PELT__STRAND_MAX_SUBSTEPS;
     const float h = dt / (float)substeps;
 
-    const pelt_vec3 steady = v3_add(sanitize(v3_load(f->gravity), PELT__ACCEL_MAX),
-                                    sanitize(v3_load(f->wind), PELT__ACCEL_MAX));
+    const pelt_vec3 gravity = sanitize(v3_load(f->gravity), PELT__ACCEL_MAX);
+    const pelt_vec3 steady = v3_add(gravity, sanitize(v3_load(f->wind), PELT__ACCEL_MAX));
     /* Gusts are held over the call, sampled mid-way. The noise slices at
      * the roots are cached while the mesh stands still, so a static mesh
      * pays for the noise once per time cell (1 / gust_frequency s). */
@@ -487,7 +503,7 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
     const pelt_vec3 blow_c = sanitize(v3_load(f->blow_center), 1e30f);
     const float blow_r2 = isfinite(f->blow_radius) ? f->blow_radius * f->blow_radius : 0.0f;
     const bool blowing = blow_r2 > 0.0f && v3_dot(blow, blow) > 0.0f;
-    step_work work = {s, &gust, steady, blow, blow_c, blow_r2, blowing, moved, refresh_gust, dt, h, substeps, 0.0f};
+    step_work work = {s, &gust, steady, gravity, blow, blow_c, blow_r2, blowing, moved, refresh_gust, dt, h, substeps, 0.0f};
     /* v' = (v + h (a - km (p - p0))) / (1 + h cm + h^2 km): v and p at the end. */
     /* Implicit (backward) Euler for the linear spring-damper: stable for
      * every h, and close to symplectic Euler when h is small. */
@@ -506,6 +522,8 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
 }
 
 const float *pelt__strands_tip_offsets(const pelt__strands *s) { return s->offsets; }
+
+float *pelt__strands_water_load(pelt__strands *s) { return s ? s->load : NULL; }
 
 void pelt__strands_tip_world(const pelt__strands *s, size_t vertex, float out[3])
 {

@@ -73,6 +73,14 @@ void pelt__strands_set_pose(pelt__strands *s, const float *positions, const floa
  * substep each tip satisfies Silva Eq. 3. Allocates nothing. */
 void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float time);
 
+/* The water each strand carries, count floats, 0 at creation: vertex i's
+ * tip is 1 + load[i] times as heavy at the next step (load >= 0; the fur
+ * writes it from the wetness mask, docs/dynamics.md). Gravity accelerates
+ * it alike; the spring, the damping, the wind, gusts and blows, which are
+ * forces per tip mass, move it 1 + load[i] times less. A strand with load
+ * 0 steps exactly as without. NULL for NULL strands. */
+float *pelt__strands_water_load(pelt__strands *s);
+
 /* Tips to rest (p = p0) with zero velocity. */
 void pelt__strands_reset(pelt__strands *s);
 

@@ -136,6 +136,11 @@ typedef struct pelt_fur_wet {
                                 of look.specular in [1, 16], default 2 */
     float gloss_sharpness;   /* Kajiya-Kay exponent of fully wet fur, a multiple
                                 of look.shininess in [1, 64], default 4 */
+    /* Water is heavy (docs/dynamics.md, Wet fur hangs): a strand at
+       wetness rho carries weight * rho times its tip's mass in water, so
+       wet fur hangs further under gravity and moves less in the wind. */
+    float weight;            /* water on soaked fur, a multiple of
+                                dynamics.mass in [0, 16], default 1 */
 } pelt_fur_wet;
 
 /* Combing (Lengyel et al. §3). */

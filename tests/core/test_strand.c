@@ -6,6 +6,8 @@
 #include "core/base/rng.h"
 #include "core/fur/fur_internal.h"
 #include "core/fur/strand.h"
+#include "core/wet/clump.h"
+#include "pelt/wetness.h"
 #include "core/base/vec.h"
 #include "core/base/workers.h"
 
@@ -210,6 +212,106 @@ static void strand_static_sag_equals_force_over_stiffness(void)
         CHECK_NEAR(d.z, 0.0f, 1e-6);
     }
     pelt__strands_destroy(s);
+    pelt_mesh_destroy(m);
+}
+
+/* Water's weight (docs/dynamics.md, Wet fur hangs): half the strands
+ * carry their tip's mass again in water (load 1). Under a small pull along
+ * -n the wet tips sink twice as far as the dry ones (k (p0 - p) = (1 +
+ * load) m g); a steady wind bends both alike (its push and the spring are
+ * both forces per mass), but the wet tips get there later; a load of 0
+ * steps to the bit as no load. */
+static void strand_water_weight_doubles_the_sag_and_slows_the_swing(void)
+{
+    pelt_mesh *m = square(2);
+    pelt__strand_params p = {.length = 0.1f, .spring_k = 200.0f, .mass = 2.0f, .damping = 10.0f};
+    pelt__strands *s = m ? strands_for(m, &p) : NULL, *plain = m ? strands_for(m, &p) : NULL;
+    CHECK(s && plain);
+    if (!s || !plain) {
+        pelt__strands_destroy(s);
+        pelt__strands_destroy(plain);
+        pelt_mesh_destroy(m);
+        return;
+    }
+    const size_t n = pelt__strands_count(s);
+    float *load = pelt__strands_water_load(s);
+    CHECK(load != NULL && pelt__strands_water_load(NULL) == NULL);
+    for (size_t i = 0; i < n; i++) CHECK(load[i] == 0.0f); /* dry at creation */
+    for (size_t i = 0; i < n; i += 2) load[i] = 1.0f;
+    pelt_forces f = no_forces();
+    f.gravity[1] = -3.0f;
+    for (int i = 0; i < 1200; i++) {
+        pelt__strands_step(s, 1.0f / 60.0f, &f, (float)i / 60.0f);
+        pelt__strands_step(plain, 1.0f / 60.0f, &f, (float)i / 60.0f);
+    }
+    const float dry_sag = 3.0f * 2.0f / 200.0f; /* 0.03 */
+    const float wet_sag = 0.1f - offset_of(s, 0).y;
+    for (size_t i = 0; i < n; i++) {
+        float sag = 0.1f - offset_of(s, i).y;
+        CHECK_NEAR(sag, (i % 2 == 0 ? 2.0f : 1.0f) * dry_sag, 1e-5);
+        if (i % 2 == 1) CHECK(memcmp(pelt__strands_tip_offsets(s) + 3 * i, pelt__strands_tip_offsets(plain) + 3 * i,
+                                     3 * sizeof(float)) == 0);
+    }
+    /* Wind along +x from rest, no gravity: after 0.1 s the wet tips have
+     * moved less; after 20 s they stand where the dry ones do. */
+    pelt__strands_reset(s);
+    f = no_forces();
+    f.wind[0] = 1.5f;
+    for (int i = 0; i < 6; i++) pelt__strands_step(s, 1.0f / 60.0f, &f, (float)i / 60.0f);
+    float early_wet = offset_of(s, 0).x, early_dry = offset_of(s, 1).x;
+    printf("  sag %.4f wet, %.4f dry; after 0.1 s of wind %.4f wet, %.4f dry", wet_sag, dry_sag, early_wet,
+           early_dry);
+    CHECK(early_dry > 0.0f && early_wet < 0.8f * early_dry);
+    for (int i = 6; i < 1200; i++) pelt__strands_step(s, 1.0f / 60.0f, &f, (float)i / 60.0f);
+    printf(", after 20 s %.4f and %.4f\n", offset_of(s, 0).x, offset_of(s, 1).x);
+    CHECK_NEAR(offset_of(s, 0).x, offset_of(s, 1).x, 1e-5);
+    pelt__strands_destroy(s);
+    pelt__strands_destroy(plain);
+    pelt_mesh_destroy(m);
+}
+
+/* The fur loads its strands from the wetness mask: on a square under
+ * gravity (along -n), a vertex at wetness rho sinks by (1 + weight rho)
+ * times the dry sag, a dry one as before; towelled dry, every tip rises
+ * back to the dry sag. */
+static void wet_fur_hangs_by_its_wetness(void)
+{
+    pelt_mesh *m = square(8);
+    pelt_fur_desc d = {.length = L0_TEST, .wet.weight = 1.0f};
+    pelt_fur *fur = NULL;
+    CHECK(m && pelt_fur_create(m, &d, &fur, NULL) == PELT_OK);
+    if (!fur) {
+        pelt_mesh_destroy(m);
+        return;
+    }
+    pelt_droplet drop = {{0.25f, 0.5f}, 0.3f, 1.0f};
+    CHECK(pelt_fur_add_droplet(fur, &drop, NULL) == PELT_OK);
+    pelt_forces f = pelt_forces_default();
+    f.gust_strength = 0.0f;
+    for (int i = 0; i < 600; i++) pelt_fur_step(fur, 1.0f / 60.0f, &f);
+    const float dry_sag = 0.4f * L0_TEST; /* spring_k's default: m g / k = 0.4 L */
+    const pelt__wetness *mask = pelt__water_mask(fur->water);
+    size_t wet = 0, dry = 0;
+    float worst = 0.0f;
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        float rho = pelt__clump_texel(mask->texels, mask->width, mask->height, m->uvs + 2 * i)[3];
+        float sag = L0_TEST - fur->tips[3 * i + 1];
+        float err = fabsf(sag - (1.0f + rho) * dry_sag);
+        worst = err > worst ? err : worst;
+        wet += rho > 0.9f;
+        dry += rho == 0.0f;
+    }
+    printf("  %zu soaked vertices, %zu dry; worst sag error %.2g of %.3g\n", wet, dry, worst, dry_sag);
+    CHECK(wet > 4 && dry > 4 && worst < 1e-3f * L0_TEST);
+    pelt_fur_clear_wetness(fur);
+    for (int i = 0; i < 600; i++) pelt_fur_step(fur, 1.0f / 60.0f, &f);
+    worst = 0.0f;
+    for (size_t i = 0; i < m->vertex_count; i++) {
+        float err = fabsf(L0_TEST - fur->tips[3 * i + 1] - dry_sag);
+        worst = err > worst ? err : worst;
+    }
+    CHECK(worst < 1e-3f * L0_TEST);
+    pelt_fur_destroy(fur);
     pelt_mesh_destroy(m);
 }
 
@@ -650,6 +752,8 @@ int main(void)
     RUN(strand_params_are_checked_not_defaulted);
     RUN(strand_rest_offsets_are_length_times_normal_in_mesh_space);
     RUN(strand_static_sag_equals_force_over_stiffness);
+    RUN(strand_water_weight_doubles_the_sag_and_slows_the_swing);
+    RUN(wet_fur_hangs_by_its_wetness);
     RUN(strand_defaults_bend_under_gravity_and_lean_in_wind);
     RUN(strand_returns_to_rest_without_force_when_damped);
     RUN(strand_steady_wind_moves_every_tip_downwind);
