@@ -138,9 +138,9 @@ typedef struct pelt_fur_wet {
                                 of look.shininess in [1, 64], default 4 */
     /* Water is heavy (docs/dynamics.md, Wet fur hangs): a strand at
        wetness rho carries weight * rho times its tip's mass in water, so
-       wet fur hangs further under gravity and moves less in the wind. */
+       wet fur hangs further under gravity and swings slower. */
     float weight;            /* water on soaked fur, a multiple of
-                                dynamics.mass in [0, 16], default 1 */
+                                dynamics.mass in [0, 16], default 0.5 */
 } pelt_fur_wet;
 
 /* Combing (Lengyel et al. §3). */
