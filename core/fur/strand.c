@@ -434,8 +434,8 @@ static void step_range(void *ctx, size_t begin, size_t end)
             if (load > 0.0f) {
                 /* Water's weight (docs/dynamics.md, Wet fur hangs): the tip
                  * is 1 + load times as heavy; gravity pulls every gram
-                 * alike, the spring, the drag and the air's push move the
-                 * heavier tip less. */
+                 * alike, the spring, the drag and the air's push
+                 * accelerate the heavier tip less. */
                 const float inv_m = 1.0f / (1.0f + load);
                 a = v3_add(gravity, v3_scale(v3_sub(a, gravity), inv_m));
                 k_j[j] = km * inv_m;

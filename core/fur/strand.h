@@ -77,8 +77,10 @@ void pelt__strands_step(pelt__strands *s, float dt, const pelt_forces *f, float 
  * tip is 1 + load[i] times as heavy at the next step (load >= 0; the fur
  * writes it from the wetness mask, docs/dynamics.md). Gravity accelerates
  * it alike; the spring, the damping, the wind, gusts and blows, which are
- * forces per tip mass, move it 1 + load[i] times less. A strand with load
- * 0 steps exactly as without. NULL for NULL strands. */
+ * forces per tip mass, accelerate it 1 + load[i] times less: it sags
+ * 1 + load[i] times as far, bends as far in a steady wind and swings
+ * slower. A strand with load 0 steps exactly as without. NULL for NULL
+ * strands. */
 float *pelt__strands_water_load(pelt__strands *s);
 
 /* Tips to rest (p = p0) with zero velocity. */
