@@ -140,7 +140,8 @@ typedef struct pelt_fur_wet {
        wetness rho carries weight * rho times its tip's mass in water, so
        wet fur hangs further under gravity and swings slower. */
     float weight;            /* water on soaked fur, a multiple of
-                                dynamics.mass in [0, 16], default 0.5 */
+                                dynamics.mass in [0, 16], default 0: the
+                                water weighs nothing */
 } pelt_fur_wet;
 
 /* Combing (Lengyel et al. §3). */
