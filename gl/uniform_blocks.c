@@ -51,7 +51,8 @@ OFFSET(pelt__fur_block, ringlet_radius, 144);
 OFFSET(pelt__fur_block, strand_curl_radius, 148);
 OFFSET(pelt__fur_block, strand_curl_omega, 152);
 OFFSET(pelt__fur_block, strand_curl_wave, 156);
-_Static_assert(sizeof(pelt__fur_block) == 160, "std140 size of pelt_fur_block");
+OFFSET(pelt__fur_block, clump_lean, 160);
+_Static_assert(sizeof(pelt__fur_block) == 176, "std140 size of pelt_fur_block");
 #undef OFFSET
 
 static GLuint make_buffer(size_t bytes)
@@ -139,6 +140,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.strand_curl_radius = texels_per_length > 0.0f ? d.look.strand_curl / texels_per_length : 0.0f;
     k.strand_curl_omega = 6.2831853f * d.look.strand_curl_turns;
     k.strand_curl_wave = d.look.strand_curl_shape == PELT_STRAND_CURL_WAVE ? 1.0f : 0.0f;
+    k.clump_lean = fs->clump_lean; /* 0 but for natural clumps */
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

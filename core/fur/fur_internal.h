@@ -69,4 +69,9 @@ bool pelt__fur_has_ringlets(const pelt_fur_desc *d);
  * by: look.curl_radius, or 0 when the texture holds the curl as ringlets. */
 float pelt__fur_vertex_curl_radius(const pelt_fur_desc *d);
 
+/* How far the tufts lean (pelt__clump_lean's amount): wet.clump_lean for
+ * natural clumps, whose radii carry their cell's byte; 0 for one clump
+ * per droplet. */
+float pelt__fur_clump_lean(const pelt_fur_desc *d);
+
 #endif

@@ -123,11 +123,12 @@ static void put(float *t, pelt_vec3 a, float w)
 }
 
 /* The tuft a hair belongs to (docs/wetness.md, Tufts), read forward: the
- * clump pulls the hair rooted at atlas uv `root` towards its centre c by
- * s rho f(h) of the way (f the tuft's profile), roots in place. A hair
+ * clump pulls the hair rooted at atlas uv `root` towards its tip, its
+ * centre c plus its lean, by s rho f(h) of the way (f the tuft's profile),
+ * roots in place. A hair
  * whose root is dry, outside its clump's radius or a stray is not pulled. */
 typedef struct tuft {
-    float pull_uv[2]; /* c - root, atlas uv */
+    float pull_uv[2]; /* c + lean - root, atlas uv: towards the tuft's tip */
     float rho, s, w, layers;
     bool on;
 } tuft;
@@ -136,9 +137,11 @@ static tuft tuft_at(const pelt_fur *f, const float root[2], float id)
 {
     const pelt__wetness *mask = pelt__water_mask(f->water);
     const float *t = pelt__clump_texel(mask->texels, mask->width, mask->height, root);
-    tuft k = {{t[0] - root[0], t[1] - root[1]}, t[3], f->desc.wet.clump_tightness, f->desc.wet.clump_blend,
-              (float)f->desc.layers, false};
-    k.on = k.rho > 0.0f && hypotf(k.pull_uv[0], k.pull_uv[1]) <= t[2] && !pelt__clump_stray(id, f->desc.wet.strays);
+    float lean[2];
+    pelt__clump_lean(t, pelt__fur_clump_lean(&f->desc), lean);
+    tuft k = {{t[0] + lean[0] - root[0], t[1] + lean[1] - root[1]}, t[3], f->desc.wet.clump_tightness,
+              f->desc.wet.clump_blend, (float)f->desc.layers, false};
+    k.on = k.rho > 0.0f && hypotf(t[0] - root[0], t[1] - root[1]) <= t[2] && !pelt__clump_stray(id, f->desc.wet.strays);
     return k;
 }
 

@@ -1,9 +1,11 @@
 /* Clump displacement: Silva et al. Eq. 5 and Alg. 2, see docs/wetness.md. */
 #include "core/wet/clump.h"
 
+#include "core/base/rng.h"
 #include "core/base/vec.h"
 
 #include <math.h>
+#include <string.h>
 
 void pelt__ringlet_levels(float rho, float levels, float stride, float out[3])
 {
@@ -79,10 +81,36 @@ const float *pelt__clump_texel(const float *mask, unsigned width,
     return mask + ((size_t)y * width + x) * 4;
 }
 
+float pelt__clump_tag(float r, uint32_t key)
+{
+    uint32_t bits;
+    memcpy(&bits, &r, sizeof bits);
+    bits = (bits & ~255u) | (pelt__hash32(key) & 255u);
+    memcpy(&r, &bits, sizeof r);
+    return r;
+}
+
+void pelt__clump_lean(const float texel[4], float amount, float out[2])
+{
+    uint32_t bits;
+    memcpy(&bits, &texel[2], sizeof bits);
+    float a = amount * texel[2];
+    out[0] = a * ((float)(bits & 15u) / 7.5f - 1.0f);
+    out[1] = a * ((float)((bits >> 4) & 15u) / 7.5f - 1.0f);
+}
+
 pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
                                       unsigned height, const float p[2],
                                       float h, float w, float n_layers,
                                       float s, float q[2])
+{
+    const float none[2] = {0.0f, 0.0f};
+    return pelt__clump_lookup_lean(mask, width, height, p, h, w, n_layers, s, none, q);
+}
+
+pelt__clump_result pelt__clump_lookup_lean(const float *mask, unsigned width, unsigned height,
+                                           const float p[2], float h, float w, float n_layers, float s,
+                                           const float lean[2], float q[2])
 {
     q[0] = p[0];
     q[1] = p[1];
@@ -93,7 +121,9 @@ pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
     if (sqrtf(ox * ox + oy * oy) > t[2]) return PELT__CLUMP_DISCARD; /* another clump */
     float pull = clampf(s * rho * pelt__clump_tuft_profile(h, w, n_layers), 0.0f,
                         PELT__CLUMP_MAX_PULL);
-    /* Inverse of the strand map root q -> c + (q - c)(1 - pull) (docs/wetness.md). */
+    ox -= pull * lean[0];
+    oy -= pull * lean[1];
+    /* Inverse of the strand map root q -> c + (q - c)(1 - pull) + pull lean (docs/wetness.md). */
     float k = 1.0f / (1.0f - pull);
     q[0] = t[0] + ox * k;
     q[1] = t[1] + oy * k;

@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 /* Outcome of Alg. 2 for one fragment; the values match the GLSL constants
  * CLUMP_KEEP, CLUMP_DISPLACED, CLUMP_DISCARD. */
@@ -67,6 +68,16 @@ bool pelt__clump_stray(float id, float share);
 const float *pelt__clump_texel(const float *mask, unsigned width,
                                unsigned height, const float uv[2]);
 
+/* A tuft's lean (docs/wetness.md, Tufts lean): a natural clump carries a
+ * byte of its cell's hash in the lowest 8 bits of its radius's float
+ * (pelt__clump_tag; the radius moves by less than 2^-15 of itself), the
+ * same byte on every texel of the clump, across patch borders. Its tuft's
+ * tip stands off the centre by a r (x, y) in mask uv, x and y in [-1, 1]
+ * from the byte's two halves (16 steps each), a = amount. amount 0 (one
+ * clump per droplet, whose radius carries no tag) gives (0, 0). */
+float pelt__clump_tag(float r, uint32_t key);
+void pelt__clump_lean(const float texel[4], float amount, float out[2]);
+
 /* Alg. 2 with the inverse mapping: the fragment at mask point p with texel
  * (c, r, rho) at layer height h samples the root
  *   q = c + (p - c) / (1 - min(s rho f(h), 0.95)),
@@ -79,6 +90,13 @@ pelt__clump_result pelt__clump_lookup(const float *mask, unsigned width,
                                       unsigned height, const float p[2],
                                       float h, float w, float n_layers,
                                       float s, float q[2]);
+
+/* The same for a tuft that leans by `lean` (pelt__clump_lean) at its tip:
+ * a hair rooted at q is seen at height h at c + (q - c)(1 - pull) + pull
+ * lean, so p samples q = c + (p - pull lean - c) / (1 - pull). */
+pelt__clump_result pelt__clump_lookup_lean(const float *mask, unsigned width, unsigned height,
+                                           const float p[2], float h, float w, float n_layers, float s,
+                                           const float lean[2], float q[2]);
 
 /* Coverage of strands squeezed by a factor k in (0, 1] towards the clump
  * centre: the texture's coverage a, as independent strands, seen through

@@ -1,6 +1,7 @@
 /* Natural wet clumps: cells fixed on the surface (Bruderlin's clump size,
  * beyond Silva et al.'s one clump per droplet; docs/wetness.md). */
 #include "core/wet/clump_cells.h"
+#include "core/wet/clump.h"
 #include "core/wet/texel_raster.h"
 
 #include "core/base/error.h"
@@ -409,7 +410,7 @@ static void clump_cell(pelt__clump_cells *c, pelt__wetness *m, uint32_t s, float
         }
         t[0] = uv[0];
         t[1] = uv[1];
-        t[2] = reach * scale + half_diag;
+        t[2] = pelt__clump_tag(reach * scale + half_diag, s); /* the tuft's lean: one byte a cell */
     }
     const unsigned *b = c->box + 4 * (size_t)s;
     pelt__rect_union(m->dirty, b);

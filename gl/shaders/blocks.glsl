@@ -53,4 +53,5 @@ layout(std140) uniform pelt_fur_block {
     float u_strand_curl_radius; // the fur texture's own curl: its radius over the
     float u_strand_curl_omega;  // fur's length (0: none), 2 pi turns, and
     float u_strand_curl_wave;   // 1 for a wave along u, 0 for a helix
+    float u_clump_lean;         // a tuft's lean at its tip, share of its radius (clump_lean)
 };

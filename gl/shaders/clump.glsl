@@ -93,28 +93,43 @@ vec4 clump_texel(sampler2D mask, vec2 uv)
     return texelFetch(mask, ivec2(i), 0);
 }
 
-// Alg. 2 with the inverse mapping q = c + (p - c) / (1 - min(s rho f(h), 0.95)),
-// from p's mask texel t and the profile f = clump_tuft_profile(h, w, N), which
-// the shells work out once per layer in the vertex stage.
-int clump_lookup_texel(sampler2D mask, vec4 t, vec2 p, float f, float s, out vec2 q)
+// A tuft's lean (docs/wetness.md, Tufts lean): the tip stands off the
+// clump centre by amount r (x, y) in mask uv, x and y in [-1, 1] from the
+// byte a natural clump carries in its radius's lowest bits. Mirrors
+// pelt__clump_lean.
+vec2 clump_lean(vec4 t, float amount)
+{
+    uint bits = floatBitsToUint(t.z);
+    float a = amount * t.z;
+    return a * (vec2(float(bits & 15u), float((bits >> 4u) & 15u)) / 7.5 - 1.0);
+}
+
+// Alg. 2 with the inverse mapping q = c + (p - pull lean - c) / (1 - pull),
+// pull = min(s rho f(h), 0.95), from p's mask texel t and the profile f =
+// clump_tuft_profile(h, w, N), which the shells work out once per layer in
+// the vertex stage; `lean` is the tuft's (clump_lean).
+int clump_lookup_texel(sampler2D mask, vec4 t, vec2 p, float f, float s, vec2 lean, out vec2 q)
 {
     q = p;
     if (!(t.a > 0.0)) return CLUMP_KEEP;
     vec2 o = p - t.xy;
+    // p outside the clump: another clump's texel.
+    if (length(o) > t.z) return CLUMP_DISCARD;
     float pull = clamp(s * t.a * f, 0.0, CLUMP_MAX_PULL);
     float g = 1.0 / (1.0 - pull);
+    o -= pull * lean;
     // The root must lie in this clump: strands from beyond its radius
-    // belong to a neighbour, so the clump narrows towards its tip. As
-    // g >= 1 this also drops p outside the clump (another clump's texel).
+    // belong to a neighbour, so the clump narrows towards its tip.
     if (length(o) * g > t.z) return CLUMP_DISCARD;
     q = t.xy + o * g;
     if (!(clump_texel(mask, q).a > 0.0)) return CLUMP_DISCARD;
     return CLUMP_DISPLACED;
 }
 
-int clump_lookup(sampler2D mask, vec2 p, float h, float w, float N, float s, out vec2 q)
+int clump_lookup(sampler2D mask, vec2 p, float h, float w, float N, float s, float lean, out vec2 q)
 {
-    return clump_lookup_texel(mask, clump_texel(mask, p), p, clump_tuft_profile(h, w, N), s, q);
+    vec4 t = clump_texel(mask, p);
+    return clump_lookup_texel(mask, t, p, clump_tuft_profile(h, w, N), s, clump_lean(t, lean), q);
 }
 
 // Coverage of strands squeezed by a factor k (0 < k <= 1) towards the clump

@@ -51,7 +51,7 @@ void main()
     vec4 t = clump_texel(u_mask, v_uv);
     rho = t.a;
     float profile = clump_tuft_profile(v_fin_uv.y * u_fin_length, u_clump_blend, u_layers);
-    int clump = clump_lookup_texel(u_mask, t, v_uv, profile, u_clump_tightness, q);
+    int clump = clump_lookup_texel(u_mask, t, v_uv, profile, u_clump_tightness, clump_lean(t, u_clump_lean), q);
     if (clump == CLUMP_DISPLACED) fin_uv.x += clump_fin_shift(q - v_uv, v_clump_dir);
 #endif
     vec4 hair = fin_hair(fin_uv, rho);

@@ -113,7 +113,8 @@ void main()
     vec2 q;
     vec4 t = clump_texel(u_mask, v_uv);
     rho = t.a;
-    int clump = clump_lookup_texel(u_mask, t, v_uv, v_clump_profile, u_clump_tightness, q);
+    vec2 lean = clump_lean(t, u_clump_lean);
+    int clump = clump_lookup_texel(u_mask, t, v_uv, v_clump_profile, u_clump_tightness, lean, q);
     if (clump == CLUMP_DISPLACED) d = q - v_uv;
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
@@ -175,7 +176,7 @@ void main()
     base = wet_color(base, rho, u_wet_darken); // darker, more saturated
     float spec = v_spec;
 #ifdef PELT_WET
-    if (clump == CLUMP_DISPLACED) tuft_light(t.xy - q, rho, base, spec);
+    if (clump == CLUMP_DISPLACED) tuft_light(t.xy + lean - q, rho, base, spec);
 #ifdef PELT_RINGLETS
     else shell_ringlet_light(hair.b, rho, base, spec);
 #endif

@@ -139,6 +139,9 @@ typedef struct pelt_fur_wet {
     /* Water is heavy (docs/dynamics.md, Wet fur hangs): a strand at
        wetness rho carries weight * rho times its tip's mass in water, so
        wet fur hangs further under gravity and swings slower. */
+    float clump_lean;        /* natural tufts lean: each tuft's tip stands off
+                                its centre by up to this share of its radius
+                                along each axis, [0, 1], default 0.3 */
     float weight;            /* water on soaked fur, a multiple of
                                 dynamics.mass in [0, 16], default 0: the
                                 water weighs nothing */

@@ -195,6 +195,55 @@ static void clump_coverage_thins_toward_the_tips(void)
     free(m);
 }
 
+/* Tufts lean (docs/wetness.md): the radius's tag moves it by under 2^-15
+ * and picks the lean; 256 keys give leans spread over the square, each
+ * within amount r; and the lookup inverts the forward map of a leaning
+ * tuft: the hair rooted at q, pulled towards c + lean, is seen at p, and
+ * p samples q. */
+static void clump_lean_tags_the_radius_and_inverts(void)
+{
+    float sum[2] = {0.0f, 0.0f}, spread[2] = {0.0f, 0.0f};
+    for (uint32_t key = 0; key < 256; key++) {
+        float r = pelt__clump_tag(0.1f, key);
+        CHECK(fabsf(r - 0.1f) < 0.1f / 32768.0f);
+        float t[4] = {0.5f, 0.5f, r, 1.0f}, lean[2];
+        pelt__clump_lean(t, 0.5f, lean);
+        for (int k = 0; k < 2; k++) {
+            CHECK(fabsf(lean[k]) <= 0.5f * r * 1.0001f);
+            sum[k] += lean[k];
+            spread[k] += fabsf(lean[k]);
+        }
+        float none[2];
+        pelt__clump_lean(t, 0.0f, none);
+        CHECK(none[0] == 0.0f && none[1] == 0.0f);
+    }
+    printf("  mean lean (%.4f, %.4f), mean |lean| (%.4f, %.4f) of r 0.1\n", sum[0] / 256, sum[1] / 256,
+           spread[0] / 256, spread[1] / 256);
+    CHECK(fabsf(sum[0] / 256) < 0.01f && fabsf(sum[1] / 256) < 0.01f);
+    CHECK(spread[0] / 256 > 0.015f && spread[1] / 256 > 0.015f);
+
+    const unsigned W = 64;
+    float *m = disc_mask(W, 0.5f, 0.5f, 0.3f, 1.0f);
+    const float lean[2] = {0.06f, -0.04f};
+    int checked = 0;
+    for (int n = 4; n < 16; n += 3) {
+        float h = (1.0f + n) / 16.0f, s = 0.8f;
+        float pull = s * pelt__clump_tuft_profile(h, 0.5f, 16.0f);
+        for (int i = 0; i < 50; i++) {
+            float root[2] = {0.5f + 0.2f * cosf(0.7f * i) * (i % 7) / 7.0f, 0.5f + 0.2f * sinf(0.7f * i) * (i % 5) / 5.0f};
+            float p[2], q[2];
+            for (int k = 0; k < 2; k++) p[k] = 0.5f + (root[k] - 0.5f) * (1.0f - pull) + pull * lean[k];
+            if (hypotf(p[0] - 0.5f, p[1] - 0.5f) > 0.28f) continue; /* keep p inside the clump */
+            CHECK(pelt__clump_lookup_lean(m, W, W, p, h, 0.5f, 16.0f, s, lean, q) == PELT__CLUMP_DISPLACED);
+            CHECK_NEAR(q[0], root[0], 1e-5);
+            CHECK_NEAR(q[1], root[1], 1e-5);
+            checked++;
+        }
+    }
+    CHECK(checked > 100);
+    free(m);
+}
+
 /* Ringlets (docs/method.md): three levels (full, half, no curl) 20 slices
  * apart; the wetness picks the two around 1 - rho and the weight between. */
 static void ringlet_levels_follow_the_wetness(void)
@@ -245,5 +294,6 @@ int main(void)
     RUN(clump_coverage_thins_toward_the_tips);
     RUN(ringlet_levels_follow_the_wetness);
     RUN(clump_fin_shift_is_the_pull_along_the_edge);
+    RUN(clump_lean_tags_the_radius_and_inverts);
     return check_summary();
 }

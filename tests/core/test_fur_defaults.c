@@ -200,6 +200,7 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK_REL(d.wet.gloss, 2.0f);
     CHECK_REL(d.wet.gloss_sharpness, 4.0f);
     CHECK(d.wet.weight == 0.0f);
+    CHECK_REL(d.wet.clump_lean, 0.3f);
 
     CHECK(d.comb.slant == 0.0f);
 

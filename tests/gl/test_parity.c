@@ -209,12 +209,14 @@ static const char clump_main[] =
     "  float h = (1.0 + mod(c.x + c.y, 16.0)) / 16.0;\n"
     "  float w = mod(c.y, 3.0) * 0.5;\n"
     "  vec2 q = p;\n"
-    "  int r = clump_lookup(u_mask, p, h, w, 16.0, 0.9, q);\n"
+    "  float lean = mod(c.x, 2.0) * 0.5;\n"
+    "  int r = clump_lookup(u_mask, p, h, w, 16.0, 0.9, lean, q);\n"
     "  o = vec4(float(r), q, clump_tuft_profile(h, w, 16.0));\n"
     "}\n";
 
 /* Silva Eq. 5 and Alg. 2 in the shell fragment shader vs core/wet/clump.c, on
- * a mask with overlapping droplets. */
+ * a mask with overlapping droplets; every other column's tufts lean by half
+ * their radius (clump_lean: the radii's lowest bits pick the way). */
 static void clump_glsl_matches_c(void)
 {
     pelt__wetness *m = NULL;
@@ -232,15 +234,17 @@ static void clump_glsl_matches_c(void)
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     const char *fs[] = {pelt__shader_clump, clump_main, NULL};
     CHECK(gl_test_eval(gl, fs, W, H, out));
-    int mismatched = 0, displaced = 0, discarded = 0;
+    int mismatched = 0, displaced = 0, discarded = 0, leaning = 0;
     double worst = 0.0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             float p[2] = {((float)x + 0.37f) / 64.0f, ((float)y + 0.61f) / 48.0f};
             float h = (1.0f + fmodf((float)(x + y), 16.0f)) / 16.0f;
             float w = fmodf((float)y, 3.0f) * 0.5f;
-            float q[2] = {p[0], p[1]};
-            int r = (int)pelt__clump_lookup(m->texels, 64, 64, p, h, w, 16.0f, 0.9f, q);
+            float q[2] = {p[0], p[1]}, lean[2];
+            pelt__clump_lean(pelt__clump_texel(m->texels, 64, 64, p), fmodf((float)x, 2.0f) * 0.5f, lean);
+            leaning += fabsf(lean[0]) + fabsf(lean[1]) > 0.0f;
+            int r = (int)pelt__clump_lookup_lean(m->texels, 64, 64, p, h, w, 16.0f, 0.9f, lean, q);
             const float *g = out + 4 * (y * W + x);
             if ((int)g[0] != r) mismatched++;
             if (r == PELT__CLUMP_DISPLACED) {
@@ -250,9 +254,9 @@ static void clump_glsl_matches_c(void)
             if (r == PELT__CLUMP_DISCARD) discarded++;
             worst = fmax(worst, fabs(g[3] - pelt__clump_tuft_profile(h, w, 16.0f)));
         }
-    printf("  %d displaced, %d discarded, %d results differ, worst |GLSL - C| = %.3g\n", displaced,
-           discarded, mismatched, worst);
-    CHECK(displaced > 100 && discarded > 10);
+    printf("  %d displaced, %d discarded, %d leaning, %d results differ, worst |GLSL - C| = %.3g\n", displaced,
+           discarded, leaning, mismatched, worst);
+    CHECK(displaced > 100 && discarded > 10 && leaning > 100);
     CHECK(mismatched == 0);
     CHECK(worst < 2e-4);
     glDeleteTextures(1, &tex);

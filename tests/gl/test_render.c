@@ -787,6 +787,7 @@ static void uniform_blocks_match_their_c_structs(void)
         {"u_strand_curl_radius", offsetof(pelt__fur_block, strand_curl_radius)},
         {"u_strand_curl_omega", offsetof(pelt__fur_block, strand_curl_omega)},
         {"u_strand_curl_wave", offsetof(pelt__fur_block, strand_curl_wave)},
+        {"u_clump_lean", offsetof(pelt__fur_block, clump_lean)},
     };
     for (size_t i = 0; i < sizeof members / sizeof members[0]; i++) {
         GLuint index = GL_INVALID_INDEX;
