@@ -10,18 +10,10 @@
 #include "core/fur/fur_internal.h"
 #include "core/fur/fur_shape.h"
 #include "core/fur/vertex_strand.h"
+#include "core/wet/clump.h"
 
 #include <math.h>
 #include <string.h>
-
-/* Wetness at a uv: the texel GL's NEAREST + CLAMP_TO_EDGE picks. */
-static float rho_at(const pelt__wetness *w, float u, float v)
-{
-    float x = floorf(u * (float)w->width), y = floorf(v * (float)w->height);
-    x = fminf(fmaxf(x, 0.0f), (float)w->width - 1.0f);
-    y = fminf(fmaxf(y, 0.0f), (float)w->height - 1.0f);
-    return w->texels[((size_t)y * w->width + (size_t)x) * 4 + 3];
-}
 
 static void put(float *t, pelt_vec3 a, float w)
 {
@@ -41,7 +33,9 @@ fin_strand pelt__fur_vertex_strand(const pelt_fur *f, const pelt_mesh_data *m, c
     st.u = v3_norm_or(v3_load(ti), v3(1.0f, 0.0f, 0.0f));
     st.v = v3_scale(v3_cross(st.n, st.u), ti[3]);
     pelt_vec3 comb = m->comb ? v3_load(m->comb + 3 * i) : v3_load(ti);
-    st.rho = wet ? rho_at(pelt__water_mask(f->water), m->uvs[2 * i], m->uvs[2 * i + 1]) : 0.0f;
+    const pelt__wetness *mask = pelt__water_mask(f->water);
+    /* The texel GL's NEAREST + CLAMP_TO_EDGE picks, as the vertex stage reads it. */
+    st.rho = wet ? pelt__clump_texel(mask->texels, mask->width, mask->height, m->uvs + 2 * i)[3] : 0.0f;
     float s = g->length * length_scale;
     st.L = fd->length * s;
     st.K = pelt__fur_vertex_curl_radius(fd) * s;
