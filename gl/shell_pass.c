@@ -162,6 +162,9 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
         count = f->draw->layer_count;
     if (count == 0) return;
     pelt__gl_blended_hair_state();
+#if !PELT_GL_ES
+    glEnable(GL_CLIP_DISTANCE0); /* faded shells clipped (shell_vs.glsl) */
+#endif
     if (lod->cull) {
         /* The skin hides what faces away; the fins carry the silhouette. */
         glEnable(GL_CULL_FACE);
@@ -190,6 +193,9 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
     }
     f->stats->shell_instances += count; /* the shells each triangle drew */
     glFrontFace(GL_CCW);
+#if !PELT_GL_ES
+    glDisable(GL_CLIP_DISTANCE0);
+#endif
 }
 
 void pelt__shell_pass_destroy(pelt__shell_pass *p)

@@ -150,6 +150,14 @@ void main()
     // reaching towards the silhouette keeps its part on this side).
     if (shell_back_hidden(n_dot_v, u_back_reach)) gl_Position.z = 2.0 * abs(gl_Position.w);
 #endif
+#ifndef GL_ES
+    // Where the shell has faded out (the view's budget face-on, a level
+    // leaving) it is clipped before rasterising: the clip distance is the
+    // opacity the fragment stage discards below, interpolated as it is, so
+    // the same fragments go, but they cost no shading. (WebGL2 has no
+    // gl_ClipDistance: there they are discarded.)
+    gl_ClipDistance[0] = v_alpha - 1.0 / 255.0;
+#endif
     v_root = groom_root_color(u_color, a_hair_color) * light_mul;
     v_tip = groom_tip_color(u_color, u_tip_color, a_hair_color) * light_mul;
     v_uv = a_uv;

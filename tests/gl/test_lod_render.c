@@ -13,12 +13,14 @@ enum { W = 400, H = 300 };
 static pelt_headless *gl;
 static pelt_mesh *dense;
 
-/* One frame of a live renderer, the camera `distance` from the origin. */
-static void draw(pelt_renderer *r, float distance, const pelt_draw_desc *dd, uint8_t *px, pelt_render_stats *st)
+/* One frame of a live renderer, the camera `distance` from the origin,
+ * `pitch` degrees above the XZ plane. */
+static void draw_at(pelt_renderer *r, float pitch, float distance, const pelt_draw_desc *dd, uint8_t *px,
+                    pelt_render_stats *st)
 {
     pelt_view v;
     memset(&v, 0, sizeof v);
-    pelt_camera cam = {30.0f, 25.0f, distance, 40.0f, {0, 0, 0}};
+    pelt_camera cam = {30.0f, pitch, distance, 40.0f, {0, 0, 0}};
     pelt_camera_to_view(&cam, (float)W / H, &v);
     v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.0f, 1.0f, 1.0f}, 0.25f}; /* the scene default */
     v.width = W, v.height = H;
@@ -28,6 +30,11 @@ static void draw(pelt_renderer *r, float distance, const pelt_draw_desc *dd, uin
     pelt_renderer_draw(r, &v, dd);
     pelt_headless_read_rgba8(gl, px);
     if (st) *st = pelt_renderer_get_stats(r);
+}
+
+static void draw(pelt_renderer *r, float distance, const pelt_draw_desc *dd, uint8_t *px, pelt_render_stats *st)
+{
+    draw_at(r, 25.0f, distance, dd, px, st);
 }
 
 /* Mean absolute difference of two frames, 0..255. */
@@ -161,21 +168,63 @@ static void lod_the_measure_sees_a_pop(void)
 
 /* Fragment shader invocations of one frame where GL counts them
  * (ARB_pipeline_statistics_query, core in 4.6), else -1. */
-static double invocations(pelt_renderer *r, const pelt_draw_desc *dd, uint8_t *px)
+static double invocations_at(pelt_renderer *r, float pitch, float distance, const pelt_draw_desc *dd, uint8_t *px)
 {
     if (!epoxy_has_gl_extension("GL_ARB_pipeline_statistics_query") && epoxy_gl_version() < 46) {
-        draw(r, 4.2f, dd, px, NULL);
+        draw_at(r, pitch, distance, dd, px, NULL);
         return -1.0;
     }
     GLuint q;
     glGenQueries(1, &q);
     glBeginQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB, q);
-    draw(r, 4.2f, dd, px, NULL);
+    draw_at(r, pitch, distance, dd, px, NULL);
     glEndQuery(GL_FRAGMENT_SHADER_INVOCATIONS_ARB);
     GLuint64 n = 0;
     glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
     glDeleteQueries(1, &q);
     return (double)n;
+}
+
+static double invocations(pelt_renderer *r, const pelt_draw_desc *dd, uint8_t *px)
+{
+    return invocations_at(r, 25.0f, 4.2f, dd, px);
+}
+
+/* The view's shell budget (docs/lod.md) is for less work: where fur is
+ * seen face-on the level's odd shells fade out, and where they have faded
+ * they are clipped in the vertex stage, so they are not rasterised. A
+ * square seen from nearly straight above, its fur short on screen: the
+ * faded shells cost no fragment shader invocations, and the picture stays
+ * within the golden tolerance of every shell drawn. */
+static void lod_view_budget_clips_the_faded_shells(void)
+{
+    pelt_mesh *sq = NULL;
+    CHECK(pelt_mesh_square(2.0f, 32, &sq, NULL) == PELT_OK);
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    const pelt_fur_desc d = {.look.texture_size = 128};
+    if (sq && pelt_fur_create(sq, &d, &fur, NULL) == PELT_OK)
+        CHECK(pelt_renderer_create(sq, fur, NULL, &r, NULL) == PELT_OK);
+    uint8_t *a = malloc(NPX * 4), *b = malloc(NPX * 4);
+    CHECK(r && a && b);
+    if (r && a && b) {
+        pelt_draw_desc flat = {0};
+        flat.debug.flat_shells = true;
+        double budget = invocations_at(r, 80.0f, 3.0f, NULL, a), every = invocations_at(r, 80.0f, 3.0f, &flat, b);
+        double mean, frac;
+        gl_test_compare(a, b, NPX, &mean, &frac);
+        printf("  face-on square: the view's budget against every shell, mean error %.3f (max 4), pixels off %.4f "
+               "(max 0.03); fragment shader invocations %.0f against %.0f\n",
+               mean, frac, budget, every);
+        CHECK(mean <= 4.0);
+        CHECK(frac <= 0.03);
+        if (every >= 0.0) CHECK(budget < 0.7 * every);
+        stbi_write_png(PELT_TEST_OUT "/lod_view_budget.png", W, H, 4, a, W * 4);
+    }
+    free(a), free(b);
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(sq);
 }
 
 /* An open mesh (a torus with a slab cut out, so the eye sees into it and
@@ -242,6 +291,7 @@ int main(void)
         RUN(lod_dolly_out_has_no_pop);
         RUN(lod_the_measure_sees_a_pop);
         RUN(lod_open_mesh_leaves_out_the_shells_behind_their_skin);
+        RUN(lod_view_budget_clips_the_faded_shells);
     }
     pelt_mesh_destroy(dense);
     pelt_headless_destroy(gl);
