@@ -32,6 +32,8 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
     if (d->dynamics.spring_k == 0.0f) d->dynamics.spring_k = d->dynamics.mass * 9.81f / (0.4f * d->length);
     if (d->dynamics.damping == 0.0f) d->dynamics.damping = 0.5f * sqrtf(d->dynamics.spring_k * d->dynamics.mass);
     if (d->fins.density == 0.0f) d->fins.density = (float)d->look.texture_size / 16.0f;
+    /* The same hair at every texture size: texture_size only resolves it. */
+    if (d->look.strand_radius == 0.0f) d->look.strand_radius = 1.6f * (float)d->look.texture_size / 256.0f;
     if (d->wet.clump_size == 0.0f) {
         /* Wet tufts about as wide as the hair is long, holding tens of
            hairs: between 20 and 100 at the texture's density. */

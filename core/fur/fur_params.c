@@ -31,7 +31,7 @@ static const pelt_param fur_params[] = {
     {"seed", PELT_PARAM_SEED, OFF(seed), 1, 0, 4294967295.0, 0, {1, 0, 0}, NULL, NULL},
     UINT_("look.texture_size", look.texture_size, 8, 4096, 256),
     FLT("look.density", look.density, 0, 1e6, OPEN, 3000),
-    FLT("look.strand_radius", look.strand_radius, 0, 64, OPEN, 1.6),
+    DERIVED("look.strand_radius", look.strand_radius, 0, 64, OPEN, "1.6 texels of a 256-texel texture: 1.6 texture_size / 256"),
     FLT("look.taper", look.taper, 0, 1, 0, 0.8),
     FLT("look.strand_curl", look.strand_curl, 0, 64, 0, 0),
     FLT("look.strand_curl_turns", look.strand_curl_turns, 0, 32, OPEN, 2),

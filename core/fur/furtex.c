@@ -38,12 +38,11 @@ static strand_stream strands_begin(const pelt__furtex_desc *d)
     return s;
 }
 
+/* density is strands per tile at every texture size: a larger texture
+ * holds the same hairs in more texels. */
 static size_t strand_count(const pelt__furtex_desc *d)
 {
-    /* Scale the strand count with the texture area so density means the
-     * same thing at every resolution (it is given per 256x256 tile). */
-    float size = (float)d->size;
-    return (size_t)(d->density * (size * size) / (256.0f * 256.0f) + 0.5f);
+    return (size_t)(d->density + 0.5f);
 }
 
 static strand strands_next(strand_stream *s)

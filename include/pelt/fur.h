@@ -57,7 +57,9 @@ typedef enum pelt_curl_phase {
 typedef struct pelt_fur_look {
     unsigned texture_size;   /* fur texture width = height, default 256 */
     float density;           /* strands per texture tile, default 3000 */
-    float strand_radius;     /* strand radius at the root in texels, default 1.6 */
+    float strand_radius;     /* strand radius at the root in texels, default
+                                1.6 texture_size / 256: the same hair at every
+                                texture size */
     float taper;             /* 0 = cylinder, 1 = tip ends in a point, default 0.8 */
     /* Curly and wavy hair in the texture itself (Lengyel et al. §2.2): every
        simulated strand winds with its own phase, out of step with its

@@ -161,7 +161,7 @@ static void zero_desc_gets_every_documented_default(void)
 
     CHECK(d.look.texture_size == 256);
     CHECK_REL(d.look.density, 3000.0f);
-    CHECK_REL(d.look.strand_radius, 1.6f);
+    CHECK_REL(d.look.strand_radius, 1.6f * (float)d.look.texture_size / 256.0f);
     CHECK_REL(d.look.taper, 0.8f);
     CHECK(d.look.strand_curl == 0.0f && d.look.strand_curl_shape == PELT_STRAND_CURL_HELIX);
     CHECK_REL(d.look.strand_curl_turns, 2.0f);
@@ -222,6 +222,7 @@ static void derived_defaults_follow_the_given_fields(void)
     in.length = 0.2f;
     in.dynamics.mass = 2.0f;
     in.look.tiling = 7.0f;
+    in.look.texture_size = 64; /* small: the texture is made here */
     in.seed = 5;
     pelt_fur *fur = m ? fur_on(m, &in) : NULL;
     CHECK(fur != NULL);
@@ -230,6 +231,8 @@ static void derived_defaults_follow_the_given_fields(void)
         CHECK(d.length == 0.2f && d.dynamics.mass == 2.0f && d.look.tiling == 7.0f && d.seed == 5);
         CHECK_REL(d.dynamics.spring_k, 2.0f * 9.81f / (0.4f * 0.2f));
         CHECK_REL(d.dynamics.damping, 0.5f * sqrtf(d.dynamics.spring_k * 2.0f));
+        /* The same hair at every texture size: 1.6 texels at 256, 0.4 at 64. */
+        CHECK_REL(d.look.strand_radius, 0.4f);
         pelt_fur_destroy(fur);
     }
     /* With nothing given, the length is 3% of this mesh's own diagonal. */

@@ -15,7 +15,7 @@ static uint8_t *make(const pelt__furtex_desc *d)
     return v;
 }
 
-static const pelt__furtex_desc base = {128, 16, 7, 3000.0f, 1.6f, 0.8f};
+static const pelt__furtex_desc base = {128, 16, 7, 750.0f, 1.6f, 0.8f};
 
 /* Mean alpha of slice s (0..1). */
 static double coverage(const uint8_t *v, const pelt__furtex_desc *d, unsigned s)
@@ -109,6 +109,37 @@ static void furtex_density_thickness_and_taper_do_what_they_say(void)
     free(b), free(d), free(t), free(u);
 }
 
+/* The texture's size resolves the hairs, it does not make others: the same
+ * density (strands per tile) with the radius scaled as the texels shrink
+ * draws the same strands (made per 256 texels, a twice as large texture
+ * held four times the hairs). A texel's soft edge widens every hair by
+ * part of a texel, so the coarser texture covers more; the coverage
+ * converges as the size doubles (by less than 60% of the step before). */
+static void furtex_size_resolves_the_same_hairs(void)
+{
+    pelt__furtex_desc d[3] = {base, base, base};
+    uint8_t *v[3];
+    for (int k = 0; k < 3; k++) {
+        d[k].size = base.size << k;
+        d[k].strand_radius = base.strand_radius * (float)(1 << k);
+        v[k] = make(&d[k]);
+        CHECK(v[k] != NULL);
+        CHECK(pelt__furtex_strands(&d[k], NULL, 0) == pelt__furtex_strands(&base, NULL, 0));
+    }
+    if (v[0] && v[1] && v[2]) {
+        for (unsigned s = 2; s <= 14; s += 4) {
+            double c[3];
+            for (int k = 0; k < 3; k++) c[k] = coverage(v[k], &d[k], s);
+            printf("  slice %u: coverage %.3f, %.3f, %.3f at %u, %u, %u texels\n", s, c[0], c[1], c[2], d[0].size,
+                   d[1].size, d[2].size);
+            /* The edge's excess about halves with the texel. */
+            CHECK(c[0] > c[1] && c[1] > c[2]);
+            CHECK(c[1] - c[2] < 0.6 * (c[0] - c[1]));
+        }
+    }
+    for (int k = 0; k < 3; k++) free(v[k]);
+}
+
 static void furtex_rejects_sizes_that_overflow(void)
 {
     pelt__furtex_desc huge = base;
@@ -148,7 +179,7 @@ static bool footprint(const uint8_t *v, const pelt__furtex_desc *d, unsigned sli
  * every way at one height). */
 static void furtex_curly_strands_circle_out_of_step(void)
 {
-    pelt__furtex_desc curly = {128, 16, 3, 160.0f, 1.0f, 0.0f, 5.0f, 1.0f, false};
+    pelt__furtex_desc curly = {128, 16, 3, 40.0f, 1.0f, 0.0f, 5.0f, 1.0f, false};
     pelt__furtex_desc straight = curly;
     straight.curl_radius = 0.0f;
     uint8_t *vc = make(&curly), *vs = make(&straight);
@@ -204,7 +235,7 @@ static void furtex_curly_strands_circle_out_of_step(void)
  * skin and a straight texture's strands stay as they were. */
 static void furtex_wave_moves_strands_along_u_only(void)
 {
-    pelt__furtex_desc wavy = {128, 16, 3, 160.0f, 1.0f, 0.0f, 5.0f, 1.0f, true};
+    pelt__furtex_desc wavy = {128, 16, 3, 40.0f, 1.0f, 0.0f, 5.0f, 1.0f, true};
     pelt__furtex_strand st[64];
     size_t n = pelt__furtex_strands(&wavy, st, 64);
     CHECK(n > 0 && n <= 64);
@@ -294,7 +325,7 @@ static void ringlets_turn_neighbouring_strands_out_of_step(void)
 
     /* What the texture draws: a sparse one with ringlets, footprints on
      * their curves, and those of neighbouring strands apart. */
-    pelt__furtex_desc sparse = {128, 16, 3, 160.0f, 1.0f, 0.0f, 0.0f, 2.0f, false, 6.0f, omega};
+    pelt__furtex_desc sparse = {128, 16, 3, 40.0f, 1.0f, 0.0f, 0.0f, 2.0f, false, 6.0f, omega};
     uint8_t *v = make(&sparse);
     pelt__furtex_strand sp[64];
     size_t m = pelt__furtex_strands(&sparse, sp, 64);
@@ -347,7 +378,7 @@ static double centre_alpha(const pelt__furtex_desc *d)
 
 static void furtex_curled_strands_are_as_opaque_as_straight_ones(void)
 {
-    pelt__furtex_desc straight = {128, 32, 3, 160.0f, 1.6f, 0.0f, 0.0f, 2.0f, false, 0.0f, 0.0f};
+    pelt__furtex_desc straight = {128, 32, 3, 40.0f, 1.6f, 0.0f, 0.0f, 2.0f, false, 0.0f, 0.0f};
     pelt__furtex_desc ringlets = straight, curled = straight;
     ringlets.ringlet_radius = 40.0f, ringlets.ringlet_omega = 12.566371f;
     curled.curl_radius = 6.0f, curled.curl_turns = 3.0f;
@@ -400,6 +431,7 @@ int main(void)
     RUN(furtex_tiles_without_a_seam);
     RUN(furtex_coverage_falls_towards_the_tips);
     RUN(furtex_density_thickness_and_taper_do_what_they_say);
+    RUN(furtex_size_resolves_the_same_hairs);
     RUN(furtex_rejects_sizes_that_overflow);
     RUN(furtex_curly_strands_circle_out_of_step);
     RUN(furtex_wave_moves_strands_along_u_only);
