@@ -358,6 +358,23 @@ float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px)
 
 bool pelt__lod_back_hidden(float n_dot_v, float reach) { return reach >= 0.0f && n_dot_v < -reach; }
 
+float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v)
+{
+    float c = fminf(fabsf(n_dot_v), 1.0f);
+    float spacing = side_px * sqrtf(1.0f - c * c);
+    float s = fminf(fmaxf(2.0f - spacing / PELT__FUR_TEXTURE_ROW_PX, 0.0f), 1.0f);
+    return 1.0f + (PELT__FUR_TEXTURE_ANISO - 1.0f) * s;
+}
+
+float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso)
+{
+    float a = (dx[0] * dx[0] + dx[1] * dx[1]) * texels * texels;
+    float b = (dy[0] * dy[0] + dy[1] * dy[1]) * texels * texels;
+    float longer = fmaxf(a, b), shorter = fminf(a, b);
+    /* Squared lengths: half their log2. */
+    return 0.5f * log2f(fmaxf(fmaxf(longer / (max_aniso * max_aniso), shorter), 1e-12f));
+}
+
 void pelt__lod_view_texel(float w, float rgba[4])
 {
     float gain = 1.0f + w * (1.0f - rgba[3]);

@@ -114,6 +114,28 @@ float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px);
  * shell_back_hidden() in gl/shaders/shell_lod.glsl. */
 bool pelt__lod_back_hidden(float n_dot_v, float reach);
 
+/* The mip level the shells read their fur texture at, from the screen
+ * derivatives of the fur uv (tiles per pixel along x and along y) and the
+ * texture's size in texels: the footprint's longer side over max_aniso,
+ * or its shorter side where that is longer,
+ *   lod = log2(max(max(|dx|, |dy|) texels / max_aniso, min(|dx|, |dy|) texels)).
+ * A texture read picks the level from the longer side, so fur seen at a
+ * grazing angle, whose footprint is long across the view and short along
+ * it, blurs along both; this keeps its hairs sharp across the view with
+ * one fetch (up to PELT__FUR_TEXTURE_ANISO texels along the long side to
+ * a pixel). Mirrors fur_texture_lod() in gl/shaders/shell_lod.glsl. */
+#define PELT__FUR_TEXTURE_ANISO 2.0f
+float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso);
+
+/* The max_aniso of pelt__lod_fur_texture at a vertex: PELT__FUR_TEXTURE_ANISO
+ * where the shells lie at most PELT__FUR_TEXTURE_ROW_PX apart on screen,
+ * 1 (a texture read's own level) from twice that, linear between: where
+ * the shells stand far enough apart to show as rows, a sharper texture
+ * makes the rows stripes. side_px and n_dot_v as pelt__lod_view_blend's.
+ * Mirrors fur_texture_aniso() in gl/shaders/shell_lod.glsl. */
+#define PELT__FUR_TEXTURE_ROW_PX 0.5f
+float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v);
+
 /* An even shell's premultiplied texel under weight w: over itself,
  * rgba (1 + w (1 - a)). Mirrors shell_view_texel() (shell_lod.glsl). */
 void pelt__lod_view_texel(float w, float rgba[4]);

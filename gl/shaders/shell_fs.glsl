@@ -12,6 +12,7 @@ flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
 in float v_alpha;
 in float v_view;
+in float v_aniso;
 #if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
 in vec2 v_light;    // a tuft's or ringlet's own light (shell_vs.glsl)
 #endif
@@ -47,13 +48,17 @@ layout(location = 1) out vec4 o_slices1;
 out vec4 o_color;
 #endif
 
+// The fur texture's mip level for this fragment (fur_texture_lod): set
+// first in main, from the fur uv's screen derivatives, before any discard.
+float fur_lod;
+
 // The hair of this shell at fur_uv, `offset` slices along the volume (a
 // ringlet level), blended into the next shell level where it fades.
 vec4 shell_hair(vec2 fur_uv, float offset)
 {
-    vec4 hair = texture(u_fur, vec3(fur_uv, v_slices.x + offset));
+    vec4 hair = textureLod(u_fur, vec3(fur_uv, v_slices.x + offset), fur_lod);
 #ifdef PELT_LOD_BLEND
-    hair = mix(hair, texture(u_fur, vec3(fur_uv, v_slices.y + offset)), v_slices.z);
+    hair = mix(hair, textureLod(u_fur, vec3(fur_uv, v_slices.y + offset), fur_lod), v_slices.z);
 #endif
     return hair;
 }
@@ -103,6 +108,9 @@ void shell_ringlet_light(float id, float rho, inout vec3 base, inout float spec)
 // defines them all.
 void main()
 {
+    // Sharp across the view where the fur is seen at a grazing angle
+    // (docs/shading.md, The fur texture's filtering).
+    fur_lod = fur_texture_lod(dFdx(v_fur_uv), dFdy(v_fur_uv), float(textureSize(u_fur, 0).x), v_aniso);
     // A shell the view's budget leaves out here (face-on): no fetch.
     if (v_alpha < 1.0 / 255.0) discard;
     vec2 d = vec2(0.0);
@@ -115,7 +123,13 @@ void main()
     rho = t.a;
     vec2 lean = clump_lean(t, u_clump_lean);
     int clump = clump_lookup_texel(u_mask, t, v_uv, v_clump_profile, u_clump_tightness, lean, q);
-    if (clump == CLUMP_DISPLACED) d = q - v_uv;
+    // The clump squeezes its strands towards the centre by k: the texture
+    // is read 1/k times as far a pixel.
+    float k = 1.0 - min(u_clump_tightness * rho * v_clump_profile, CLUMP_MAX_PULL);
+    if (clump == CLUMP_DISPLACED) {
+        d = q - v_uv;
+        fur_lod -= log2(k);
+    }
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
     vec4 hair = wet_hair(fur_uv, rho);
@@ -134,9 +148,7 @@ void main()
     if (!groom_keeps(hair.b, v_density)) discard;
 #ifdef PELT_WET
     if (clump == CLUMP_DISPLACED) {
-        // The clump squeezes its strands towards the centre by k: the
-        // bundle is 1/k times as dense (see docs/wetness.md).
-        float k = 1.0 - min(u_clump_tightness * rho * v_clump_profile, CLUMP_MAX_PULL);
+        // The bundle is 1/k times as dense (see docs/wetness.md).
         hair.a = clump_coverage(hair.a, k);
     }
 #endif

@@ -19,6 +19,29 @@ bool shell_back_hidden(float n_dot_v, float reach)
     return reach >= 0.0 && n_dot_v < -reach;
 }
 
+const float FUR_TEXTURE_ANISO = 2.0;   // PELT__FUR_TEXTURE_ANISO
+const float FUR_TEXTURE_ROW_PX = 0.5;  // PELT__FUR_TEXTURE_ROW_PX
+
+// pelt__lod_fur_texture_aniso (core/fur/lod.c): how many texels of the
+// footprint's long side may fall to a pixel, from the shells' spacing on
+// screen (side_px side-on, foreshortened by n_dot_v).
+float fur_texture_aniso(float side_px, float n_dot_v)
+{
+    float c = min(abs(n_dot_v), 1.0);
+    float spacing = side_px * sqrt(1.0 - c * c);
+    return 1.0 + (FUR_TEXTURE_ANISO - 1.0) * clamp(2.0 - spacing / FUR_TEXTURE_ROW_PX, 0.0, 1.0);
+}
+
+// pelt__lod_fur_texture (core/fur/lod.c): the fur texture's mip level
+// from the footprint's sides (fur-uv derivatives dx, dy, in tiles), its
+// longer side over max_aniso or its shorter side.
+float fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso)
+{
+    float a = dot(dx, dx) * texels * texels, b = dot(dy, dy) * texels * texels;
+    float longer = max(a, b), shorter = min(a, b);
+    return 0.5 * log2(max(max(longer / (max_aniso * max_aniso), shorter), 1e-12));
+}
+
 vec4 shell_view_texel(float w, vec4 hair)
 {
     return hair * (1.0 + w * (1.0 - hair.a));

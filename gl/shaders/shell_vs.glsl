@@ -66,6 +66,7 @@ flat out float v_clump_slope; // clump_tuft_slope(h): the same for the whole lay
 out float v_alpha;      // the shell's opacity: fades as its level leaves, and
                         // where the view's budget leaves it out (face-on)
 out float v_view;       // the view's budget: how far an even shell stands for two
+out float v_aniso;      // fur_texture_aniso: texels of the footprint's long side to a pixel
 #ifdef PELT_LIGHT_PASS
 out float v_light_depth; // the light pass (gl/shadow_pass.c): depth from the light
 #endif
@@ -81,6 +82,7 @@ void main()
     float instance = float(gl_InstanceID) + u_instance_base;
     float layer = shell_instance(instance, u_shells, u_shells_next, u_layers, v_slices, v_alpha);
     v_view = 0.0;
+    v_aniso = 1.0;
 #ifndef PELT_LIGHT_PASS
     vec3 root = (u_model * vec4(position, 1.0)).xyz;
     float n_dot_v = dot(normalize(mat3(u_model) * n), normalize(u_eye - root));
@@ -92,6 +94,9 @@ void main()
         bool odd = mod(u_shells.x - 1.0 - instance, 2.0) > 0.5;
         v_alpha *= odd ? 1.0 - w : 1.0;
         v_view = odd ? 0.0 : w;
+        // Sharp across a grazing view, unless the shells stand far enough
+        // apart on screen to show as rows (docs/shading.md).
+        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip, n_dot_v);
     }
 #endif
     float h = (1.0 + layer) / u_layers;

@@ -116,6 +116,41 @@ static void lod_shell_levels_halve_to_one_shell(void)
 
 /* The choice: spacing at least shell_pixels; the upper half octave blends
  * towards the next level; the blend is continuous across the boundary. */
+/* The fur texture's level: a round footprint reads the level of its size,
+ * as a texture read would; a grazing one, 8 texels across the view and 1
+ * along it, the level of its long side over 2 (a texture read: 8 texels,
+ * level 3, the hairs blurred along the short side too); past 2 to 1 the
+ * short side sets the level. How far it sharpens follows the shells'
+ * spacing on screen: fully where they lie within half a pixel of each
+ * other, not at all from a pixel apart, where they would show as rows. */
+static void lod_fur_texture_keeps_the_short_side_sharp(void)
+{
+    const float tile = 256.0f, texel = 1.0f / tile, k = PELT__FUR_TEXTURE_ANISO;
+    CHECK(k == 2.0f);
+    const float round_x[2] = {2.0f * texel, 0.0f}, round_y[2] = {0.0f, 2.0f * texel};
+    CHECK_NEAR(pelt__lod_fur_texture(round_x, round_y, tile, k), 1.0f, 1e-5);
+    const float long_x[2] = {8.0f * texel * 0.6f, 8.0f * texel * 0.8f}, short_y[2] = {-texel * 0.8f, texel * 0.6f};
+    CHECK_NEAR(pelt__lod_fur_texture(long_x, short_y, tile, k), 2.0f, 1e-5);
+    CHECK_NEAR(pelt__lod_fur_texture(short_y, long_x, tile, k), 2.0f, 1e-5); /* either way */
+    CHECK_NEAR(pelt__lod_fur_texture(long_x, short_y, tile, 1.0f), 3.0f, 1e-5); /* a texture read's level */
+    const float wide_y[2] = {0.0f, 6.0f * texel};
+    CHECK_NEAR(pelt__lod_fur_texture(long_x, wide_y, tile, k), log2f(6.0f), 1e-5); /* 6 > 8 / 2 */
+    const float tiny[2] = {0.25f * texel, 0.0f}, none[2] = {0.0f, 0.0f};
+    CHECK_NEAR(pelt__lod_fur_texture(tiny, tiny, tile, k), -2.0f, 1e-5); /* magnified */
+    CHECK(isfinite(pelt__lod_fur_texture(none, none, tile, k)));
+
+    CHECK(pelt__lod_fur_texture_aniso(0.4f, 0.0f) == k);          /* edge-on, 0.4 px apart */
+    CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.0f) == 1.0f);       /* 2 px apart: rows */
+    CHECK_NEAR(pelt__lod_fur_texture_aniso(0.75f, 0.0f), 1.5f, 1e-6);
+    CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.99f) == k);         /* face-on: 0.28 px */
+    float last = k + 1.0f;
+    for (int i = 0; i <= 40; i++) {
+        float a = pelt__lod_fur_texture_aniso(0.05f * (float)i, 0.0f);
+        CHECK(a <= last && a >= 1.0f && a <= k);
+        last = a;
+    }
+}
+
 /* The view's budget: edge-on every shell, face-on half of them; the
  * weight grows as the fur turns towards the eye. An even shell's texel at
  * weight 1 is the texel composited over itself (what it stands for). */
@@ -331,5 +366,6 @@ int main(void)
     RUN(lod_fins_closer_than_their_slab_fade);
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);
     RUN(lod_fin_rows_follow_the_strands_bow);
+    RUN(lod_fur_texture_keeps_the_short_side_sharp);
     return check_summary();
 }

@@ -672,6 +672,45 @@ static void shell_view_blend_glsl_matches_c(void)
     CHECK(worst < 1e-4);
 }
 
+/* The fur texture's level (fur_texture_lod in shell_lod.glsl) against
+ * pelt__lod_fur_texture over footprints from magnified to 64 texels, round
+ * to 16 to 1 in every direction, at the shaders' FUR_TEXTURE_ANISO; and
+ * fur_texture_aniso against pelt__lod_fur_texture_aniso over spacings and
+ * view angles. */
+static void fur_texture_lod_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy);\n"
+        "  float len = exp2(-2.0 + 8.0 * c.x / 63.0) / 256.0, a = 0.3 * c.y;\n"
+        "  vec2 dx = len * vec2(cos(a), sin(a));\n"
+        "  vec2 dy = len * exp2(-mod(c.y, 5.0)) * vec2(-sin(a), cos(a));\n"
+        "  float side = 0.05 * c.x, ndv = -1.0 + 2.0 * c.y / 47.0;\n"
+        "  o = vec4(fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO), fur_texture_aniso(side, ndv), 0.0, 0.0);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int between = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float len = exp2f(-2.0f + 8.0f * (float)x / 63.0f) / 256.0f, a = 0.3f * (float)y;
+            float dx[2] = {len * cosf(a), len * sinf(a)};
+            float s = len * exp2f(-fmodf((float)y, 5.0f));
+            float dy[2] = {-s * sinf(a), s * cosf(a)};
+            float r = pelt__lod_fur_texture(dx, dy, 256.0f, PELT__FUR_TEXTURE_ANISO);
+            worst = fmax(worst, fabs(out[4 * (y * W + x)] - r));
+            float q = pelt__lod_fur_texture_aniso(0.05f * (float)x, -1.0f + 2.0f * (float)y / 47.0f);
+            worst = fmax(worst, fabs(out[4 * (y * W + x) + 1] - q));
+            between += q > 1.01f && q < PELT__FUR_TEXTURE_ANISO - 0.01f;
+        }
+    printf("  fur_texture_lod, fur_texture_aniso: worst |GLSL - C| = %.3g, %d between 1 and the most\n", worst,
+           between);
+    CHECK(between > 50);
+    CHECK(worst < 1e-4);
+}
+
 static const char table_main[] =
     "uniform sampler2D u_table;\n"
     "out vec4 o;\n"
@@ -841,6 +880,7 @@ int main(void)
     RUN(inter_shadow_glsl_matches_c);
     RUN(shell_lod_glsl_matches_c);
     RUN(shell_view_blend_glsl_matches_c);
+    RUN(fur_texture_lod_glsl_matches_c);
     RUN(lengyel_table_lookup_matches_the_formula);
     RUN(hair_model_glsl_matches_c);
     RUN(display_glsl_matches_c);
