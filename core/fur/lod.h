@@ -133,7 +133,7 @@ float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, 
  * the shells stand far enough apart to show as rows, a sharper texture
  * makes the rows stripes. side_px and n_dot_v as pelt__lod_view_blend's.
  * Mirrors fur_texture_aniso() in gl/shaders/shell_lod.glsl. */
-#define PELT__FUR_TEXTURE_ROW_PX 0.5f
+#define PELT__FUR_TEXTURE_ROW_PX 0.35f
 float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v);
 
 /* An even shell's premultiplied texel under weight w: over itself,

@@ -20,7 +20,7 @@ bool shell_back_hidden(float n_dot_v, float reach)
 }
 
 const float FUR_TEXTURE_ANISO = 2.0;   // PELT__FUR_TEXTURE_ANISO
-const float FUR_TEXTURE_ROW_PX = 0.5;  // PELT__FUR_TEXTURE_ROW_PX
+const float FUR_TEXTURE_ROW_PX = 0.35; // PELT__FUR_TEXTURE_ROW_PX
 
 // pelt__lod_fur_texture_aniso (core/fur/lod.c): how many texels of the
 // footprint's long side may fall to a pixel, from the shells' spacing on

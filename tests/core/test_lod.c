@@ -121,8 +121,8 @@ static void lod_shell_levels_halve_to_one_shell(void)
  * along it, the level of its long side over 2 (a texture read: 8 texels,
  * level 3, the hairs blurred along the short side too); past 2 to 1 the
  * short side sets the level. How far it sharpens follows the shells'
- * spacing on screen: fully where they lie within half a pixel of each
- * other, not at all from a pixel apart, where they would show as rows. */
+ * spacing on screen: fully where they lie within 0.35 px of each other,
+ * not at all from 0.7 px apart, where they begin to show as rows. */
 static void lod_fur_texture_keeps_the_short_side_sharp(void)
 {
     const float tile = 256.0f, texel = 1.0f / tile, k = PELT__FUR_TEXTURE_ANISO;
@@ -139,9 +139,9 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
     CHECK_NEAR(pelt__lod_fur_texture(tiny, tiny, tile, k), -2.0f, 1e-5); /* magnified */
     CHECK(isfinite(pelt__lod_fur_texture(none, none, tile, k)));
 
-    CHECK(pelt__lod_fur_texture_aniso(0.4f, 0.0f) == k);          /* edge-on, 0.4 px apart */
+    CHECK(pelt__lod_fur_texture_aniso(0.3f, 0.0f) == k);          /* edge-on, 0.3 px apart */
     CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.0f) == 1.0f);       /* 2 px apart: rows */
-    CHECK_NEAR(pelt__lod_fur_texture_aniso(0.75f, 0.0f), 1.5f, 1e-6);
+    CHECK_NEAR(pelt__lod_fur_texture_aniso(0.525f, 0.0f), 1.5f, 1e-6);
     CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.99f) == k);         /* face-on: 0.28 px */
     float last = k + 1.0f;
     for (int i = 0; i <= 40; i++) {
