@@ -50,7 +50,7 @@ out vec4 o_color;
 
 // The fur texture's mip level for this fragment (fur_texture_lod): set
 // first in main, from the fur uv's screen derivatives, before any discard.
-float fur_lod;
+float fur_lod = 0.0;
 
 // The hair of this shell at fur_uv, `offset` slices along the volume (a
 // ringlet level), blended into the next shell level where it fades.
@@ -123,12 +123,12 @@ void main()
     rho = t.a;
     vec2 lean = clump_lean(t, u_clump_lean);
     int clump = clump_lookup_texel(u_mask, t, v_uv, v_clump_profile, u_clump_tightness, lean, q);
-    // The clump squeezes its strands towards the centre by k: the texture
-    // is read 1/k times as far a pixel.
-    float k = 1.0 - min(u_clump_tightness * rho * v_clump_profile, CLUMP_MAX_PULL);
+    // The clump squeezes its strands towards the centre by k (squeeze): the
+    // texture is read 1/k times as far a pixel.
+    float squeeze = 1.0 - min(u_clump_tightness * rho * v_clump_profile, CLUMP_MAX_PULL);
     if (clump == CLUMP_DISPLACED) {
         d = q - v_uv;
-        fur_lod -= log2(k);
+        fur_lod -= log2(squeeze);
     }
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
@@ -149,7 +149,7 @@ void main()
 #ifdef PELT_WET
     if (clump == CLUMP_DISPLACED) {
         // The bundle is 1/k times as dense (see docs/wetness.md).
-        hair.a = clump_coverage(hair.a, k);
+        hair.a = clump_coverage(hair.a, squeeze);
     }
 #endif
 #ifdef PELT_LIGHT_PASS

@@ -3,6 +3,7 @@
 #include "support/gl_test.h"
 
 #include "gl/gpu.h"
+#include "gl/passes.h"
 
 enum { W = 160, H = 120 };
 
@@ -745,6 +746,44 @@ static void program_errors_reach_the_logger(void)
     pelt__gl_state_reset();
 }
 
+/* The shell variants a frame can ask for compile: each drawing feature
+ * alone and with water, everything with the vertex stage's skinning, and
+ * the light pass with every mix of what it keeps (water, ringlets,
+ * skinning). A light-pass variant that does not compile leaves the fur out
+ * of the shadow maps with nothing but a log line to say so. */
+static void every_shell_variant_compiles(void)
+{
+    char logged[512] = "";
+    pelt_hooks hooks = {.logger = {log_into, logged}};
+    pelt__shell_pass pass;
+    CHECK(pelt__shell_pass_create(&pass, &hooks, NULL) == PELT_OK);
+    unsigned asked[64], n = 0;
+    for (unsigned bit = 1; bit < PELT__SHELL_LIGHT_PASS; bit <<= 1) {
+        asked[n++] = bit;
+        asked[n++] = bit | PELT__SHELL_WET;
+    }
+    asked[n++] = PELT__SHELL_GENERIC | PELT__SHELL_GPU_SKIN;
+    const unsigned kept[] = {PELT__SHELL_WET, PELT__SHELL_RINGLETS, PELT__SHELL_GPU_SKIN};
+    for (unsigned m = 0; m < 8; m++) {
+        unsigned f = PELT__SHELL_LIGHT_PASS;
+        for (unsigned k = 0; k < 3; k++)
+            if (m & (1u << k)) f |= kept[k];
+        asked[n++] = f;
+    }
+    unsigned built = 0;
+    for (unsigned i = 0; i < n; i++) {
+        const pelt__shell_program *sp = pelt__shell_pass_program(&pass, asked[i]);
+        bool own = sp == &pass.variants[asked[i]] && sp->program != 0;
+        if (!own) printf("  variant 0x%x does not build: %s\n", asked[i], logged);
+        built += own;
+    }
+    printf("  %u of %u shell variants built\n", built, n);
+    CHECK(built == n);
+    CHECK(logged[0] == '\0');
+    pelt__shell_pass_destroy(&pass);
+    pelt__gl_state_reset();
+}
+
 /* The C images of the uniform blocks sit where GL puts the std140 members
  * (gl/uniform_blocks.c asserts the same offsets at compile time). */
 static void uniform_blocks_match_their_c_structs(void)
@@ -1081,6 +1120,7 @@ int main(void)
         RUN(wet_skin_sheen_rises_with_wetness);
         RUN(renderer_allocates_through_its_hooks);
         RUN(program_errors_reach_the_logger);
+        RUN(every_shell_variant_compiles);
         RUN(uniform_blocks_match_their_c_structs);
         RUN(stats_count_passes_layers_and_uploads);
         RUN(calls_leave_gl_state_as_render_h_states);
