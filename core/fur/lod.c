@@ -349,10 +349,17 @@ void pelt__lod_shell_uniforms(unsigned layers, unsigned level, float blend, unsi
     next[1] = (float)pelt__lod_shell_count(layers, level + 1);
 }
 
-float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px)
+/* The shells' spacing on screen: side-on, side_px, foreshortened by sin
+ * theta. Mirrors shell_view_spacing() in gl/shaders/shell_lod.glsl. */
+static float view_spacing(float side_px, float n_dot_v)
 {
     float c = fminf(fabsf(n_dot_v), 1.0f);
-    float spacing = fmaxf(side_px * sqrtf(1.0f - c * c), 1e-6f);
+    return side_px * sqrtf(1.0f - c * c);
+}
+
+float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px)
+{
+    float spacing = fmaxf(view_spacing(side_px, n_dot_v), 1e-6f);
     return fminf(fmaxf(log2f(target_px / spacing), 0.0f), 1.0f);
 }
 
@@ -360,8 +367,7 @@ bool pelt__lod_back_hidden(float n_dot_v, float reach) { return reach >= 0.0f &&
 
 float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v)
 {
-    float c = fminf(fabsf(n_dot_v), 1.0f);
-    float spacing = side_px * sqrtf(1.0f - c * c);
+    float spacing = view_spacing(side_px, n_dot_v);
     float s = fminf(fmaxf(2.0f - spacing / PELT__FUR_TEXTURE_ROW_PX, 0.0f), 1.0f);
     return 1.0f + (PELT__FUR_TEXTURE_ANISO - 1.0f) * s;
 }

@@ -6,10 +6,17 @@
 // pelt__lod_shell_instance (core/fur/lod.c).
 // The view's shell budget: pelt__lod_view_blend and pelt__lod_view_texel
 // (core/fur/lod.c).
-float shell_view_blend(float side_px, float n_dot_v, float target_px)
+// The shells' spacing on screen: side-on, side_px, foreshortened by sin
+// theta (view_spacing in core/fur/lod.c).
+float shell_view_spacing(float side_px, float n_dot_v)
 {
     float c = min(abs(n_dot_v), 1.0);
-    float spacing = max(side_px * sqrt(1.0 - c * c), 1e-6);
+    return side_px * sqrt(1.0 - c * c);
+}
+
+float shell_view_blend(float side_px, float n_dot_v, float target_px)
+{
+    float spacing = max(shell_view_spacing(side_px, n_dot_v), 1e-6);
     return clamp(log2(target_px / spacing), 0.0, 1.0);
 }
 
@@ -27,8 +34,7 @@ const float FUR_TEXTURE_ROW_PX = 0.35; // PELT__FUR_TEXTURE_ROW_PX
 // screen (side_px side-on, foreshortened by n_dot_v).
 float fur_texture_aniso(float side_px, float n_dot_v)
 {
-    float c = min(abs(n_dot_v), 1.0);
-    float spacing = side_px * sqrt(1.0 - c * c);
+    float spacing = shell_view_spacing(side_px, n_dot_v);
     return 1.0 + (FUR_TEXTURE_ANISO - 1.0) * clamp(2.0 - spacing / FUR_TEXTURE_ROW_PX, 0.0, 1.0);
 }
 

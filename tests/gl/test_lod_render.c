@@ -46,16 +46,20 @@ static double mean_abs(const uint8_t *a, const uint8_t *b)
     return sum / (3.0 * (double)NPX);
 }
 
-static bool make(const pelt_fur_desc *d, pelt_fur **fur, pelt_renderer **r)
+/* Fur and a renderer on `mesh`; on failure both stay NULL. */
+static bool make_on(const pelt_mesh *mesh, const pelt_fur_desc *d, pelt_fur **fur, pelt_renderer **r)
 {
     *fur = NULL, *r = NULL;
-    if (pelt_fur_create(dense, d, fur, NULL) != PELT_OK) return false;
-    if (pelt_renderer_create(dense, *fur, NULL, r, NULL) != PELT_OK) {
+    if (!mesh || pelt_fur_create(mesh, d, fur, NULL) != PELT_OK) return false;
+    if (pelt_renderer_create(mesh, *fur, NULL, r, NULL) != PELT_OK) {
         pelt_fur_destroy(*fur);
+        *fur = NULL;
         return false;
     }
     return true;
 }
+
+static bool make(const pelt_fur_desc *d, pelt_fur **fur, pelt_renderer **r) { return make_on(dense, d, fur, r); }
 
 static void lod_auto_looks_like_lod_off_for_less_work(void)
 {
@@ -200,11 +204,10 @@ static void lod_view_budget_clips_the_faded_shells(void)
 {
     pelt_mesh *sq = NULL;
     CHECK(pelt_mesh_square(2.0f, 32, &sq, NULL) == PELT_OK);
-    pelt_fur *fur = NULL;
-    pelt_renderer *r = NULL;
+    pelt_fur *fur;
+    pelt_renderer *r;
     const pelt_fur_desc d = {.look.texture_size = 128};
-    if (sq && pelt_fur_create(sq, &d, &fur, NULL) == PELT_OK)
-        CHECK(pelt_renderer_create(sq, fur, NULL, &r, NULL) == PELT_OK);
+    CHECK(make_on(sq, &d, &fur, &r));
     uint8_t *a = malloc(NPX * 4), *b = malloc(NPX * 4);
     CHECK(r && a && b);
     if (r && a && b) {
@@ -249,11 +252,10 @@ static void lod_open_mesh_leaves_out_the_shells_behind_their_skin(void)
     md.triangle_count = n;
     CHECK(kept && n < pelt_mesh_get_data(whole).triangle_count && pelt_mesh_create(&md, &open, NULL) == PELT_OK);
     free(kept);
-    pelt_fur *fur = NULL;
-    pelt_renderer *r = NULL;
+    pelt_fur *fur;
+    pelt_renderer *r;
     const pelt_fur_desc d = {.look.texture_size = 128};
-    if (open && pelt_fur_create(open, &d, &fur, NULL) == PELT_OK)
-        CHECK(pelt_renderer_create(open, fur, NULL, &r, NULL) == PELT_OK);
+    CHECK(make_on(open, &d, &fur, &r));
     uint8_t *a = malloc(NPX * 4), *b = malloc(NPX * 4);
     CHECK(r && a && b);
     if (r && a && b) {
