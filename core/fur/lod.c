@@ -381,6 +381,19 @@ float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, 
     return 0.5f * log2f(fmaxf(fmaxf(longer / (max_aniso * max_aniso), shorter), 1e-12f));
 }
 
+float pelt__lod_fur_edge_gain(const float dx[2], const float dy[2], float texels)
+{
+    float longer = fmaxf(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1]) * texels * texels;
+    return fmaxf(1.0f / sqrtf(fmaxf(longer, 1e-12f)), 1.0f);
+}
+
+void pelt__lod_fur_edge(float rgba[4], float gain)
+{
+    float a = fminf(fmaxf((rgba[3] - 0.5f) * gain + 0.5f, 0.0f), 1.0f);
+    float scale = a / fmaxf(rgba[3], 1e-4f);
+    for (int k = 0; k < 4; k++) rgba[k] *= scale;
+}
+
 void pelt__lod_view_texel(float w, float rgba[4])
 {
     float gain = 1.0f + w * (1.0f - rgba[3]);

@@ -136,6 +136,22 @@ float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, 
 #define PELT__FUR_TEXTURE_ROW_PX 0.35f
 float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v);
 
+/* The hair's edge seen close: a hair's coverage in the fur texture ramps
+ * from 0 to 1 over about a texel, and coverage 0.5 is the hair's edge. Where
+ * a texel spans several pixels on screen, so does the ramp, and the shells
+ * draw each hair wider and softer than it is (fat, bright blobs where the
+ * hairs are thin lines with the dark depth between them). The gain is the
+ * pixels a texel spans along the footprint's longer side (derivatives as
+ * pelt__lod_fur_texture's), at least 1: 1 wherever the texture is read at
+ * a pixel a texel or less. Mirrors fur_edge_gain() in shell_lod.glsl. */
+float pelt__lod_fur_edge_gain(const float dx[2], const float dy[2], float texels);
+
+/* A premultiplied texel with its coverage a steepened by gain about the
+ * hair's edge, a' = clamp((a - 0.5) gain + 0.5, 0, 1), so that the ramp
+ * spans a pixel; colour, height and id keep their ratio to coverage. gain
+ * 1 leaves it as it is. Mirrors fur_edge() in shell_lod.glsl. */
+void pelt__lod_fur_edge(float rgba[4], float gain);
+
 /* An even shell's premultiplied texel under weight w: over itself,
  * rgba (1 + w (1 - a)). Mirrors shell_view_texel() (shell_lod.glsl). */
 void pelt__lod_view_texel(float w, float rgba[4]);

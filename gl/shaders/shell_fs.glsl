@@ -48,9 +48,11 @@ layout(location = 1) out vec4 o_slices1;
 out vec4 o_color;
 #endif
 
-// The fur texture's mip level for this fragment (fur_texture_lod): set
-// first in main, from the fur uv's screen derivatives, before any discard.
+// The fur texture's mip level for this fragment (fur_texture_lod) and the
+// gain on its hairs' edges (fur_edge_gain): set first in main, from the fur
+// uv's screen derivatives, before any discard.
 float fur_lod = 0.0;
+float fur_gain = 1.0;
 
 // The hair of this shell at fur_uv, `offset` slices along the volume (a
 // ringlet level), blended into the next shell level where it fades.
@@ -110,7 +112,12 @@ void main()
 {
     // Sharp across the view where the fur is seen at a grazing angle
     // (docs/shading.md, The fur texture's filtering).
-    fur_lod = fur_texture_lod(dFdx(v_fur_uv), dFdy(v_fur_uv), float(textureSize(u_fur, 0).x), v_aniso);
+    vec2 fur_dx = dFdx(v_fur_uv), fur_dy = dFdy(v_fur_uv);
+    float texels = float(textureSize(u_fur, 0).x);
+    fur_lod = fur_texture_lod(fur_dx, fur_dy, texels, v_aniso);
+    // Seen close, where a texel spans pixels, a hair keeps its own width
+    // and a pixel-wide edge (docs/shading.md, The hair's edge seen close).
+    fur_gain = fur_edge_gain(fur_dx, fur_dy, texels);
     // A shell the view's budget leaves out here (face-on): no fetch.
     if (v_alpha < 1.0 / 255.0) discard;
     vec2 d = vec2(0.0);
@@ -129,6 +136,7 @@ void main()
     if (clump == CLUMP_DISPLACED) {
         d = q - v_uv;
         fur_lod -= log2(squeeze);
+        fur_gain = max(fur_gain * squeeze, 1.0); // and its texels span less
     }
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
@@ -143,7 +151,7 @@ void main()
         if (!(hair.a > 0.0)) discard;
     }
 #endif
-    hair = shell_view_texel(v_view, hair) * v_alpha;
+    hair = shell_view_texel(v_view, fur_edge(hair, fur_gain)) * v_alpha;
     hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
     if (!groom_keeps(hair.b, v_density)) discard;
 #ifdef PELT_WET
@@ -172,7 +180,7 @@ void main()
         // Kenwright: no hair here, but the hair a step towards the light
         // casts its shadow on what lies below, with that hair's coverage.
         if (u_inter_shadow <= 0.0 || u_no_inter_shadow != 0) discard;
-        float caster = texture(u_fur, vec3(fur_uv + v_shadow_step, v_slices.x)).a * v_alpha;
+        float caster = fur_edge(texture(u_fur, vec3(fur_uv + v_shadow_step, v_slices.x)), fur_gain).a * v_alpha;
         if (caster < 0.05) discard;
         o_color = vec4(0.0, 0.0, 0.0, caster * u_inter_shadow);
         return;

@@ -48,6 +48,22 @@ float fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso)
     return 0.5 * log2(max(max(longer / (max_aniso * max_aniso), shorter), 1e-12));
 }
 
+// pelt__lod_fur_edge_gain (core/fur/lod.c): how many pixels a texel of
+// the fur texture spans along the footprint's longer side, at least 1.
+float fur_edge_gain(vec2 dx, vec2 dy, float texels)
+{
+    float longer = max(dot(dx, dx), dot(dy, dy)) * texels * texels;
+    return max(inversesqrt(max(longer, 1e-12)), 1.0);
+}
+
+// pelt__lod_fur_edge (core/fur/lod.c): the premultiplied texel hair with
+// its coverage steepened by gain about the hair's edge (coverage 0.5).
+vec4 fur_edge(vec4 hair, float gain)
+{
+    float a = clamp((hair.a - 0.5) * gain + 0.5, 0.0, 1.0);
+    return hair * (a / max(hair.a, 1e-4));
+}
+
 vec4 shell_view_texel(float w, vec4 hair)
 {
     return hair * (1.0 + w * (1.0 - hair.a));

@@ -151,6 +151,69 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
     }
 }
 
+/* A hair of radius r texels in the fur texture (the disc's coverage ramps
+ * over a texel, as furtex.c splats it), read with linear filtering at m
+ * pixels a texel and seen through k shells that show the same cross-section
+ * (along the hair): its width on screen, in texels. */
+static float hair_width_seen(float r, float m, int k, bool edge)
+{
+    float texel[32];
+    for (int t = 0; t < 32; t++) texel[t] = fminf(fmaxf(r + 0.5f - fabsf((float)t + 0.5f - 16.3f), 0.0f), 1.0f);
+    const float dx[2] = {1.0f / (m * 256.0f), 0.0f}, dy[2] = {0.0f, 1.0f / (m * 256.0f)};
+    float gain = pelt__lod_fur_edge_gain(dx, dy, 256.0f), sum = 0.0f;
+    int pixels = (int)(32.0f * m);
+    for (int p = 0; p < pixels; p++) {
+        float u = ((float)p + 0.5f) / m - 0.5f, i = floorf(u), f = u - i;
+        int i0 = (int)fmaxf(i, 0.0f), i1 = (int)fminf(i + 1.0f, 31.0f);
+        float a = texel[i0] * (1.0f - f) + texel[i1] * f;
+        float rgba[4] = {0.5f * a, 0.25f * a, 0.75f * a, a};
+        if (edge) {
+            pelt__lod_fur_edge(rgba, gain);
+            if (rgba[3] > 0.0f) CHECK_NEAR(rgba[0] / rgba[3], 0.5f, 1e-5); /* the colour is kept */
+        }
+        sum += 1.0f - powf(1.0f - rgba[3], (float)k);
+    }
+    return sum / m;
+}
+
+/* Seen close, the edge gain keeps a hair its width: a texel spanning 4
+ * pixels spreads the hair's edge over 4, and 8 shells showing the same
+ * edge composite it to a hair 40% wider than it is; steepened to a pixel it
+ * stays within 10%. Read at a pixel a texel or less, nothing changes. */
+static void lod_fur_edge_keeps_a_hair_its_width(void)
+{
+    const float texel = 1.0f / 256.0f;
+    const float close_x[2] = {0.25f * texel, 0.0f}, close_y[2] = {0.0f, 0.25f * texel};
+    CHECK_NEAR(pelt__lod_fur_edge_gain(close_x, close_y, 256.0f), 4.0f, 1e-4);
+    const float far_y[2] = {0.0f, 2.0f * texel}, none[2] = {0.0f, 0.0f};
+    CHECK(pelt__lod_fur_edge_gain(close_x, far_y, 256.0f) == 1.0f); /* the longer side is minified */
+    CHECK(pelt__lod_fur_edge_gain(far_y, far_y, 256.0f) == 1.0f);
+    CHECK(isfinite(pelt__lod_fur_edge_gain(none, none, 256.0f)));
+
+    for (int i = 0; i <= 20; i++) { /* gain 1: as it was */
+        float a = 0.05f * (float)i, rgba[4] = {a, a, a, a};
+        pelt__lod_fur_edge(rgba, 1.0f);
+        CHECK_NEAR(rgba[3], a, 1e-6);
+    }
+    float half[4] = {0.1f, 0.2f, 0.3f, 0.5f}, in[4] = {0.3f, 0.3f, 0.3f, 0.6f}, out[4] = {0.4f, 0.4f, 0.4f, 0.4f};
+    pelt__lod_fur_edge(half, 4.0f);
+    pelt__lod_fur_edge(in, 4.0f);
+    pelt__lod_fur_edge(out, 4.0f);
+    CHECK_NEAR(half[3], 0.5f, 1e-6); /* the edge stays where it is */
+    CHECK_NEAR(in[3], 0.9f, 1e-5);
+    CHECK_NEAR(out[3], 0.1f, 1e-5);
+    CHECK_NEAR(in[0] / in[3], 0.5f, 1e-5);
+
+    const float r = 1.6f, width = 2.0f * r; /* the default strand radius */
+    float plain = hair_width_seen(r, 4.0f, 8, false), sharp = hair_width_seen(r, 4.0f, 8, true);
+    printf("  a %.1f-texel hair at 4 px a texel through 8 shells: %.2f texels wide read plain, %.2f steepened\n",
+           width, plain, sharp);
+    CHECK(plain > 1.3f * width);
+    CHECK(fabsf(sharp - width) < 0.1f * width);
+    CHECK(fabsf(hair_width_seen(r, 4.0f, 1, true) - width) < 0.05f * width); /* one shell: its width kept */
+    CHECK_NEAR(hair_width_seen(r, 1.0f, 8, true), hair_width_seen(r, 1.0f, 8, false), 1e-4); /* a pixel a texel */
+}
+
 /* The view's budget: edge-on every shell, face-on half of them; the
  * weight grows as the fur turns towards the eye. An even shell's texel at
  * weight 1 is the texel composited over itself (what it stands for). */
@@ -367,5 +430,6 @@ int main(void)
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);
     RUN(lod_fin_rows_follow_the_strands_bow);
     RUN(lod_fur_texture_keeps_the_short_side_sharp);
+    RUN(lod_fur_edge_keeps_a_hair_its_width);
     return check_summary();
 }

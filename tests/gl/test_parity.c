@@ -711,6 +711,46 @@ static void fur_texture_lod_glsl_matches_c(void)
     CHECK(worst < 1e-4);
 }
 
+/* The hair's edge seen close (fur_edge_gain and fur_edge in shell_lod.glsl)
+ * against pelt__lod_fur_edge_gain and pelt__lod_fur_edge: footprints from
+ * 16 pixels a texel to 4 texels a pixel, round to 16 to 1, and coverages
+ * 0 to 1 under gains 1 to 8. */
+static void fur_edge_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy);\n"
+        "  float len = exp2(-4.0 + 6.0 * c.x / 63.0) / 256.0, a = 0.3 * c.y;\n"
+        "  vec2 dx = len * vec2(cos(a), sin(a));\n"
+        "  vec2 dy = len * exp2(-mod(c.y, 5.0)) * vec2(-sin(a), cos(a));\n"
+        "  float cover = c.x / 63.0, gain = 1.0 + 7.0 * c.y / 47.0;\n"
+        "  vec4 e = fur_edge(vec4(0.3, 0.6, 0.9, 1.0) * cover, gain);\n"
+        "  o = vec4(fur_edge_gain(dx, dy, 256.0), e.a, e.r, e.b);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int steepened = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float len = exp2f(-4.0f + 6.0f * (float)x / 63.0f) / 256.0f, a = 0.3f * (float)y;
+            float dx[2] = {len * cosf(a), len * sinf(a)};
+            float s = len * exp2f(-fmodf((float)y, 5.0f));
+            float dy[2] = {-s * sinf(a), s * cosf(a)};
+            const float *o = out + 4 * (y * W + x);
+            float g = pelt__lod_fur_edge_gain(dx, dy, 256.0f);
+            worst = fmax(worst, fabs(o[0] - g) / g);
+            float cover = (float)x / 63.0f, rgba[4] = {0.3f * cover, 0.6f * cover, 0.9f * cover, cover};
+            pelt__lod_fur_edge(rgba, 1.0f + 7.0f * (float)y / 47.0f);
+            worst = fmax(worst, fmax(fabs(o[1] - rgba[3]), fmax(fabs(o[2] - rgba[0]), fabs(o[3] - rgba[2]))));
+            steepened += g > 1.01f;
+        }
+    printf("  fur_edge_gain, fur_edge: worst |GLSL - C| = %.3g, %d footprints magnified\n", worst, steepened);
+    CHECK(steepened > 500);
+    CHECK(worst < 1e-4);
+}
+
 static const char table_main[] =
     "uniform sampler2D u_table;\n"
     "out vec4 o;\n"
@@ -881,6 +921,7 @@ int main(void)
     RUN(shell_lod_glsl_matches_c);
     RUN(shell_view_blend_glsl_matches_c);
     RUN(fur_texture_lod_glsl_matches_c);
+    RUN(fur_edge_glsl_matches_c);
     RUN(lengyel_table_lookup_matches_the_formula);
     RUN(hair_model_glsl_matches_c);
     RUN(display_glsl_matches_c);
