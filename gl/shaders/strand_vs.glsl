@@ -33,6 +33,18 @@ void main()
     across = len > 1e-8 ? across / len : normalize(cross(T, vec3(0.0, 1.0, 0.0)) + vec3(1e-4));
     float scale = length(mat3(u_model)[0]);
     world.xyz += across * (side * pr.w * scale);
+    // The hair is a tube: seen along its length, each piece's ends show as
+    // half ellipses r |T.V| deep along the projected tangent, which a flat
+    // ribbon leaves out (a hair seen end-on would cover nothing where the
+    // tube covers the disc of its root). Each piece's quad reaches out at
+    // both its ends by the ellipse's area-equivalent depth, pi/4 r |T.V|;
+    // seen from the side nothing moves.
+    float tip_end = point == seg ? -1.0 : 1.0;
+    vec3 V = to_eye / max(length(to_eye), 1e-8);
+    float t_dot_v = dot(T, V);
+    vec3 along_screen = T - t_dot_v * V;
+    float along_len = length(along_screen);
+    if (along_len > 1e-6) world.xyz += along_screen / along_len * (tip_end * abs(t_dot_v) * 0.78539816 * pr.w * scale);
 
     vec3 mul;
     float spec;

@@ -4,8 +4,9 @@
 # shells and strands agree on how far the fur reaches past a sphere's
 # outline, hair crosses that outline in the shell picture as it does in the
 # reference, the silhouette profiles agree band by band, and a grazing rim
-# shows less stripe energy than 16 plain shells give it, and curls shape
-# the outline seen from the side as they shape the reference's.
+# shows less stripe energy than 16 plain shells give it, a hair seen
+# end-on covers its root's disc in the reference, and curls shape the
+# outline seen from the side as they shape the reference's.
 set -u
 pelt=$1 png_diff=$2 out=$3 png_region=$4
 fails=0 passes=0
@@ -57,6 +58,23 @@ ours=$("$pelt" compare $long 2>&1) || echo "$ours"
 sp=$(field stripe_shells "$plain") so=$(field stripe_shells "$ours")
 awk -v p="$sp" -v o="$so" 'BEGIN { exit !(p > 0 && o >= 0 && o < 0.5 * p) }'
 check no_stripes_edge_on $? "stripe energy: 16 plain shells $sp, default $so (bound: half of the plain shells')"
+
+# Hair seen end-on: straight down onto a square's upright hair through a
+# narrow lens, every hair is seen along its length. A hair is a tube and
+# covers at least the disc of its root: 3000 strands of radius 1.6 texels
+# to a 256-texel tile (the defaults) cover 1 - exp(-3000 pi 1.6^2 / 256^2)
+# = 31% of the skin with their root discs alone. A flat ribbon seen end-on
+# covers next to nothing (13% as counted here). Counted: the pixels more
+# than 40 levels from the same view with one strand to a tile (the skin);
+# the bound, 0.25, leaves room for hairs as dark as the skin.
+top="--mesh square --pitch 89 --yaw 0 --gravity 0,0,0 --size 120x120 --distance 8 --fov 6
+  --set fur.color=[1,1,1] --set fur.tip_color=[1,1,1] --light 1,0,0.2"
+"$pelt" render -q --strands $top -o "$d/top.png"
+"$pelt" render -q --strands $top --set fur.density=1 -o "$d/top_skin.png"
+res=$("$png_diff" "$d/top.png" "$d/top_skin.png" --threshold 40 | grep "pixels off")
+covered=$(sed 's/.*= \([0-9.]*\) .*/\1/' <<<"$res")
+awk -v c="$covered" 'BEGIN { exit !(c + 0 >= 0.25) }'
+check hair_seen_end_on_covers_its_root $? "covered ${covered:-?} of the skin (bound 0.25): $res"
 
 # Curls on the outline (Silva Fig. 7, seen from the side): sparse, long fur
 # on a square whose far edge stands against the sky. The fur texture's
