@@ -39,12 +39,12 @@ void main()
     // tube covers the disc of its root). Each piece's quad reaches out at
     // both its ends by the ellipse's area-equivalent depth, pi/4 r |T.V|;
     // seen from the side nothing moves.
-    float tip_end = point == seg ? -1.0 : 1.0;
+    float piece_end = point == seg ? -1.0 : 1.0; // this piece's start or its end
     vec3 V = to_eye / max(length(to_eye), 1e-8);
     float t_dot_v = dot(T, V);
     vec3 along_screen = T - t_dot_v * V;
     float along_len = length(along_screen);
-    if (along_len > 1e-6) world.xyz += along_screen / along_len * (tip_end * abs(t_dot_v) * 0.78539816 * pr.w * scale);
+    if (along_len > 1e-6) world.xyz += along_screen / along_len * (piece_end * abs(t_dot_v) * 0.78539816 * pr.w * scale);
 
     vec3 mul;
     float spec;

@@ -672,6 +672,25 @@ static void shell_view_blend_glsl_matches_c(void)
     CHECK(worst < 1e-4);
 }
 
+/* Footprints of a fur-uv read (tiles per pixel along x and along y) for
+ * the pixel (x, y) of a parity picture: 2^(lo + span x / 63) texels of a
+ * 256-texel tile along a direction turning with y, and 1 to 1/16 of that
+ * across it. The GLSL and C halves make the same ones. */
+static const char footprint_glsl[] =
+    "void footprint(vec2 c, float lo, float span, out vec2 dx, out vec2 dy) {\n"
+    "  float len = exp2(lo + span * c.x / 63.0) / 256.0, a = 0.3 * c.y;\n"
+    "  dx = len * vec2(cos(a), sin(a));\n"
+    "  dy = len * exp2(-mod(c.y, 5.0)) * vec2(-sin(a), cos(a));\n"
+    "}\n";
+
+static void footprint(int x, int y, float lo, float span, float dx[2], float dy[2])
+{
+    float len = exp2f(lo + span * (float)x / 63.0f) / 256.0f, a = 0.3f * (float)y;
+    float s = len * exp2f(-fmodf((float)y, 5.0f));
+    dx[0] = len * cosf(a), dx[1] = len * sinf(a);
+    dy[0] = -s * sinf(a), dy[1] = s * cosf(a);
+}
+
 /* The fur texture's level (fur_texture_lod in shell_lod.glsl) against
  * pelt__lod_fur_texture over footprints from magnified to 64 texels, round
  * to 16 to 1 in every direction, at the shaders' FUR_TEXTURE_ANISO; and
@@ -682,23 +701,19 @@ static void fur_texture_lod_glsl_matches_c(void)
     static const char main_glsl[] =
         "out vec4 o;\n"
         "void main() {\n"
-        "  vec2 c = floor(gl_FragCoord.xy);\n"
-        "  float len = exp2(-2.0 + 8.0 * c.x / 63.0) / 256.0, a = 0.3 * c.y;\n"
-        "  vec2 dx = len * vec2(cos(a), sin(a));\n"
-        "  vec2 dy = len * exp2(-mod(c.y, 5.0)) * vec2(-sin(a), cos(a));\n"
+        "  vec2 c = floor(gl_FragCoord.xy), dx, dy;\n"
+        "  footprint(c, -2.0, 8.0, dx, dy);\n"
         "  float side = 0.05 * c.x, ndv = -1.0 + 2.0 * c.y / 47.0;\n"
         "  o = vec4(fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO), fur_texture_aniso(side, ndv), 0.0, 0.0);\n"
         "}\n";
-    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    const char *fs[] = {pelt__shader_shell_lod, footprint_glsl, main_glsl, NULL};
     CHECK(gl_test_eval(gl, fs, W, H, out));
     double worst = 0.0;
     int between = 0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
-            float len = exp2f(-2.0f + 8.0f * (float)x / 63.0f) / 256.0f, a = 0.3f * (float)y;
-            float dx[2] = {len * cosf(a), len * sinf(a)};
-            float s = len * exp2f(-fmodf((float)y, 5.0f));
-            float dy[2] = {-s * sinf(a), s * cosf(a)};
+            float dx[2], dy[2];
+            footprint(x, y, -2.0f, 8.0f, dx, dy);
             float r = pelt__lod_fur_texture(dx, dy, 256.0f, PELT__FUR_TEXTURE_ANISO);
             worst = fmax(worst, fabs(out[4 * (y * W + x)] - r));
             float q = pelt__lod_fur_texture_aniso(0.05f * (float)x, -1.0f + 2.0f * (float)y / 47.0f);
@@ -720,24 +735,20 @@ static void fur_edge_glsl_matches_c(void)
     static const char main_glsl[] =
         "out vec4 o;\n"
         "void main() {\n"
-        "  vec2 c = floor(gl_FragCoord.xy);\n"
-        "  float len = exp2(-4.0 + 6.0 * c.x / 63.0) / 256.0, a = 0.3 * c.y;\n"
-        "  vec2 dx = len * vec2(cos(a), sin(a));\n"
-        "  vec2 dy = len * exp2(-mod(c.y, 5.0)) * vec2(-sin(a), cos(a));\n"
+        "  vec2 c = floor(gl_FragCoord.xy), dx, dy;\n"
+        "  footprint(c, -4.0, 6.0, dx, dy);\n"
         "  float cover = c.x / 63.0, gain = 1.0 + 7.0 * c.y / 47.0;\n"
         "  vec4 e = fur_edge(vec4(0.3, 0.6, 0.9, 1.0) * cover, gain);\n"
         "  o = vec4(fur_edge_gain(dx, dy, 256.0), e.a, e.r, e.b);\n"
         "}\n";
-    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    const char *fs[] = {pelt__shader_shell_lod, footprint_glsl, main_glsl, NULL};
     CHECK(gl_test_eval(gl, fs, W, H, out));
     double worst = 0.0;
     int steepened = 0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
-            float len = exp2f(-4.0f + 6.0f * (float)x / 63.0f) / 256.0f, a = 0.3f * (float)y;
-            float dx[2] = {len * cosf(a), len * sinf(a)};
-            float s = len * exp2f(-fmodf((float)y, 5.0f));
-            float dy[2] = {-s * sinf(a), s * cosf(a)};
+            float dx[2], dy[2];
+            footprint(x, y, -4.0f, 6.0f, dx, dy);
             const float *o = out + 4 * (y * W + x);
             float g = pelt__lod_fur_edge_gain(dx, dy, 256.0f);
             worst = fmax(worst, fabs(o[0] - g) / g);
