@@ -41,8 +41,8 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     pelt__shell_feature_defines(features & PELT__FIN_FEATURES, defines);
     const char *vs[] = {defines,           pelt__shader_shading,   pelt__shader_shadow_map, pelt__shader_fur_light,
                         pelt__shader_fur_shape, pelt__shader_own_light, pelt__shader_fin_vs,     NULL};
-    const char *fs[] = {defines,        pelt__shader_shading, pelt__shader_fur_shape, pelt__shader_own_light,
-                        pelt__shader_clump, pelt__shader_fin_fs,  NULL};
+    const char *fs[] = {defines,           pelt__shader_shading,   pelt__shader_fur_shape, pelt__shader_own_light,
+                        pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_fin_fs,    NULL};
     pelt_status st = pelt__gl_program_create("fin", vs, fs, &p->hooks, &p->variants[features], err);
     if (st != PELT_OK) {
         p->failed[features] = true;

@@ -381,6 +381,12 @@ float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, 
     return 0.5f * log2f(fmaxf(fmaxf(longer / (max_aniso * max_aniso), shorter), 1e-12f));
 }
 
+float pelt__lod_fin_texture_aniso(const float dx[2], const float dy[2])
+{
+    float shorter = sqrtf(fminf(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1]));
+    return 1.0f + (PELT__FIN_TEXTURE_ANISO - 1.0f) * fminf(fmaxf(2.0f - shorter, 0.0f), 1.0f);
+}
+
 float pelt__lod_fur_edge_gain(const float dx[2], const float dy[2], float texels)
 {
     float longer = fmaxf(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1]) * texels * texels;

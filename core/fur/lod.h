@@ -127,6 +127,17 @@ bool pelt__lod_back_hidden(float n_dot_v, float reach);
 #define PELT__FUR_TEXTURE_ANISO 2.0f
 float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso);
 
+/* The fins read their texture the same way (derivatives in texels, texels
+ * 1): a fin is one quad, whose hair is foreshortened up the fin, and has no
+ * rows to turn into stripes. Their max_aniso is PELT__FIN_TEXTURE_ANISO
+ * where the footprint's shorter side is a texel or less, 1 (a texture
+ * read's own level) from 2 texels, linear between: seen from further, the
+ * fin's hair is finer than a pixel both ways and a sharper read only
+ * aliases it (the outline's faint hair drops out). Mirrors
+ * fin_texture_aniso() and FIN_TEXTURE_ANISO in shell_lod.glsl. */
+#define PELT__FIN_TEXTURE_ANISO 4.0f
+float pelt__lod_fin_texture_aniso(const float dx[2], const float dy[2]);
+
 /* The max_aniso of pelt__lod_fur_texture at a vertex: PELT__FUR_TEXTURE_ANISO
  * where the shells lie at most PELT__FUR_TEXTURE_ROW_PX apart on screen,
  * 1 (a texture read's own level) from twice that, linear between: where

@@ -25,6 +25,9 @@ uniform sampler2D u_mask;      // PELT_UNIT_MASK
 
 out vec4 o_color;
 
+// The fin texture's mip level for this fragment: set first in main.
+float fin_lod = 0.0;
+
 // The fin's hair at uv under wetness rho: with ringlets, water takes the
 // curl out between the levels the fin texture holds, as on the shells
 // (shell_fs.glsl's wet_hair). Dry fins read the full-curl level alone.
@@ -32,14 +35,25 @@ vec4 fin_hair(vec2 uv, float rho)
 {
 #if defined(PELT_RINGLETS) && defined(PELT_WET)
     vec3 level = ringlet_levels(rho, u_ringlets.x, 1.0);
-    return mix(texture(u_fin_tex, vec3(uv, level.x)), texture(u_fin_tex, vec3(uv, level.y)), level.z);
+    return mix(textureLod(u_fin_tex, vec3(uv, level.x), fin_lod), textureLod(u_fin_tex, vec3(uv, level.y), fin_lod),
+               level.z);
 #else
-    return texture(u_fin_tex, vec3(uv, 0.0));
+    return textureLod(u_fin_tex, vec3(uv, 0.0), fin_lod);
 #endif
 }
 
 void main()
 {
+    // A fin stands across the outline: its hair is seen along the fin and
+    // foreshortened up it, so a texture read's level (from the long side)
+    // blurred the tips into a soft band. Read it at the short side's level,
+    // up to FIN_TEXTURE_ANISO texels of the long side to a pixel (as the
+    // shells read theirs, shell_lod.glsl; docs/shading.md), where the short
+    // side is a texel or less: seen from further, the fin's hair is finer
+    // than a pixel both ways and a sharper read only aliases it.
+    vec2 fin_texels = vec2(textureSize(u_fin_tex, 0).xy);
+    vec2 fin_dx = dFdx(v_fin_uv) * fin_texels, fin_dy = dFdy(v_fin_uv) * fin_texels;
+    fin_lod = fur_texture_lod(fin_dx, fin_dy, 1.0, fin_texture_aniso(fin_dx, fin_dy));
     vec2 fin_uv = v_fin_uv;
     float rho = 0.0;
 #ifdef PELT_WET

@@ -5,8 +5,9 @@
 # outline, hair crosses that outline in the shell picture as it does in the
 # reference, the silhouette profiles agree band by band, and a grazing rim
 # shows less stripe energy than 16 plain shells give it, a hair seen
-# end-on covers its root's disc in the reference, and curls shape the
-# outline seen from the side as they shape the reference's.
+# end-on covers its root's disc in the reference, the fins show hair tips
+# along a grazing rim, and curls shape the outline seen from the side as
+# they shape the reference's.
 set -u
 pelt=$1 png_diff=$2 out=$3 png_region=$4
 fails=0 passes=0
@@ -75,6 +76,20 @@ res=$("$png_diff" "$d/top.png" "$d/top_skin.png" --threshold 40 | grep "pixels o
 covered=$(sed 's/.*= \([0-9.]*\) .*/\1/' <<<"$res")
 awk -v c="$covered" 'BEGIN { exit !(c + 0 >= 0.25) }'
 check hair_seen_end_on_covers_its_root $? "covered ${covered:-?} of the skin (bound 0.25): $res"
+
+# Hair tips on the outline: the torus's far rim seen nearly edge-on, where
+# the fins carry the hair that stands against the sky. A fin's hair is
+# foreshortened up the fin, and read at a texture read's own level (from the
+# long side) its tips blurred into a soft band (outline roughness 0.55 px
+# against the strands' 2.0); read at the short side's level, up to 4 texels
+# of the long side to a pixel, the tips stand apart (1.0). Bound: the
+# shells' outline at least 0.4 as rough as the strands'.
+rim="$(cd "$(dirname "$0")/../.." && pwd)/scenes/reference/torus-rim.json"
+"$pelt" compare "$rim" -o "$d/rim.png" >/dev/null 2>&1
+rs=$("$png_region" --outline "$d/rim.png" 20 460 8 | sed 's/roughness=\([0-9.]*\).*/\1/')
+rt=$("$png_region" --outline "$d/rim.png" 500 940 8 | sed 's/roughness=\([0-9.]*\).*/\1/')
+awk -v a="${rs:-0}" -v b="${rt:-0}" 'BEGIN { exit !(b > 0 && a >= 0.4 * b) }'
+check fins_show_hair_tips_on_the_outline $? "outline roughness: shells $rs px, strands $rt px (bound: 0.4 of the strands')"
 
 # Curls on the outline (Silva Fig. 7, seen from the side): sparse, long fur
 # on a square whose far edge stands against the sky. The fur texture's

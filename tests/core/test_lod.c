@@ -143,6 +143,16 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
     CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.0f) == 1.0f);       /* 2 px apart: rows */
     CHECK_NEAR(pelt__lod_fur_texture_aniso(0.525f, 0.0f), 1.5f, 1e-6);
     CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.99f) == k);         /* face-on: 0.28 px */
+    /* The fins: the long side's texels to a pixel where the short side is a
+     * texel or less, a texture read's own level from 2 texels. */
+    const float fin_long[2] = {0.0f, 6.0f}, fin_close[2] = {0.5f, 0.0f}, fin_mid[2] = {1.5f, 0.0f},
+                fin_far[2] = {3.0f, 0.0f};
+    CHECK(pelt__lod_fin_texture_aniso(fin_close, fin_long) == PELT__FIN_TEXTURE_ANISO);
+    CHECK(pelt__lod_fin_texture_aniso(fin_long, fin_close) == PELT__FIN_TEXTURE_ANISO); /* either way */
+    CHECK_NEAR(pelt__lod_fin_texture_aniso(fin_mid, fin_long), 1.0f + 0.5f * (PELT__FIN_TEXTURE_ANISO - 1.0f), 1e-5);
+    CHECK(pelt__lod_fin_texture_aniso(fin_far, fin_long) == 1.0f);
+    CHECK_NEAR(pelt__lod_fur_texture(fin_close, fin_long, 1.0f, PELT__FIN_TEXTURE_ANISO), log2f(6.0f / 4.0f), 1e-5);
+
     float last = k + 1.0f;
     for (int i = 0; i <= 40; i++) {
         float a = pelt__lod_fur_texture_aniso(0.05f * (float)i, 0.0f);

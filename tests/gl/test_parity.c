@@ -695,7 +695,8 @@ static void footprint(int x, int y, float lo, float span, float dx[2], float dy[
  * pelt__lod_fur_texture over footprints from magnified to 64 texels, round
  * to 16 to 1 in every direction, at the shaders' FUR_TEXTURE_ANISO; and
  * fur_texture_aniso against pelt__lod_fur_texture_aniso over spacings and
- * view angles. */
+ * view angles; the fins' FIN_TEXTURE_ANISO and fin_texture_aniso against
+ * PELT__FIN_TEXTURE_ANISO and pelt__lod_fin_texture_aniso. */
 static void fur_texture_lod_glsl_matches_c(void)
 {
     static const char main_glsl[] =
@@ -704,12 +705,13 @@ static void fur_texture_lod_glsl_matches_c(void)
         "  vec2 c = floor(gl_FragCoord.xy), dx, dy;\n"
         "  footprint(c, -2.0, 8.0, dx, dy);\n"
         "  float side = 0.05 * c.x, ndv = -1.0 + 2.0 * c.y / 47.0;\n"
-        "  o = vec4(fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO), fur_texture_aniso(side, ndv), 0.0, 0.0);\n"
+        "  o = vec4(fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO), fur_texture_aniso(side, ndv),\n"
+        "           FIN_TEXTURE_ANISO, fin_texture_aniso(dx * 256.0, dy * 256.0));\n"
         "}\n";
     const char *fs[] = {pelt__shader_shell_lod, footprint_glsl, main_glsl, NULL};
     CHECK(gl_test_eval(gl, fs, W, H, out));
     double worst = 0.0;
-    int between = 0;
+    int between = 0, fin_between = 0;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             float dx[2], dy[2];
@@ -719,10 +721,16 @@ static void fur_texture_lod_glsl_matches_c(void)
             float q = pelt__lod_fur_texture_aniso(0.05f * (float)x, -1.0f + 2.0f * (float)y / 47.0f);
             worst = fmax(worst, fabs(out[4 * (y * W + x) + 1] - q));
             between += q > 1.01f && q < PELT__FUR_TEXTURE_ANISO - 0.01f;
+            worst = fmax(worst, fabs(out[4 * (y * W + x) + 2] - PELT__FIN_TEXTURE_ANISO)); /* the fins' */
+            float tx[2] = {dx[0] * 256.0f, dx[1] * 256.0f}, ty[2] = {dy[0] * 256.0f, dy[1] * 256.0f};
+            float fa = pelt__lod_fin_texture_aniso(tx, ty);
+            worst = fmax(worst, fabs(out[4 * (y * W + x) + 3] - fa));
+            fin_between += fa > 1.01f && fa < PELT__FIN_TEXTURE_ANISO - 0.01f;
         }
-    printf("  fur_texture_lod, fur_texture_aniso: worst |GLSL - C| = %.3g, %d between 1 and the most\n", worst,
-           between);
+    printf("  fur_texture_lod, fur_texture_aniso, fin_texture_aniso: worst |GLSL - C| = %.3g, %d and %d between 1 "
+           "and the most\n", worst, between, fin_between);
     CHECK(between > 50);
+    CHECK(fin_between > 50);
     CHECK(worst < 1e-4);
 }
 
