@@ -36,6 +36,7 @@ float fin_texture_aniso(vec2 dx, vec2 dy)
     float shorter = sqrt(min(dot(dx, dx), dot(dy, dy)));
     return 1.0 + (FIN_TEXTURE_ANISO - 1.0) * clamp(2.0 - shorter, 0.0, 1.0);
 }
+
 const float FUR_TEXTURE_ROW_PX = 0.35; // PELT__FUR_TEXTURE_ROW_PX
 
 // pelt__lod_fur_texture_aniso (core/fur/lod.c): how many texels of the
