@@ -372,24 +372,35 @@ float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v)
     return 1.0f + (PELT__FUR_TEXTURE_ANISO - 1.0f) * s;
 }
 
-float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso)
+/* A texture read's footprint from its uv derivatives dx, dy (uv per pixel)
+ * and the texture's size: the squared lengths of its longer and shorter
+ * side, in texels. Mirrors footprint_sides() in shell_lod.glsl. */
+static void footprint_sides(const float dx[2], const float dy[2], float texels, float *longer, float *shorter)
 {
     float a = (dx[0] * dx[0] + dx[1] * dx[1]) * texels * texels;
     float b = (dy[0] * dy[0] + dy[1] * dy[1]) * texels * texels;
-    float longer = fmaxf(a, b), shorter = fminf(a, b);
+    *longer = fmaxf(a, b), *shorter = fminf(a, b);
+}
+
+float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso)
+{
+    float longer, shorter;
+    footprint_sides(dx, dy, texels, &longer, &shorter);
     /* Squared lengths: half their log2. */
     return 0.5f * log2f(fmaxf(fmaxf(longer / (max_aniso * max_aniso), shorter), 1e-12f));
 }
 
 float pelt__lod_fin_texture_aniso(const float dx[2], const float dy[2])
 {
-    float shorter = sqrtf(fminf(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1]));
-    return 1.0f + (PELT__FIN_TEXTURE_ANISO - 1.0f) * fminf(fmaxf(2.0f - shorter, 0.0f), 1.0f);
+    float longer, shorter;
+    footprint_sides(dx, dy, 1.0f, &longer, &shorter);
+    return 1.0f + (PELT__FIN_TEXTURE_ANISO - 1.0f) * fminf(fmaxf(2.0f - sqrtf(shorter), 0.0f), 1.0f);
 }
 
 float pelt__lod_fur_edge_gain(const float dx[2], const float dy[2], float texels)
 {
-    float longer = fmaxf(dx[0] * dx[0] + dx[1] * dx[1], dy[0] * dy[0] + dy[1] * dy[1]) * texels * texels;
+    float longer, shorter;
+    footprint_sides(dx, dy, texels, &longer, &shorter);
     return fmaxf(1.0f / sqrtf(fmaxf(longer, 1e-12f)), 1.0f);
 }
 

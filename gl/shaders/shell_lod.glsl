@@ -29,11 +29,20 @@ bool shell_back_hidden(float n_dot_v, float reach)
 const float FUR_TEXTURE_ANISO = 2.0;   // PELT__FUR_TEXTURE_ANISO
 const float FIN_TEXTURE_ANISO = 4.0;   // PELT__FIN_TEXTURE_ANISO
 
+// footprint_sides (core/fur/lod.c): a texture read's footprint from its uv
+// derivatives dx, dy and the texture's size, the squared lengths of its
+// longer (x) and shorter (y) side in texels.
+vec2 footprint_sides(vec2 dx, vec2 dy, float texels)
+{
+    float a = dot(dx, dx) * texels * texels, b = dot(dy, dy) * texels * texels;
+    return vec2(max(a, b), min(a, b));
+}
+
 // pelt__lod_fin_texture_aniso (core/fur/lod.c): the fins' max_aniso from
 // the footprint's sides (derivatives in texels).
 float fin_texture_aniso(vec2 dx, vec2 dy)
 {
-    float shorter = sqrt(min(dot(dx, dx), dot(dy, dy)));
+    float shorter = sqrt(footprint_sides(dx, dy, 1.0).y);
     return 1.0 + (FIN_TEXTURE_ANISO - 1.0) * clamp(2.0 - shorter, 0.0, 1.0);
 }
 
@@ -53,17 +62,15 @@ float fur_texture_aniso(float side_px, float n_dot_v)
 // longer side over max_aniso or its shorter side.
 float fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso)
 {
-    float a = dot(dx, dx) * texels * texels, b = dot(dy, dy) * texels * texels;
-    float longer = max(a, b), shorter = min(a, b);
-    return 0.5 * log2(max(max(longer / (max_aniso * max_aniso), shorter), 1e-12));
+    vec2 sides = footprint_sides(dx, dy, texels);
+    return 0.5 * log2(max(max(sides.x / (max_aniso * max_aniso), sides.y), 1e-12));
 }
 
 // pelt__lod_fur_edge_gain (core/fur/lod.c): how many pixels a texel of
 // the fur texture spans along the footprint's longer side, at least 1.
 float fur_edge_gain(vec2 dx, vec2 dy, float texels)
 {
-    float longer = max(dot(dx, dx), dot(dy, dy)) * texels * texels;
-    return max(inversesqrt(max(longer, 1e-12)), 1.0);
+    return max(inversesqrt(max(footprint_sides(dx, dy, texels).x, 1e-12)), 1.0);
 }
 
 // pelt__lod_fur_edge (core/fur/lod.c): the premultiplied texel hair with
