@@ -20,6 +20,11 @@ unsigned pelt__strand_ref_segments(const pelt_fur *f)
     if (td.ringlet_radius > 0.0f) turns += fabsf(td.ringlet_omega) / two_pi;
     if (pelt__fur_vertex_curl_radius(&f->desc) > 0.0f) turns += fabsf(f->desc.look.curl_frequency) / two_pi;
     float s = ceilf(8.0f * turns);
+    /* A tuft gathers its hairs within a few layers above its base
+     * (pelt__clump_tuft_profile's log term): 8 even pieces cut that bend
+     * off with one chord, and the tuft's flanks came out straight. */
+    if (!pelt__rect_empty(pelt__water_mask(f->water)->wet) && s < (float)PELT__STRAND_SEGMENTS_WET)
+        s = (float)PELT__STRAND_SEGMENTS_WET;
     if (!(s > (float)PELT__STRAND_SEGMENTS_MIN)) return PELT__STRAND_SEGMENTS_MIN;
     return s < (float)PELT__STRAND_SEGMENTS_MAX ? (unsigned)s : PELT__STRAND_SEGMENTS_MAX;
 }

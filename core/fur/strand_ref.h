@@ -17,6 +17,9 @@
  * (pelt__strand_ref_segments). */
 #define PELT__STRAND_SEGMENTS_MIN 8
 #define PELT__STRAND_SEGMENTS_MAX 64
+/* Pieces a hair has at least where the fur is wet, so that it follows
+ * its tuft's bend (pelt__strand_ref_segments). */
+#define PELT__STRAND_SEGMENTS_WET 32
 /* Texels of 4 floats a hair of S segments: for k = 0 .. S its point
  * (mesh-local, w the radius in mesh units) and unit tangent (w the height
  * along the hair, 0 root .. 1 tip); then the surface normal with the
@@ -27,8 +30,9 @@
 
 /* Segments a hair needs so that its curls stay round: 8 a turn of the
  * curls it has (its own in the tile, ringlets, the vertex curve's phi),
- * between PELT__STRAND_SEGMENTS_MIN and _MAX. A straight or wet hair has
- * the minimum. */
+ * between PELT__STRAND_SEGMENTS_MIN and _MAX; at least
+ * PELT__STRAND_SEGMENTS_WET where any of the fur is wet, so that a hair
+ * follows its tuft's bend. A straight dry hair has the minimum. */
 unsigned pelt__strand_ref_segments(const pelt_fur *fur);
 
 /* The tile's strands (pelt__furtex_strands of the fur's texture desc):
