@@ -115,8 +115,10 @@ bool cli_session_has_shadows(const cli_session *s);
  * prints a warning for a ray that misses. */
 void cli_session_drop_at(cli_session *s, const cli_options *o);
 
-/* Clears and draws the instance's current state. */
-void cli_session_draw(cli_session *s);
+/* Clears and draws the instance's current state. Prints the error and
+ * returns false when the strand reference was asked for and could not be
+ * drawn. */
+bool cli_session_draw(cli_session *s);
 
 /* Writes RGBA8 rows (top first) as PNG; prints the error on failure. */
 bool cli_write_png(const char *cmd, const char *path, const uint8_t *rgba, unsigned w, unsigned h);

@@ -487,6 +487,14 @@ int cmd_bench(int argc, char **argv)
         printf("atlas build: %.3f s%s\n", is.atlas_seconds, is.atlas_from_cache ? " (from the cache)" : "");
 
     cli_session_drop_at(&s, &o);
+    /* A strand reference that cannot be drawn (render.mode "strands") has
+     * nothing to time: say so once, not every frame. */
+    if (!cli_session_draw(&s)) {
+        free(t);
+        cli_session_close(&s);
+        cli_options_free(&o);
+        return 1;
+    }
     stats plain[PARTS], wet[PARTS];
     measure(&s, sc, o.warmup, frames, t, plain);
     report(o.bench_clumps ? "as given (dry unless the scene wets it):" : "frame:", plain);

@@ -37,7 +37,10 @@ static bool draw_state(const pelt_scene *scene, const cli_options *o, pelt_draw_
     unsigned frames = sc.animation.frames ? sc.animation.frames : 1;
     float fps = sc.animation.fps > 0.0f ? sc.animation.fps : 30.0f;
     for (unsigned i = 1; i < frames; i++) pelt_scene_instance_advance(s.instance, 1.0f / fps);
-    cli_session_draw(&s);
+    if (!cli_session_draw(&s)) {
+        cli_session_close(&s);
+        return false;
+    }
     cli_session_read(&s);
     memcpy(out, s.pixels, (size_t)s.width * s.height * 4);
     *layers = pelt_fur_get_desc(pelt_scene_instance_fur(s.instance)).layers;

@@ -117,7 +117,10 @@ int cmd_render(int argc, char **argv)
     rc = 0;
     for (unsigned i = 0; i < frames && rc == 0; i++) {
         if (i > 0) pelt_scene_instance_advance(s.instance, 1.0f / fps);
-        cli_session_draw(&s);
+        if (!cli_session_draw(&s)) {
+            rc = 1;
+            break;
+        }
         cli_session_read(&s);
         if (video) {
             if (!cli_video_write(&v, s.pixels)) rc = 1;

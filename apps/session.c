@@ -103,7 +103,7 @@ void cli_session_drop_at(cli_session *s, const cli_options *o)
     }
 }
 
-void cli_session_draw(cli_session *s)
+bool cli_session_draw(cli_session *s)
 {
     pelt_headless_bind(s->gl);
     const float *bg = s->background;
@@ -111,4 +111,11 @@ void cli_session_draw(cli_session *s)
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     pelt_view view = pelt_scene_instance_view(s->instance);
     pelt_renderer_draw(s->renderer, &view, &s->draw);
+    /* A picture without the hairs it was asked for is not a reference: the
+     * logger printed why, this stops the command. */
+    if (pelt_renderer_get_stats(s->renderer).strand_failures) {
+        cli_error(s->cmd, "the strand reference could not be drawn (see the error above)");
+        return false;
+    }
+    return true;
 }

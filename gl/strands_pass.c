@@ -44,11 +44,11 @@ void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const
  * strand reference says so once and draws nothing. */
 void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
 {
-    (void)f;
     if (!p->broken)
         pelt__log(&p->hooks.logger, PELT_LOG_ERROR,
                   "the strand reference needs buffer textures, which WebGL2 does not have: not drawn");
     p->broken = true;
+    f->stats->strand_failures = 1;
 }
 #else
 /* Room for every hair of `segments` pieces: staging and the buffer
@@ -94,7 +94,10 @@ void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
         pelt__log(&p->hooks.logger, PELT_LOG_ERROR, "out of memory for the strand reference's %zu hairs",
                   p->capacity);
     }
-    if (p->broken) return;
+    if (p->broken) {
+        f->stats->strand_failures = 1;
+        return;
+    }
     size_t n = pelt__strand_ref_build(p->fur, p->tile, p->tile_count, segments, p->hairs, p->capacity);
     if (n == 0) return;
     size_t bytes = n * 16 * (size_t)PELT__STRAND_TEXELS(segments);
@@ -105,7 +108,10 @@ void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
 
     unsigned features = f->shell_features & PELT__STRAND_FEATURES;
     if (!p->variants[features] && !p->failed[features]) build(p, features);
-    if (!p->variants[features]) return;
+    if (!p->variants[features]) {
+        f->stats->strand_failures = 1; /* the compiler's log went to the logger */
+        return;
+    }
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_TRUE);

@@ -117,6 +117,12 @@ typedef struct pelt_render_stats {
                                    opacity in one instanced draw), else 0 */
     unsigned ground_draw_calls; /* 1 when the ground was drawn */
     unsigned strand_draw_calls; /* 1 when the strand reference was drawn */
+    unsigned strand_failures;  /* 1 when the strand reference was asked for and
+                                  could not be drawn: its program did not build,
+                                  its hairs did not fit in memory, or the context
+                                  has no buffer textures (WebGL2); the logger says
+                                  which. A fur with no hair draws nothing and
+                                  fails nothing */
     size_t strands;            /* hairs the strand reference drew */
     size_t fins;               /* fins (mesh edges) that draw submitted; the
                                   faded-out ones collapse in the vertex stage */

@@ -730,6 +730,56 @@ static void log_into(pelt_log_level level, const char *message, void *user)
     if (level == PELT_LOG_ERROR) snprintf(user, 512, "%s", message);
 }
 
+/* An allocator that refuses everything once `refuse` is set. */
+static void *refusing_alloc(size_t size, void *user)
+{
+    return *(bool *)user ? NULL : malloc(size);
+}
+
+static void refusing_free(void *ptr, void *user)
+{
+    (void)user;
+    free(ptr);
+}
+
+/* A strand reference that cannot be drawn says so in the stats as well as
+ * the log, so that a caller (pelt compare, pelt render --strands) stops
+ * instead of taking the skin alone for the hairs: here its hairs find no
+ * memory. With memory the same frame draws them and fails nothing. */
+static void strand_reference_failure_is_reported(void)
+{
+    pelt_fur *fur = NULL;
+    CHECK(pelt_fur_create(square, &(pelt_fur_desc){.look.texture_size = 32}, &fur, NULL) == PELT_OK);
+    pelt_view v;
+    memset(&v, 0, sizeof v);
+    pelt_camera_to_view(&square_cam, (float)W / H, &v);
+    const pelt_draw_desc strands = {.mode = PELT_DRAW_STRANDS};
+    for (int with_memory = 0; with_memory < 2; with_memory++) {
+        bool refuse = false;
+        char logged[512] = "";
+        pelt_renderer_desc rd = {.hooks = {.allocator = {refusing_alloc, refusing_free, &refuse},
+                                           .logger = {log_into, logged}}};
+        pelt_renderer *r = NULL;
+        CHECK(pelt_renderer_create(square, fur, &rd, &r, NULL) == PELT_OK);
+        if (!r) continue;
+        refuse = !with_memory;
+        pelt_renderer_draw(r, &v, &strands);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        if (with_memory) {
+            CHECK(st.strand_failures == 0 && st.strand_draw_calls == 1 && st.strands > 0);
+        } else {
+            CHECK(st.strand_failures == 1 && st.strand_draw_calls == 0);
+            CHECK(strstr(logged, "out of memory for the strand reference") != NULL);
+            /* It stays failed: the next frame does not draw half of it. */
+            pelt_renderer_draw(r, &v, &strands);
+            CHECK(pelt_renderer_get_stats(r).strand_failures == 1);
+        }
+        refuse = false;
+        pelt_renderer_destroy(r);
+    }
+    pelt_fur_destroy(fur);
+}
+
 /* A shader that does not compile reaches the logger as well as the error. */
 static void program_errors_reach_the_logger(void)
 {
@@ -1120,6 +1170,7 @@ int main(void)
         RUN(wet_skin_sheen_rises_with_wetness);
         RUN(renderer_allocates_through_its_hooks);
         RUN(program_errors_reach_the_logger);
+        RUN(strand_reference_failure_is_reported);
         RUN(every_shell_variant_compiles);
         RUN(uniform_blocks_match_their_c_structs);
         RUN(stats_count_passes_layers_and_uploads);
