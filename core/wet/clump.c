@@ -140,6 +140,13 @@ float pelt__clump_coverage(float a, float k)
     return 1.0f - powf(fmaxf(1.0f - a, 0.0f), 1.0f / k);
 }
 
+float pelt__clump_bundle_squeeze(float squeeze, float lod)
+{
+    float t = lod - PELT__CLUMP_RESOLVED_LOD;
+    t = t > 0.0f ? (t < 1.0f ? t : 1.0f) : 0.0f;
+    return 1.0f + (squeeze - 1.0f) * t;
+}
+
 float pelt__clump_fin_shift(const float d[2], const float dir[2])
 {
     float len2 = dir[0] * dir[0] + dir[1] * dir[1];

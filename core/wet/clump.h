@@ -105,6 +105,16 @@ pelt__clump_result pelt__clump_lookup_lean(const float *mask, unsigned width, un
  * haze; see docs/wetness.md. */
 float pelt__clump_coverage(float a, float k);
 
+/* The squeeze k that pelt__clump_coverage raises a tuft's coverage by,
+ * where the squeezed texture read stands at mip level `lod`: 1 (none)
+ * where it still resolves the hairs, lod at most PELT__CLUMP_RESOLVED_LOD
+ * (a pixel spans at most 2 texels), and each hair is drawn where the tuft
+ * gathers it; `squeeze` a level above, where the mip averages the bundle's
+ * hairs and only its density says how many a ray meets; linear between.
+ * docs/wetness.md, Tuft coverage. */
+#define PELT__CLUMP_RESOLVED_LOD 1.0f
+float pelt__clump_bundle_squeeze(float squeeze, float lod);
+
 /* A fin shows the hair rooted along its edge from the side (docs/wetness.md,
  * Tufts on the outline): the hair a tuft pulls from q = p + d lies along
  * the fin by d's component along the edge. `dir` is the edge's mask uv per

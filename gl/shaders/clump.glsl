@@ -140,6 +140,19 @@ float clump_coverage(float a, float k)
     return 1.0 - pow(max(1.0 - a, 0.0), 1.0 / k);
 }
 
+// The squeeze a tuft's coverage is raised by (clump_coverage) where the
+// squeezed read stands at mip level `lod` (docs/wetness.md, Tuft
+// coverage): none where it still resolves the hairs (a pixel spans at most
+// 2 of its texels), each drawn where the tuft gathers it, the full squeeze
+// where the mip level averages them (4 texels and more) and only the
+// bundle's density says how many a ray meets. Mirrors
+// pelt__clump_bundle_squeeze.
+const float CLUMP_RESOLVED_LOD = 1.0;
+float clump_bundle_squeeze(float squeeze, float lod)
+{
+    return mix(1.0, squeeze, clamp(lod - CLUMP_RESOLVED_LOD, 0.0, 1.0));
+}
+
 // A fin shows the hair rooted along its edge from the side: the hair a
 // tuft pulls from q = p + d lies along the fin by d's component along the
 // edge, in fin-texture units; `dir` is the edge's mask uv per fin-texture

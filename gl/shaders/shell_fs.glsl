@@ -156,8 +156,9 @@ void main()
     if (!groom_keeps(hair.b, v_density)) discard;
 #ifdef PELT_WET
     if (clump == CLUMP_DISPLACED) {
-        // The bundle is 1/k times as dense (see docs/wetness.md).
-        hair.a = clump_coverage(hair.a, squeeze);
+        // The bundle is 1/k times as dense where the read averages its
+        // hairs (see docs/wetness.md).
+        hair.a = clump_coverage(hair.a, clump_bundle_squeeze(squeeze, fur_lod));
     }
 #endif
 #ifdef PELT_LIGHT_PASS

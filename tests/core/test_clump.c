@@ -162,6 +162,29 @@ static void clump_root_in_dry_fur_is_discarded(void)
     free(m);
 }
 
+/* A tuft's coverage is raised by its bundle's density only where the
+ * squeezed read averages its hairs: none where a pixel spans at most 2
+ * texels, the full squeeze from 4, never beyond it, and more the coarser
+ * the level. */
+static void bundle_density_counts_where_the_read_averages(void)
+{
+    const float k = 0.3f;
+    CHECK(pelt__clump_bundle_squeeze(k, -2.0f) == 1.0f);
+    CHECK(pelt__clump_bundle_squeeze(k, PELT__CLUMP_RESOLVED_LOD) == 1.0f);
+    CHECK(fabsf(pelt__clump_bundle_squeeze(k, PELT__CLUMP_RESOLVED_LOD + 1.0f) - k) < 1e-6f);
+    CHECK(fabsf(pelt__clump_bundle_squeeze(k, 9.0f) - k) < 1e-6f);
+    float prev = 2.0f;
+    for (int i = 0; i <= 10; i++) {
+        float b = pelt__clump_bundle_squeeze(k, PELT__CLUMP_RESOLVED_LOD + 0.1f * (float)i);
+        CHECK(b <= prev && b >= k && b <= 1.0f);
+        prev = b;
+    }
+    /* So a resolved tuft keeps the texture's coverage, an averaged one is
+     * as opaque as its bundle. */
+    CHECK(pelt__clump_coverage(0.3f, pelt__clump_bundle_squeeze(k, 0.0f)) == 0.3f);
+    CHECK(pelt__clump_coverage(0.3f, pelt__clump_bundle_squeeze(k, 3.0f)) > 0.6f);
+}
+
 static void clump_coverage_thins_toward_the_tips(void)
 {
     /* Share of a clump's fragments not discarded, per layer: it must fall
@@ -292,6 +315,7 @@ int main(void)
     RUN(clump_texel_of_another_clump_is_discarded);
     RUN(clump_root_in_dry_fur_is_discarded);
     RUN(clump_coverage_thins_toward_the_tips);
+    RUN(bundle_density_counts_where_the_read_averages);
     RUN(ringlet_levels_follow_the_wetness);
     RUN(clump_fin_shift_is_the_pull_along_the_edge);
     RUN(clump_lean_tags_the_radius_and_inverts);

@@ -425,6 +425,29 @@ static void clump_coverage_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+static const char bundle_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  float k = 0.05 + 0.95 * c.x / 63.0, lod = c.y / 47.0 * 5.0 - 1.0;\n"
+    "  o = vec4(clump_bundle_squeeze(k, lod), 0.0, 0.0, 0.0);\n"
+    "}\n";
+
+/* The squeeze a tuft's coverage is raised by at a mip level, GLSL vs C. */
+static void clump_bundle_squeeze_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_clump, bundle_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float k = 0.05f + 0.95f * (float)x / 63.0f, lod = (float)y / 47.0f * 5.0f - 1.0f;
+            worst = fmax(worst, fabs(out[4 * (y * W + x)] - pelt__clump_bundle_squeeze(k, lod)));
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-6);
+}
+
 static const char skin_sheen_main[] =
     "out vec4 o;\n"
     "void main() {\n"
@@ -930,6 +953,7 @@ int main(void)
     RUN(fur_shape_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
+    RUN(clump_bundle_squeeze_glsl_matches_c);
     RUN(clump_fin_shift_glsl_matches_c);
     RUN(wet_skin_sheen_glsl_matches_c);
     RUN(ringlet_levels_glsl_matches_c);
