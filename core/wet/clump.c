@@ -142,9 +142,7 @@ float pelt__clump_coverage(float a, float k)
 
 float pelt__clump_bundle_squeeze(float squeeze, float lod)
 {
-    float t = lod - PELT__CLUMP_RESOLVED_LOD;
-    t = t > 0.0f ? (t < 1.0f ? t : 1.0f) : 0.0f;
-    return 1.0f + (squeeze - 1.0f) * t;
+    return 1.0f + (squeeze - 1.0f) * clampf(lod - PELT__CLUMP_RESOLVED_LOD, 0.0f, 1.0f);
 }
 
 float pelt__clump_fin_shift(const float d[2], const float dir[2])
