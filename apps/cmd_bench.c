@@ -499,8 +499,8 @@ int cmd_bench(int argc, char **argv)
     measure(&s, sc, o.warmup, frames, t, plain);
     report(o.bench_clumps ? "as given (dry unless the scene wets it):" : "frame:", plain);
     pelt_render_stats rs = pelt_renderer_get_stats(s.renderer);
-    printf("shell draw calls per frame: %u (%u layers), %zu triangles submitted\n",
-           rs.shell_draw_calls, rs.shell_instances, rs.triangles);
+    printf("shell draw calls per frame: %u (%u layers, %u wet sub shells), %zu triangles submitted\n",
+           rs.shell_draw_calls, rs.shell_instances, rs.sub_shells, rs.triangles);
     printf("level of detail: mesh level %u (%zu of %zu triangles), %zu fins drawn (%u rows), "
            "shell level %u (blend %.2f), back faces %s\n",
            rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.fin_rows, rs.shell_level,
@@ -512,6 +512,8 @@ int cmd_bench(int argc, char **argv)
         add_third_of_clumps(fur);
         measure(&s, sc, o.warmup, frames, t, wet);
         report("with 50 clumps over a third of the surface:", wet);
+        printf("wet sub shells per frame: %u (docs/wetness.md, Sub shells)\n",
+               pelt_renderer_get_stats(s.renderer).sub_shells);
         printf("clumps cost %+.1f%% per frame (draw %+.1f%%)\n",
                100.0 * (wet[PART_FRAME].median / plain[PART_FRAME].median - 1.0),
                100.0 * (wet[PART_DRAW].median / plain[PART_DRAW].median - 1.0));

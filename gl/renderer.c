@@ -225,6 +225,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
         .one_height = draw->first_layer || draw->layer_count,
         .flat_shells = draw->debug.flat_shells,
         .lod_off = draw->debug.lod_off,
+        .sub_shells = !draw->debug.no_sub_shells,
         .gpu_skin = draw->debug.skin_in_vertex_stage,
         .strands = draw->mode == PELT_DRAW_STRANDS,
     };

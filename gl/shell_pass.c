@@ -48,6 +48,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     sp->back_reach = glGetUniformLocation(sp->program, "u_back_reach");
     sp->instance_base = glGetUniformLocation(sp->program, "u_instance_base");
     sp->no_inter_shadow = glGetUniformLocation(sp->program, "u_no_inter_shadow");
+    sp->sub_shells = glGetUniformLocation(sp->program, "u_sub_shells");
     return PELT_OK;
 }
 
@@ -110,6 +111,7 @@ static void use_program(const pelt__shell_program *sp, const pelt__pass_frame *f
     glUniform1f(sp->back_reach, f->lod.back_reach);
     glUniform1f(sp->instance_base, 0.0f);
     glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
+    glUniform1f(sp->sub_shells, 1.0f);
 }
 
 /* draw_instanced with sp and the shell pass's uniforms. */
@@ -121,30 +123,59 @@ static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, 
     draw_instanced(f, offset, triangles, count);
 }
 
+/* The sub shells the wet shells of draw instance i are drawn in
+ * (pelt__clump_sub_shells): where a tuft gathers its hairs, between this
+ * layer and the one below. */
+static unsigned layer_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned i)
+{
+    if (!(f->lod.tuft_pull[1] > 0.0f)) return 1;
+    float slices[3], alpha, n = (float)f->layers;
+    float layer = pelt__lod_shell_instance(shells, next, n, (float)i, slices, &alpha);
+    return pelt__clump_sub_shells((1.0f + layer - shells[1]) / n, (1.0f + layer) / n, f->lod.tuft_pull[0], n,
+                                  f->lod.tuft_pull[1]);
+}
+
+static bool any_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned count)
+{
+    for (unsigned i = 0; i < count; i++)
+        if (layer_sub_shells(f, shells, next, i) > 1) return true;
+    return false;
+}
+
 /* Wet and dry drawn apart, a shell at a time: the dry triangles' shell i
  * with the dry shader, then the wet ones' with the wet shader, from the
  * inside out. The shells blend in the order one draw of every triangle
  * gives them; two instanced draws, all dry shells and then all wet ones,
  * laid a wet patch's inner shells over the dry fur in front of it (dark
- * patches where fur is seen at a grazing angle). */
+ * patches where fur is seen at a grazing angle). The wet shells of a
+ * layer where tufts gather their hairs are its sub shells, one instanced
+ * draw. With no dry triangles (dry 0, dry_sp NULL), the wet shells alone. */
 static void draw_split(const pelt__shell_program *dry_sp, const pelt__shell_program *wet_sp,
                        const pelt__pass_frame *f, const float shells[4], const float next[2], size_t offset,
                        size_t dry, size_t wet, unsigned count)
 {
     const size_t wet_offset = offset + dry * 3 * sizeof(uint32_t);
     use_program(wet_sp, f, shells, next);
-    use_program(dry_sp, f, shells, next);
+    if (dry) use_program(dry_sp, f, shells, next);
     for (unsigned i = 0; i < count; i++) {
-        glUseProgram(dry_sp->program);
-        glUniform1f(dry_sp->instance_base, (float)i);
-        draw_instanced(f, offset, dry, 1);
+        if (dry) {
+            glUseProgram(dry_sp->program);
+            glUniform1f(dry_sp->instance_base, (float)i);
+            draw_instanced(f, offset, dry, 1);
+        }
+        unsigned sub = layer_sub_shells(f, shells, next, i);
         glUseProgram(wet_sp->program);
         glUniform1f(wet_sp->instance_base, (float)i);
-        draw_instanced(f, wet_offset, wet, 1);
+        glUniform1f(wet_sp->sub_shells, (float)sub);
+        draw_instanced(f, wet_offset, wet, sub);
+        f->stats->sub_shells += sub - 1;
     }
     glUniform1f(wet_sp->instance_base, 0.0f);
-    glUseProgram(dry_sp->program);
-    glUniform1f(dry_sp->instance_base, 0.0f);
+    glUniform1f(wet_sp->sub_shells, 1.0f);
+    if (dry) {
+        glUseProgram(dry_sp->program);
+        glUniform1f(dry_sp->instance_base, 0.0f);
+    }
 }
 
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
@@ -188,6 +219,8 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
             draw_part(dry_sp, f, shells, next, m->split_offset, dry, count);
         else
             draw_split(dry_sp, sp, f, shells, next, m->split_offset, dry, triangles - dry, count);
+    } else if (sp != &p->floor && (f->shell_features & PELT__SHELL_WET) && any_sub_shells(f, shells, next, count)) {
+        draw_split(NULL, sp, f, shells, next, offset, 0, triangles, count);
     } else {
         draw_part(sp, f, shells, next, offset, triangles, count);
     }

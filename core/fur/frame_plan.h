@@ -27,6 +27,12 @@ typedef struct pelt__frame_lod {
     float back_reach;
     float fin_row_error;  /* the chord error a fin's rows may show, mesh units
                              (0: always PELT_FIN_ROWS rows) */
+    /* Wet shells drawn in sub shells where a tuft gathers its hairs
+       (pelt__clump_sub_shells): [0] the tufts' profile blend w, [1] how
+       far the pull moves a hair at a mean tuft's rim over the whole
+       profile, pixels at the vertex in view nearest the eye (0: dry, no
+       sub shells). */
+    float tuft_pull[2];
     bool cull;            /* back-facing shells culled (closed meshes) */
     bool cull_skin;       /* back-facing skin culled: a closed mesh hides it */
     bool front_cw;        /* the mesh winds its outside faces clockwise */
@@ -78,6 +84,7 @@ typedef struct pelt__frame_switches {
     bool strands;       /* the strand reference in place of fins and shells */
     bool flat_shells;   /* no view budget: the level's shells everywhere */
     bool lod_off;       /* as fur.lod = off, whatever the fur's mode */
+    bool sub_shells;    /* wet layers in sub shells where tufts gather (pelt__clump_sub_shells) */
 } pelt__frame_switches;
 
 /* The renderer's state the plan reads. */

@@ -13,6 +13,7 @@
 #include "core/fur/lod.h"
 #include "core/fur/shadow_map.h" /* the light's maps (gl/shadow_pass.c, renderer.c) */
 #include "core/fur/strand_ref.h" /* the strand reference (gl/strands_pass.c) */
+#include "core/wet/clump.h"        /* the wet shells' sub shells (gl/shell_pass.c) */
 #include "core/wet/wet_split.h"    /* wet and dry triangles drawn apart (gl/gpu_mesh.c) */
 
 /* A skinned mesh's skin, for skinning in the vertex stage (measured

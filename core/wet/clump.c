@@ -45,6 +45,24 @@ float pelt__clump_tuft_slope(float h, float w, float n_layers)
            (2.0f * half_step);
 }
 
+unsigned pelt__clump_sub_shells(float h_below, float h, float w, float n_layers, float sweep_px)
+{
+    float px = sweep_px * (pelt__clump_tuft_profile(h, w, n_layers) - pelt__clump_tuft_profile(h_below, w, n_layers));
+    if (!(px > PELT__CLUMP_SUB_PX)) return 1;
+    float k = ceilf(px / PELT__CLUMP_SUB_PX);
+    return k >= (float)PELT__CLUMP_SUB_MAX ? PELT__CLUMP_SUB_MAX : (unsigned)k;
+}
+
+float pelt__sub_shell_layer(float layer, float part, float k, float step)
+{
+    return layer - (k - 1.0f - part) / k * step;
+}
+
+float pelt__sub_shell_alpha(float a, float k)
+{
+    return k > 1.0f ? 1.0f - powf(fmaxf(1.0f - a, 0.0f), 1.0f / k) : a;
+}
+
 void pelt__tuft_tangent(const float t[3], const float du[3], const float dv[3], const float to_centre[2],
                         float slope, float out[3])
 {

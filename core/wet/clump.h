@@ -115,6 +115,29 @@ float pelt__clump_coverage(float a, float k);
 #define PELT__CLUMP_RESOLVED_LOD 1.0f
 float pelt__clump_bundle_squeeze(float squeeze, float lod);
 
+/* Sub shells (docs/wetness.md, Sub shells): a tuft gathers its hairs
+ * within a few layers above its base, where a hair at the tuft's rim moves
+ * several of its widths from one layer to the next and the shells draw it
+ * as a dotted line. The wet shells of such a layer are drawn as k sub
+ * shells spread over the step below it, so that the hair moves at most
+ * PELT__CLUMP_SUB_PX pixels from one to the next: k = ceil(the profile's
+ * rise over the step x sweep_px / PELT__CLUMP_SUB_PX), between 1 and
+ * PELT__CLUMP_SUB_MAX, where sweep_px is how far the whole profile moves
+ * it on screen. h_below and h are the heights of the layer below and of
+ * the layer; w and n_layers as pelt__clump_tuft_profile's. */
+#define PELT__CLUMP_SUB_PX 2.0f
+#define PELT__CLUMP_SUB_MAX 6u
+unsigned pelt__clump_sub_shells(float h_below, float h, float w, float n_layers, float sweep_px);
+
+/* Sub shell `part` (0 the innermost) of k drawn for `layer`, whose level
+ * steps `step` layers: its layer, evenly below the layer down to the one
+ * below (exclusive). Mirrors sub_shell_layer (gl/shaders/clump.glsl). */
+float pelt__sub_shell_layer(float layer, float part, float k, float step);
+
+/* The coverage each of k sub shells draws so that the k of them over one
+ * another cover a: 1 - (1 - a)^(1/k). Mirrors sub_shell_alpha. */
+float pelt__sub_shell_alpha(float a, float k);
+
 /* A fin shows the hair rooted along its edge from the side (docs/wetness.md,
  * Tufts on the outline): the hair a tuft pulls from q = p + d lies along
  * the fin by d's component along the edge. `dir` is the edge's mask uv per

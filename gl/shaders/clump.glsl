@@ -162,3 +162,18 @@ float clump_fin_shift(vec2 d, vec2 dir)
     float len2 = dot(dir, dir);
     return len2 > 1e-20 ? dot(d, dir) / len2 : 0.0;
 }
+
+// Sub shells (docs/wetness.md): sub shell `part` (0 the innermost) of k
+// drawn for `layer` of a level stepping `step` layers, evenly below the
+// layer down to the one below. Mirrors pelt__sub_shell_layer.
+float sub_shell_layer(float layer, float part, float k, float step)
+{
+    return layer - (k - 1.0 - part) / k * step;
+}
+
+// What each of k sub shells covers so that the k of them cover a.
+// Mirrors pelt__sub_shell_alpha.
+float sub_shell_alpha(float a, float k)
+{
+    return k > 1.0 ? 1.0 - pow(max(1.0 - a, 0.0), 1.0 / k) : a;
+}

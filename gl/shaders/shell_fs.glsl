@@ -38,6 +38,17 @@ uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
 uniform sampler2D u_mask;          // PELT_UNIT_MASK
 uniform int u_no_inter_shadow;     // the shell pass's own: 1 skips inter-fur shadows
+uniform float u_sub_shells;        // wet: sub shells drawn for this layer (shell_vs.glsl)
+
+// A layer's coverage a, shared among the sub shells drawn for it.
+float layer_share(float a)
+{
+#ifdef PELT_WET
+    return sub_shell_alpha(a, u_sub_shells);
+#else
+    return a;
+#endif
+}
 
 #ifdef PELT_LIGHT_PASS
 // The light pass (gl/shadow_pass.c): the fur's opacity into slices 0-3, 4-7.
@@ -183,7 +194,7 @@ void main()
         if (u_inter_shadow <= 0.0 || u_no_inter_shadow != 0) discard;
         float caster = fur_edge(texture(u_fur, vec3(fur_uv + v_shadow_step, v_slices.x)), fur_gain).a * v_alpha;
         if (caster < 0.05) discard;
-        o_color = vec4(0.0, 0.0, 0.0, caster * u_inter_shadow);
+        o_color = vec4(0.0, 0.0, 0.0, layer_share(caster * u_inter_shadow));
         return;
 #else
         discard;
@@ -204,6 +215,6 @@ void main()
 #elif defined(PELT_RINGLETS)
     shell_ringlet_light(hair.b, rho, base, spec);
 #endif
-    o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), hair.a);
+    o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), layer_share(hair.a));
 #endif
 }

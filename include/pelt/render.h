@@ -73,6 +73,9 @@ typedef struct pelt_draw_debug {
     /* Draw every triangle's shells with the wet shader while any fur is
      * wet, as before wet and dry were drawn apart (for measuring it). */
     bool no_wet_split;
+    /* Draw each wet layer once, even where tufts gather their hairs (no
+       sub shells, docs/wetness.md), for measuring what they buy. */
+    bool no_sub_shells;
     /* Skip the light's shadow maps this frame, as if they were off
        (pelt_renderer_set_shadows turns them on). */
     bool no_shadows;
@@ -112,6 +115,9 @@ typedef struct pelt_render_stats {
     unsigned skin_draw_calls;  /* 1 when the skin was drawn, else 0 */
     unsigned shell_draw_calls; /* 1 when shells were drawn: all in one instanced draw */
     unsigned shell_instances;  /* shell layers that draw covered */
+    unsigned sub_shells;       /* wet shells drawn beyond one a layer, where
+                                  tufts gather their hairs (docs/wetness.md,
+                                  Sub shells) */
     unsigned fin_draw_calls;   /* 1 when fins were drawn: all in one instanced draw */
     unsigned shadow_draw_calls; /* the light's maps: 2 (skin depth, all shells'
                                    opacity in one instanced draw), else 0 */

@@ -185,6 +185,58 @@ static void bundle_density_counts_where_the_read_averages(void)
     CHECK(pelt__clump_coverage(0.3f, pelt__clump_bundle_squeeze(k, 3.0f)) > 0.6f);
 }
 
+/* Sub shells: where a tuft gathers its hairs (just above its base, the
+ * log term of Eq. 5's profile), a layer's wet shells are drawn as k sub
+ * shells, so that a hair at a tuft's rim moves at most PELT__CLUMP_SUB_PX
+ * pixels from one drawn shell to the next; elsewhere, and where the tuft
+ * is small on screen, one shell a layer. */
+static void sub_shells_follow_the_tufts_sweep(void)
+{
+    const float N = 32.0f, w = 0.5f;
+    CHECK(pelt__clump_sub_shells(0.5f, 0.53f, w, N, 0.0f) == 1); /* no pull */
+    unsigned totals[3] = {0, 0, 0}, most = 0;
+    const float sweeps[3] = {2.0f, 30.0f, 120.0f}; /* pixels over the whole profile */
+    for (int j = 0; j < 3; j++) {
+        unsigned prev = PELT__CLUMP_SUB_MAX + 1;
+        for (int n = 0; n < 32; n++) {
+            float hb = (float)n / N, h = (1.0f + (float)n) / N;
+            unsigned k = pelt__clump_sub_shells(hb, h, w, N, sweeps[j]);
+            CHECK(k >= 1 && k <= PELT__CLUMP_SUB_MAX);
+            if (h <= PELT__CLUMP_BASE) CHECK(k == 1); /* the roots stay spread */
+            float px = sweeps[j] * (pelt__clump_tuft_profile(h, w, N) - pelt__clump_tuft_profile(hb, w, N));
+            CHECK(px / (float)k <= PELT__CLUMP_SUB_PX * 1.0001f || k == PELT__CLUMP_SUB_MAX);
+            if (k > 1) CHECK(px / (float)(k - 1) > PELT__CLUMP_SUB_PX); /* no more than it takes */
+            if (hb >= PELT__CLUMP_BASE) {
+                CHECK(k <= prev); /* the tuft gathers fastest at its base */
+                prev = k;
+            }
+            totals[j] += k;
+            most = k > most ? k : most;
+        }
+        CHECK(pelt__clump_sub_shells(0.99f, 1.0f, w, N, sweeps[j]) == 1); /* near the tip, one */
+    }
+    printf("  shells drawn for 32 layers, a tuft's rim swept 2, 30, 120 px: %u, %u, %u (most %u a layer)\n", totals[0],
+           totals[1], totals[2], most);
+    CHECK(totals[0] == 32);                       /* small on screen: none */
+    CHECK(totals[1] > 32 && totals[1] < totals[2]); /* more as the tuft grows on screen */
+    CHECK(most == PELT__CLUMP_SUB_MAX);
+
+    /* The k sub shells stand evenly below the layer, the last on it, and
+     * over one another cover what the layer covers. */
+    for (float k = 1.0f; k <= 6.0f; k += 1.0f) {
+        for (float part = 0.0f; part < k; part += 1.0f) {
+            float l = pelt__sub_shell_layer(10.0f, part, k, 2.0f);
+            CHECK(l > 8.0f && l <= 10.0f);
+            CHECK(fabsf(l - (8.0f + 2.0f * (part + 1.0f) / k)) < 1e-5f);
+        }
+        for (float a = 0.0f; a <= 1.0f; a += 0.125f) {
+            float b = pelt__sub_shell_alpha(a, k);
+            CHECK(b <= a + 1e-6f);
+            CHECK(fabsf(1.0f - powf(1.0f - b, k) - a) < 1e-5f);
+        }
+    }
+}
+
 static void clump_coverage_thins_toward_the_tips(void)
 {
     /* Share of a clump's fragments not discarded, per layer: it must fall
@@ -316,6 +368,7 @@ int main(void)
     RUN(clump_root_in_dry_fur_is_discarded);
     RUN(clump_coverage_thins_toward_the_tips);
     RUN(bundle_density_counts_where_the_read_averages);
+    RUN(sub_shells_follow_the_tufts_sweep);
     RUN(ringlet_levels_follow_the_wetness);
     RUN(clump_fin_shift_is_the_pull_along_the_edge);
     RUN(clump_lean_tags_the_radius_and_inverts);

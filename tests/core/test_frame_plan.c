@@ -14,7 +14,8 @@
 #include <math.h>
 #include <string.h>
 
-static const pelt__frame_switches everything = {true, true, true, true, true, 0, false, false};
+static const pelt__frame_switches everything = {.skin = true, .fins = true, .shells = true, .inter_shadow = true,
+                                                .shadows = true, .sub_shells = true};
 
 static pelt_view view_at(float distance)
 {
@@ -285,6 +286,48 @@ static void open_mesh_leaves_out_the_shells_behind_their_skin(void)
     pelt_mesh_destroy(m);
 }
 
+/* Sub shells (docs/wetness.md): a wet frame measures how far the tufts'
+ * pull moves a hair at a mean tuft's rim, in pixels where the fur is seen
+ * largest: twice as near, twice as far (while the torus is in view whole);
+ * the eye inside the torus's bounding sphere still gets a finite measure
+ * from the vertices in view; none when dry, with the switch off, or when a
+ * band of layers is inspected. */
+static void tufts_sweep_follows_the_view(pelt_fur *fur, const pelt_mesh *m)
+{
+    (void)m;
+    const pelt__frame_setup setup = setup_with(false, false);
+    pelt__ground_cache cache = {0};
+    pelt__frame_plan p;
+    pelt_view v = view_at(6.0f);
+    pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+    CHECK(p.lod.tuft_pull[1] == 0.0f); /* dry */
+    pelt_droplet drop = {{0.5f, 0.5f}, 0.3f, 1.0f};
+    CHECK(pelt_fur_add_droplet(fur, &drop, NULL) == PELT_OK);
+    pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+    float far = p.lod.tuft_pull[1];
+    v = view_at(3.0f);
+    pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+    float near = p.lod.tuft_pull[1];
+    const pelt_fur_desc d = pelt_fur_get_desc(fur);
+    printf("  a tuft's rim sweeps %.1f px at distance 6, %.1f at 3 (clump size %.3f)\n", (double)far, (double)near,
+           (double)d.wet.clump_size);
+    CHECK(p.lod.tuft_pull[0] == d.wet.clump_blend);
+    CHECK(far > 0.0f && near > 1.98f * far && near < 6.0f * far); /* its nearest point comes closer still */
+    pelt_view inside = view_at(0.5f);
+    pelt__frame_plan_make(fur, &inside, &everything, &setup, &cache, &p);
+    printf("  from inside its bounding sphere: %.1f px\n", (double)p.lod.tuft_pull[1]);
+    CHECK(isfinite(p.lod.tuft_pull[1]) && p.lod.tuft_pull[1] > near && p.lod.tuft_pull[1] <= 4.0f * 600.0f);
+    pelt__frame_switches sw = everything;
+    sw.sub_shells = false;
+    pelt__frame_plan_make(fur, &v, &sw, &setup, &cache, &p);
+    CHECK(p.lod.tuft_pull[1] == 0.0f);
+    sw = everything;
+    sw.one_height = true;
+    pelt__frame_plan_make(fur, &v, &sw, &setup, &cache, &p);
+    CHECK(p.lod.tuft_pull[1] == 0.0f);
+}
+
+static void run_tufts_sweep_follows_the_view(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, tufts_sweep_follows_the_view); }
 static void run_back_shells_carry_the_silhouette_without_fins(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, back_shells_carry_the_silhouette_without_fins); }
 static void run_the_view_budget_follows_the_view(void) { on_torus((pelt_fur_desc){.layers = 32, .look.texture_size = 32}, the_view_budget_follows_the_view); }
 
@@ -297,5 +340,6 @@ int main(void)
     RUN(run_the_light_frame_holds_the_fur);
     RUN(run_the_ground_lies_under_the_mesh);
     RUN(run_features_and_passes_follow_the_switches);
+    RUN(run_tufts_sweep_follows_the_view);
     return check_summary();
 }

@@ -448,6 +448,31 @@ static void clump_bundle_squeeze_glsl_matches_c(void)
     CHECK(worst < 2e-6);
 }
 
+static const char sub_shell_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  float k = 1.0 + floor(c.y / 8.0), part = mod(c.x, k), a = c.x / 63.0;\n"
+    "  o = vec4(sub_shell_layer(20.0, part, k, 1.0 + mod(c.y, 4.0)), sub_shell_alpha(a, k), 0.0, 0.0);\n"
+    "}\n";
+
+/* Sub shells' layers and coverage, GLSL vs C. */
+static void sub_shell_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_clump, sub_shell_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float k = 1.0f + floorf((float)y / 8.0f), part = fmodf((float)x, k), a = (float)x / 63.0f;
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fabs(g[0] - pelt__sub_shell_layer(20.0f, part, k, 1.0f + fmodf((float)y, 4.0f))));
+            worst = fmax(worst, fabs(g[1] - pelt__sub_shell_alpha(a, k)));
+        }
+    printf("  worst |GLSL - C| = %.3g\n", worst);
+    CHECK(worst < 2e-5);
+}
+
 static const char skin_sheen_main[] =
     "out vec4 o;\n"
     "void main() {\n"
@@ -954,6 +979,7 @@ int main(void)
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
     RUN(clump_bundle_squeeze_glsl_matches_c);
+    RUN(sub_shell_glsl_matches_c);
     RUN(clump_fin_shift_glsl_matches_c);
     RUN(wet_skin_sheen_glsl_matches_c);
     RUN(ringlet_levels_glsl_matches_c);
