@@ -288,8 +288,8 @@ static void open_mesh_leaves_out_the_shells_behind_their_skin(void)
 
 /* Sub shells (docs/wetness.md): a wet frame measures how far the tufts'
  * pull moves a hair at a mean tuft's rim, in pixels where the fur is seen
- * largest: twice as near, twice as far (while the torus is in view whole);
- * the eye inside the torus's bounding sphere still gets a finite measure
+ * largest: at half the distance, more than twice as far (the nearest
+ * vertex comes closer than half as near); the eye inside the torus's bounding sphere still gets a finite measure
  * from the vertices in view; none when dry, with the switch off, or when a
  * band of layers is inspected. */
 static void tufts_sweep_follows_the_view(pelt_fur *fur, const pelt_mesh *m)

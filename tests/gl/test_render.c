@@ -569,12 +569,11 @@ static void sub_shells_join_a_tufts_hairs(void)
         memset(&v, 0, sizeof v);
         v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.5f, 1.45f, 1.4f}, 0.25f};
         pelt_draw_desc dd[2] = {{.debug.no_sub_shells = true}, {0}};
-        /* (each view below gives its size: the sub shells measure tufts in pixels) */
         pelt_headless_bind(gl);
         glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
         for (int k = 0; k < 2; k++) {
             pelt_camera_to_view(&close, (float)W / H, &v);
-            v.width = W, v.height = H;
+            v.width = W, v.height = H; /* the sub shells measure tufts in pixels */
             glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
             pelt_renderer_draw(r, &v, &dd[k]);
             pelt_headless_read_rgba8(gl, px[k]);
