@@ -191,7 +191,7 @@ static void hair(const pelt_fur *f, const pelt__furtex_desc *td, const pelt_mesh
     pelt_vec3 n = v3_norm_or(mix3((pelt_vec3[3]){st[0].n, st[1].n, st[2].n}, w), v3(0.0f, 1.0f, 0.0f));
     put(e, n, s->shade);
     e[4] = tf.rho; /* wet hair is darker and shines (strand_vs.glsl) */
-    e[5] = 0.0f;
+    e[5] = s->length; /* of the full height: where along the fur's depth the hair ends */
     float col[4];
     for (int c = 0; c < 4; c++) {
         float x = 0.0f;

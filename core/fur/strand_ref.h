@@ -23,9 +23,11 @@
 /* Texels of 4 floats a hair of S segments: for k = 0 .. S its point
  * (mesh-local, w the radius in mesh units) and unit tangent (w the height
  * along the hair, 0 root .. 1 tip); then the surface normal with the
- * hair's shade in w; then the wetness at its root, 0, and the hair
- * colour's bytes, two a float (r 256 + g, b 256 + a). A wet hair's points
- * follow its tuft (docs/wetness.md, Tufts). */
+ * hair's shade in w; then the wetness at its root, the hair's length as
+ * a share of the fur's (a point's height in the fur is its height along
+ * the hair times this: the light's gamma, as the shells' layers have it)
+ * and the hair colour's bytes, two a float (r 256 + g, b 256 + a). A wet
+ * hair's points follow its tuft (docs/wetness.md, Tufts). */
 #define PELT__STRAND_TEXELS(S) (2 * ((S) + 1) + 2)
 
 /* Segments a hair needs so that its curls stay round: 8 a turn of the

@@ -49,7 +49,7 @@ void main()
     vec3 mul;
     float spec;
     fur_wetness = ex.x; // the wetness at the root: wet hair shines (fur_light_terms)
-    fur_light_terms(T, mat3(u_model) * ns.xyz, world.xyz, th.w, mul, spec);
+    fur_light_terms(T, mat3(u_model) * ns.xyz, world.xyz, th.w * ex.y, mul, spec);
     vec3 root = groom_root_color(u_color, hair_color);
     vec3 tip = groom_tip_color(u_color, u_tip_color, hair_color);
     // The strand's shade is sRGB like the shells' fur texture: decoded (linear light).

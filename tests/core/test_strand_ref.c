@@ -167,9 +167,55 @@ static void wet_hairs_follow_their_tuft(void)
     pelt_mesh_destroy(m);
 }
 
+/* The shells light a hair at its layer's height in the fur, h of the full
+ * length (Silva Eq. 6's gamma darkens the lower part of the fur), and a
+ * short hair's tip lies in a low layer. So each hair carries its length
+ * of the full height, and a point's height in the fur is its fraction
+ * along the hair times that: on straight fur standing upright, the tip's
+ * height over the skin is that length times the fur's within 1%. The
+ * hairs' lengths vary (0.6 to 1), so a reference that lit the tip of
+ * every hair as the top of the fur fails. */
+static void hairs_carry_their_height_in_the_fur(void)
+{
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_square(1.0f, 4, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt_fur *fur = curly_square(m, NULL);
+    CHECK(fur != NULL);
+    if (!fur) {
+        pelt_mesh_destroy(m);
+        return;
+    }
+    const unsigned segments = PELT__STRAND_SEGMENTS_MIN;
+    size_t n = 0;
+    float *out = build_hairs(fur, segments, &n);
+    const size_t stride = 4 * (size_t)PELT__STRAND_TEXELS(segments);
+    double worst = 0.0, shortest = 1.0, longest = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        const float *h = out + i * stride;
+        const float *tip = h + 8 * segments, *e = h + 8 * (segments + 1);
+        pelt_vec3 rise = v3(tip[0] - h[0], tip[1] - h[1], tip[2] - h[2]);
+        double height = v3_dot(rise, v3(e[0], e[1], e[2])) / 0.3; /* curly_square's length */
+        double length = e[5];
+        CHECK(tip[7] == 1.0f); /* the tip is the end of the hair */
+        worst = fmax(worst, fabs(height - tip[7] * length));
+        shortest = fmin(shortest, length);
+        longest = fmax(longest, length);
+    }
+    fprintf(stderr, "  %zu hairs, lengths %.3f..%.3f of the fur's; worst |tip height - length| %.2g\n", n,
+            shortest, longest, worst);
+    CHECK(n > 100);
+    CHECK(shortest < 0.7 && longest > 0.9);
+    CHECK(worst < 0.01);
+    free(out);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
+}
+
 int main(void)
 {
     RUN(curly_hairs_get_enough_pieces_to_stay_round);
     RUN(wet_hairs_follow_their_tuft);
+    RUN(hairs_carry_their_height_in_the_fur);
     return check_summary();
 }
