@@ -49,6 +49,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     sp->instance_base = glGetUniformLocation(sp->program, "u_instance_base");
     sp->no_inter_shadow = glGetUniformLocation(sp->program, "u_no_inter_shadow");
     sp->sub_shells = glGetUniformLocation(sp->program, "u_sub_shells");
+    sp->no_overcount = glGetUniformLocation(sp->program, "u_no_overcount");
     return PELT_OK;
 }
 
@@ -112,6 +113,7 @@ static void use_program(const pelt__shell_program *sp, const pelt__pass_frame *f
     glUniform1f(sp->instance_base, 0.0f);
     glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
     glUniform1f(sp->sub_shells, 1.0f);
+    glUniform1i(sp->no_overcount, f->draw->debug.no_overcount ? 1 : 0);
 }
 
 /* draw_instanced with sp and the shell pass's uniforms. */

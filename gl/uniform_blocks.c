@@ -52,6 +52,8 @@ OFFSET(pelt__fur_block, strand_curl_radius, 148);
 OFFSET(pelt__fur_block, strand_curl_omega, 152);
 OFFSET(pelt__fur_block, strand_curl_wave, 156);
 OFFSET(pelt__fur_block, clump_lean, 160);
+OFFSET(pelt__fur_block, hair_width, 164);
+OFFSET(pelt__fur_block, taper, 168);
 _Static_assert(sizeof(pelt__fur_block) == 176, "std140 size of pelt_fur_block");
 #undef OFFSET
 
@@ -141,6 +143,11 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     k.strand_curl_omega = 6.2831853f * d.look.strand_curl_turns;
     k.strand_curl_wave = d.look.strand_curl_shape == PELT_STRAND_CURL_WAVE ? 1.0f : 0.0f;
     k.clump_lean = fs->clump_lean; /* 0 but for natural clumps */
+    /* The hair's width at the root in world units: two radii of texels a
+     * tile's texture_size to tiling's world unit (the shells' over-count). */
+    float texels_per_unit = (float)d.look.texture_size * d.look.tiling;
+    k.hair_width = texels_per_unit > 0.0f ? 2.0f * d.look.strand_radius / texels_per_unit : 0.0f;
+    k.taper = d.look.taper;
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

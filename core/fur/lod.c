@@ -411,6 +411,33 @@ void pelt__lod_fur_edge(float rgba[4], float gain)
     for (int k = 0; k < 4; k++) rgba[k] *= scale;
 }
 
+float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift)
+{
+    float c = fminf(fmaxf(fabsf(cos_view), 1e-3f), 1.0f);
+    float tan_view = sqrtf(fmaxf(1.0f - c * c, 0.0f)) / c;
+    float k = width_over_spacing / fmaxf(sqrtf(tan_view * tan_view + drift * drift), 1e-3f);
+    return fminf(fmaxf(k, 1.0f), PELT__SHELL_OVERCOUNT_MAX);
+}
+
+float pelt__lod_shell_overcount_alpha(float a, float k)
+{
+    return 1.0f - powf(fmaxf(1.0f - a, 0.0f), 1.0f / fmaxf(k, 1.0f));
+}
+
+float pelt__lod_shell_hair_span(float width, float taper, float h, float layers, float length)
+{
+    return width * (1.0f - taper * fminf(fmaxf(h, 0.0f), 1.0f)) * layers / fmaxf(length, 1e-6f);
+}
+
+float pelt__lod_shell_hair_drift(float ringlet, float omega, float h, float length, float curl_radius,
+                                 float curl_omega)
+{
+    /* d/dh of the helix k h (cos, sin)(omega h + psi) has length
+     * k sqrt(1 + omega^2 h^2); over the spacing length / N per layer. */
+    float ring = ringlet * sqrtf(1.0f + omega * omega * h * h) / fmaxf(length, 1e-6f);
+    return ring + fabsf(curl_radius * curl_omega);
+}
+
 void pelt__lod_view_texel(float w, float rgba[4])
 {
     float gain = 1.0f + w * (1.0f - rgba[3]);

@@ -163,6 +163,41 @@ float pelt__lod_fur_edge_gain(const float dx[2], const float dy[2], float texels
  * 1 leaves it as it is. Mirrors fur_edge() in shell_lod.glsl. */
 void pelt__lod_fur_edge(float rgba[4], float gain);
 
+/* The shells count a hair's edge more than once: a ray of sight that
+ * runs along a hair crosses it in k consecutive shells, and each shell
+ * holds the same cross-section, so a texel of coverage a composites to
+ * 1 - (1 - a)^k where the hair covers a. k is the hair's width over the
+ * distance the ray moves sideways, relative to the hair, from one shell
+ * to the next: the layer spacing times tan of the angle between the ray
+ * and the hair (cos_view = |T.V|), plus the hair's own drift per spacing
+ * (its curl in the fur texture, its ringlet), in quadrature. width_over_
+ * spacing is the hair's width over the layer spacing. Between 1 and
+ * PELT__SHELL_OVERCOUNT_MAX: past a few shells the texture's hairs lean
+ * and bend off the ray, which then meets other hairs (docs/reference.md,
+ * The shells count a hair's edge once). Mirrors shell_overcount() in
+ * gl/shaders/shell_lod.glsl. */
+#define PELT__SHELL_OVERCOUNT_MAX 3.0f
+float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift);
+
+/* A shell's coverage when k shells show the same hair: 1 - (1 - a)^(1/k),
+ * so that the k composite to a. Mirrors shell_overcount_alpha(). */
+float pelt__lod_shell_overcount_alpha(float a, float k);
+
+/* The hair's width over the layer spacing at height h: its root width
+ * `width` (world units) tapered by `taper` towards the tip (h standing in
+ * for the share of its length), over the spacing length / layers. Mirrors
+ * shell_hair_span(). */
+float pelt__lod_shell_hair_span(float width, float taper, float h, float layers, float length);
+
+/* How far a hair drifts sideways from one shell to the next, per layer
+ * spacing: a ringlet of radius ringlet (world units at the tip, 0 for
+ * none; Silva's Eq. 4 helix, omega its frequency) at height h of hair
+ * `length`, and the fur texture's own curl, its radius over the fur's
+ * length times its angular frequency (0 for none). Mirrors
+ * shell_hair_drift(). */
+float pelt__lod_shell_hair_drift(float ringlet, float omega, float h, float length, float curl_radius,
+                                 float curl_omega);
+
 /* An even shell's premultiplied texel under weight w: over itself,
  * rgba (1 + w (1 - a)). Mirrors shell_view_texel() (shell_lod.glsl). */
 void pelt__lod_view_texel(float w, float rgba[4]);

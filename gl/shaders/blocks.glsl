@@ -54,4 +54,6 @@ layout(std140) uniform pelt_fur_block {
     float u_strand_curl_omega;  // fur's length (0: none), 2 pi turns, and
     float u_strand_curl_wave;   // 1 for a wave along u, 0 for a helix
     float u_clump_lean;         // a tuft's lean at its tip, share of its radius (clump_lean)
+    float u_hair_width;         // the hair's width at the root, world units (shell_overcount)
+    float u_taper;              // its taper towards the tip
 };

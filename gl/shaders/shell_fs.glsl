@@ -13,6 +13,7 @@ flat in vec3 v_slices;
 in float v_alpha;
 in float v_view;
 in float v_aniso;
+in float v_overcount; // shells a ray crosses inside one hair (shell_vs.glsl)
 #if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
 in vec2 v_light;    // a tuft's or ringlet's own light (shell_vs.glsl)
 #endif
@@ -194,6 +195,7 @@ void main()
         if (u_inter_shadow <= 0.0 || u_no_inter_shadow != 0) discard;
         float caster = fur_edge(texture(u_fur, vec3(fur_uv + v_shadow_step, v_slices.x)), fur_gain).a * v_alpha;
         if (caster < 0.05) discard;
+        caster = shell_overcount_alpha(caster, v_overcount); // the caster is a hair as below
         o_color = vec4(0.0, 0.0, 0.0, layer_share(caster * u_inter_shadow));
         return;
 #else
@@ -215,6 +217,7 @@ void main()
 #elif defined(PELT_RINGLETS)
     shell_ringlet_light(hair.b, rho, base, spec);
 #endif
-    o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), layer_share(hair.a));
+    float alpha = layer_share(shell_overcount_alpha(hair.a, v_overcount));
+    o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), alpha);
 #endif
 }

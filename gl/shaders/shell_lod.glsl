@@ -95,3 +95,35 @@ float shell_instance(float i, vec4 shells, vec2 next, float N, out vec3 slices, 
     alpha = kept ? 1.0 : 1.0 - shells.w;
     return N - 1.0 - j * shells.y;
 }
+
+// pelt__lod_shell_overcount (core/fur/lod.c): how many consecutive shells
+// a ray of sight crosses inside one hair, from the hair's width over the
+// layer spacing, |T.V| and the hair's own drift per spacing; 1 .. 3.
+const float SHELL_OVERCOUNT_MAX = 3.0; // PELT__SHELL_OVERCOUNT_MAX
+float shell_overcount(float width_over_spacing, float cos_view, float drift)
+{
+    float c = clamp(abs(cos_view), 1e-3, 1.0);
+    float tan_view = sqrt(max(1.0 - c * c, 0.0)) / c;
+    float k = width_over_spacing / max(sqrt(tan_view * tan_view + drift * drift), 1e-3);
+    return clamp(k, 1.0, SHELL_OVERCOUNT_MAX);
+}
+
+// pelt__lod_shell_overcount_alpha: a shell's share when k show the hair.
+float shell_overcount_alpha(float a, float k)
+{
+    return 1.0 - pow(max(1.0 - a, 0.0), 1.0 / max(k, 1.0));
+}
+
+// pelt__lod_shell_hair_span: the hair's width over the layer spacing at h.
+float shell_hair_span(float width, float taper, float h, float layers, float length)
+{
+    return width * (1.0 - taper * clamp(h, 0.0, 1.0)) * layers / max(length, 1e-6);
+}
+
+// pelt__lod_shell_hair_drift: how far a hair drifts sideways per layer
+// spacing, its ringlet's and the fur texture's own curl.
+float shell_hair_drift(float ringlet, float omega, float h, float length, float curl_radius, float curl_omega)
+{
+    float ring = ringlet * sqrt(1.0 + omega * omega * h * h) / max(length, 1e-6);
+    return ring + abs(curl_radius * curl_omega);
+}

@@ -68,6 +68,8 @@ out float v_alpha;      // the shell's opacity: fades as its level leaves, and
                         // where the view's budget leaves it out (face-on)
 out float v_view;       // the view's budget: how far an even shell stands for two
 out float v_aniso;      // fur_texture_aniso: texels of the footprint's long side to a pixel
+out float v_overcount;  // shell_overcount: shells a ray of sight crosses inside one hair
+uniform int u_no_overcount; // pelt_draw_desc.debug.no_overcount: each shell whole
 #ifdef PELT_LIGHT_PASS
 out float v_light_depth; // the light pass (gl/shadow_pass.c): depth from the light
 #endif
@@ -128,6 +130,14 @@ void main()
                 + fur_comb(shear, L, 1.0, h);
     vec3 t = fur_tangent_combed(n, L, tip, u, v, shear, u_curl_frequency, K, rho, 1.0, h);
     vec4 world = u_model * vec4(position + offset, 1.0);
+    // Seen along its length, a hair shows in several shells: each takes
+    // its share (docs/reference.md, The shells count a hair's edge once).
+    // Water takes the ringlet out.
+    float drift = shell_hair_drift((1.0 - rho) * u_ringlet_radius, u_curl_frequency, h, L, u_strand_curl_radius,
+                                   u_strand_curl_omega);
+    v_overcount = u_no_overcount != 0 ? 1.0
+                : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
+                                  dot(normalize(mat3(u_model) * t), normalize(u_eye - world.xyz)), drift);
     vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS
     // Drawn from the light into its opacity slices: no lighting.

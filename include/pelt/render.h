@@ -76,6 +76,11 @@ typedef struct pelt_draw_debug {
     /* Draw each wet layer once, even where tufts gather their hairs (no
        sub shells, docs/wetness.md), for measuring what they buy. */
     bool no_sub_shells;
+    /* Composite every shell's coverage whole, as if each held other hairs,
+       where a ray of sight that runs along a hair crosses it in several
+       shells (docs/reference.md), for measuring what each shell's share
+       changes. */
+    bool no_overcount;
     /* Skip the light's shadow maps this frame, as if they were off
        (pelt_renderer_set_shadows turns them on). */
     bool no_shadows;

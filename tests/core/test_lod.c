@@ -224,6 +224,43 @@ static void lod_fur_edge_keeps_a_hair_its_width(void)
     CHECK_NEAR(hair_width_seen(r, 1.0f, 8, true), hair_width_seen(r, 1.0f, 8, false), 1e-4); /* a pixel a texel */
 }
 
+/* The shells' over-count of a hair seen along its length: a ray that
+ * runs along a hair crosses it in k shells, each drawing its share so
+ * that together they draw it once. Seen from the side (the ray across the
+ * hair) every shell shows another part of the scene: 1. Along the hair,
+ * as many as its width spans layer spacings, up to the cap; fewer as the
+ * view tilts off the hair, and fewer the more the hair drifts from shell
+ * to shell (a curl). */
+static void lod_shell_overcount_counts_a_hair_once(void)
+{
+    float span = pelt__lod_shell_hair_span(0.004f, 0.8f, 0.0f, 32.0f, 0.08f); /* 1.6 spacings at the root */
+    CHECK_NEAR(span, 1.6f, 1e-5);
+    CHECK_NEAR(pelt__lod_shell_hair_span(0.004f, 0.8f, 1.0f, 32.0f, 0.08f), 0.2f * 1.6f, 1e-5); /* tapered */
+    CHECK(pelt__lod_shell_overcount(span, 0.0f, 0.0f) == 1.0f);  /* side-on */
+    CHECK_NEAR(pelt__lod_shell_overcount(span, 1.0f, 0.0f), PELT__SHELL_OVERCOUNT_MAX, 1e-6); /* along it: capped */
+    float prev = PELT__SHELL_OVERCOUNT_MAX + 1.0f;
+    for (int i = 0; i <= 10; i++) { /* tilting off the hair: fewer */
+        float k = pelt__lod_shell_overcount(4.0f, cosf(0.15f * (float)i), 0.0f);
+        CHECK(k <= prev && k >= 1.0f && k <= PELT__SHELL_OVERCOUNT_MAX);
+        prev = k;
+    }
+    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f) < PELT__SHELL_OVERCOUNT_MAX); /* between the bounds */
+    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f) > 1.0f);
+    /* A curl carries the hair off the ray: many small curls leave one shell. */
+    float drift = pelt__lod_shell_hair_drift(0.0f, 0.0f, 0.5f, 0.15f, 0.5f, 6.2831853f * 4.0f);
+    CHECK(pelt__lod_shell_overcount(span, 1.0f, drift) == 1.0f);
+    CHECK(pelt__lod_shell_hair_drift(0.0f, 30.0f, 0.5f, 0.1f, 0.0f, 0.0f) == 0.0f); /* straight hair */
+    CHECK(pelt__lod_shell_hair_drift(0.01f, 30.0f, 0.8f, 0.1f, 0.0f, 0.0f) >
+          pelt__lod_shell_hair_drift(0.01f, 30.0f, 0.2f, 0.1f, 0.0f, 0.0f)); /* the helix widens */
+    /* The k shells' shares composite to the hair's coverage. */
+    for (int i = 0; i <= 10; i++) {
+        float a = 0.1f * (float)i, k = 2.5f, share = pelt__lod_shell_overcount_alpha(a, k);
+        CHECK_NEAR(1.0f - powf(1.0f - share, k), a, 1e-5);
+        CHECK(share <= a + 1e-6f);
+    }
+    CHECK_NEAR(pelt__lod_shell_overcount_alpha(0.6f, 1.0f), 0.6f, 1e-6);
+}
+
 /* The view's budget: edge-on every shell, face-on half of them; the
  * weight grows as the fur turns towards the eye. An even shell's texel at
  * weight 1 is the texel composited over itself (what it stands for). */
@@ -441,5 +478,6 @@ int main(void)
     RUN(lod_fin_rows_follow_the_strands_bow);
     RUN(lod_fur_texture_keeps_the_short_side_sharp);
     RUN(lod_fur_edge_keeps_a_hair_its_width);
+    RUN(lod_shell_overcount_counts_a_hair_once);
     return check_summary();
 }

@@ -720,6 +720,47 @@ static void shell_view_blend_glsl_matches_c(void)
     CHECK(worst < 1e-4);
 }
 
+/* The shells' over-count of a hair seen along its length (shell_lod.glsl)
+ * against pelt__lod_shell_overcount and its companions: widths, angles and
+ * drifts over the grid, and the share of coverage each shell takes. */
+static void shell_overcount_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy);\n"
+        "  float h = c.x / 63.0, cosv = -1.0 + 2.0 * c.y / 47.0;\n"
+        "  float span = shell_hair_span(0.01 + 0.001 * mod(c.y, 7.0), 0.8, h, 32.0, 0.05 + 0.01 * mod(c.x, 5.0));\n"
+        "  float drift = shell_hair_drift(0.02 * mod(c.x, 3.0), 30.0, h, 0.1, 0.01 * mod(c.y, 4.0), 12.0);\n"
+        "  float k = shell_overcount(span, cosv, drift);\n"
+        "  o = vec4(span, drift, k, shell_overcount_alpha(fract(0.37 * c.x + 0.11 * c.y), k));\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int counted = 0, capped = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float h = (float)x / 63.0f, cosv = -1.0f + 2.0f * (float)y / 47.0f;
+            float span = pelt__lod_shell_hair_span(0.01f + 0.001f * fmodf((float)y, 7.0f), 0.8f, h, 32.0f,
+                                                   0.05f + 0.01f * fmodf((float)x, 5.0f));
+            float drift = pelt__lod_shell_hair_drift(0.02f * fmodf((float)x, 3.0f), 30.0f, h, 0.1f,
+                                                     0.01f * fmodf((float)y, 4.0f), 12.0f);
+            float k = pelt__lod_shell_overcount(span, cosv, drift);
+            float a = 0.37f * (float)x + 0.11f * (float)y;
+            a -= floorf(a);
+            float r[4] = {span, drift, k, pelt__lod_shell_overcount_alpha(a, k)};
+            const float *g = out + 4 * (y * W + x);
+            for (int j = 0; j < 4; j++) worst = fmax(worst, fabs(g[j] - r[j]) / fmax(1.0, fabs(r[j])));
+            counted += k > 1.01f && k < PELT__SHELL_OVERCOUNT_MAX - 0.01f;
+            capped += k >= PELT__SHELL_OVERCOUNT_MAX;
+        }
+    printf("  worst |GLSL - C| = %.3g (relative above 1), %d between the bounds, %d at the cap\n", worst, counted,
+           capped);
+    CHECK(counted > 100 && capped > 100);
+    CHECK(worst < 2e-4);
+}
+
 /* Footprints of a fur-uv read (tiles per pixel along x and along y) for
  * the pixel (x, y) of a parity picture: 2^(lo + span x / 63) texels of a
  * 256-texel tile along a direction turning with y, and 1 to 1/16 of that
@@ -991,6 +1032,7 @@ int main(void)
     RUN(shell_view_blend_glsl_matches_c);
     RUN(fur_texture_lod_glsl_matches_c);
     RUN(fur_edge_glsl_matches_c);
+    RUN(shell_overcount_glsl_matches_c);
     RUN(lengyel_table_lookup_matches_the_formula);
     RUN(hair_model_glsl_matches_c);
     RUN(display_glsl_matches_c);
