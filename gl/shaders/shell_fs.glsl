@@ -116,6 +116,19 @@ void shell_ringlet_light(float id, float rho, inout vec3 base, inout float spec)
 }
 #endif
 
+#if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
+// The id of the hair this pixel shows, read at the fur texture's finest
+// level (docs/method.md, Ringlets): where the coverage is read coarser,
+// its id is the mean of several hairs', a phase none of them has. The
+// full curl's slice: water, which reads other levels, takes the ringlet
+// out. `id` (the coverage read's) where the finest level has no hair.
+float sharp_id(vec2 fur_uv, float id)
+{
+    vec4 h0 = textureLod(u_fur, vec3(fur_uv, v_slices.x), 0.0);
+    return h0.a > 0.05 ? h0.b / h0.a : id;
+}
+#endif
+
 // The shell pass builds this shader in variants (gl/shell_pass.c): each
 // PELT_* feature below is compiled in only when the frame needs it, so the
 // dry, unshadowed common case pays for none of it. The generic program
@@ -212,10 +225,10 @@ void main()
 #ifdef PELT_WET
     if (clump == CLUMP_DISPLACED) tuft_light(t.xy + lean - q, rho, base, spec);
 #ifdef PELT_RINGLETS
-    else shell_ringlet_light(hair.b, rho, base, spec);
+    else shell_ringlet_light(sharp_id(fur_uv, hair.b), rho, base, spec);
 #endif
 #elif defined(PELT_RINGLETS)
-    shell_ringlet_light(hair.b, rho, base, spec);
+    shell_ringlet_light(sharp_id(fur_uv, hair.b), rho, base, spec);
 #endif
     float alpha = layer_share(shell_overcount_alpha(hair.a, v_overcount));
     o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), alpha);
