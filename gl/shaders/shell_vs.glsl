@@ -130,6 +130,7 @@ void main()
                 + fur_comb(shear, L, 1.0, h);
     vec3 t = fur_tangent_combed(n, L, tip, u, v, shear, u_curl_frequency, K, rho, 1.0, h);
     vec4 world = u_model * vec4(position + offset, 1.0);
+    vec3 world_t = normalize(mat3(u_model) * t); // the hair's unit tangent, world
     // Seen along its length, a hair shows in several shells: each takes
     // its share (docs/reference.md, The shells count a hair's edge once).
     // Water takes the ringlet out.
@@ -137,7 +138,7 @@ void main()
                                    u_strand_curl_omega);
     v_overcount = u_no_overcount != 0 ? 1.0
                 : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
-                                  dot(normalize(mat3(u_model) * t), normalize(u_eye - world.xyz)), drift);
+                                  dot(world_t, normalize(u_eye - world.xyz)), drift);
     vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS
     // Drawn from the light into its opacity slices: no lighting.
@@ -150,7 +151,7 @@ void main()
     v_light = fur_light_reach.xz; // the reach the free hair was just lit with
 #endif
 #ifdef PELT_RINGLETS
-    vec3 ring_t = normalize(mat3(u_model) * t), ring_u = normalize(mat3(u_model) * u);
+    vec3 ring_t = world_t, ring_u = normalize(mat3(u_model) * u);
     vec3 ring_v = normalize(mat3(u_model) * v);
     ringlet_frame_dots(ring_t, ring_u, ring_v, normalize(u_light_dir), normalize(world.xyz - u_eye), v_ring_l,
                        v_ring_e, v_ring_g);
@@ -159,7 +160,7 @@ void main()
 #ifdef PELT_WET
     // The mask's uv runs along the fur uv, which tiles u_fur_per_uv tiles
     // per uv unit and u_tiling per world unit along the tangent frame.
-    v_hair_t = normalize(mat3(u_model) * t);
+    v_hair_t = world_t;
     vec2 world_per_uv = u_fur_per_uv / (u_tiling * max(L, 1e-6));
     v_tuft_u = mat3(u_model) * u * world_per_uv.x;
     v_tuft_v = mat3(u_model) * v * world_per_uv.y;

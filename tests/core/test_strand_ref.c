@@ -28,6 +28,22 @@ static pelt_fur *curly_square(const pelt_mesh *m, const char *preset)
     return fur;
 }
 
+/* Straight fur (curly_square's) on a unit square of 4 x 4 cells: the fur,
+ * with the mesh in *m, or NULL with nothing left to free. */
+static pelt_fur *straight_square(pelt_mesh **m)
+{
+    *m = NULL;
+    CHECK(pelt_mesh_square(1.0f, 4, m, NULL) == PELT_OK);
+    if (!*m) return NULL;
+    pelt_fur *fur = curly_square(*m, NULL);
+    CHECK(fur != NULL);
+    if (!fur) {
+        pelt_mesh_destroy(*m);
+        *m = NULL;
+    }
+    return fur;
+}
+
 /* The hairs' polylines with `segments` pieces (PELT__STRAND_TEXELS each). */
 static float *build_hairs(const pelt_fur *fur, unsigned segments, size_t *hairs)
 {
@@ -140,14 +156,8 @@ static double wet_hair_turn(const pelt_fur *fur, unsigned segments, size_t *wet_
 static void wet_hairs_follow_their_tuft(void)
 {
     pelt_mesh *m = NULL;
-    CHECK(pelt_mesh_square(1.0f, 4, &m, NULL) == PELT_OK);
-    if (!m) return;
-    pelt_fur *fur = curly_square(m, NULL);
-    CHECK(fur != NULL);
-    if (!fur) {
-        pelt_mesh_destroy(m);
-        return;
-    }
+    pelt_fur *fur = straight_square(&m);
+    if (!fur) return;
     const pelt_droplet drop = {{0.5f, 0.5f}, 0.2f, 1.0f};
     pelt_error err;
     CHECK(pelt_fur_add_droplet(fur, &drop, &err) == PELT_OK);
@@ -178,14 +188,8 @@ static void wet_hairs_follow_their_tuft(void)
 static void hairs_carry_their_height_in_the_fur(void)
 {
     pelt_mesh *m = NULL;
-    CHECK(pelt_mesh_square(1.0f, 4, &m, NULL) == PELT_OK);
-    if (!m) return;
-    pelt_fur *fur = curly_square(m, NULL);
-    CHECK(fur != NULL);
-    if (!fur) {
-        pelt_mesh_destroy(m);
-        return;
-    }
+    pelt_fur *fur = straight_square(&m);
+    if (!fur) return;
     const unsigned segments = PELT__STRAND_SEGMENTS_MIN;
     size_t n = 0;
     float *out = build_hairs(fur, segments, &n);
