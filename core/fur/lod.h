@@ -127,6 +127,22 @@ bool pelt__lod_back_hidden(float n_dot_v, float reach);
 #define PELT__FUR_TEXTURE_ANISO 2.0f
 float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso);
 
+/* The level the shells read at: pelt__lod_fur_texture's, half a level
+ * finer where the footprint is round. That level makes a texel the pixel's
+ * side, and a trilinear read there filters with a tent two texels wide,
+ * blended into the next level's: wider than the pixel's own box, the
+ * filter the strand reference's supersampling applies, so the shells came
+ * out softer than the hairs they stand for. The sharpening falls linearly
+ * to none where the footprint is twice as long as wide: fur seen at a
+ * grazing angle is already read finer than the pixel across it (max_aniso),
+ * and sharper still its layers' rows cross-hatch the rim and crawl as it
+ * moves. The fins keep the footprint's level: sharper, their sparse hair
+ * drops out of the outline seen from afar (docs/reference.md, The fur
+ * texture read half a level sharper). Mirrors shell_fur_texture_lod() and
+ * FUR_TEXTURE_SHARPEN in shell_lod.glsl. */
+#define PELT__FUR_TEXTURE_SHARPEN 0.5f
+float pelt__lod_shell_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso);
+
 /* The fins read their texture the same way (derivatives in texels, texels
  * 1): a fin is one quad, whose hair is foreshortened up the fin, and has no
  * rows to turn into stripes. Their max_aniso is PELT__FIN_TEXTURE_ANISO

@@ -60,7 +60,7 @@ layout(location = 1) out vec4 o_slices1;
 out vec4 o_color;
 #endif
 
-// The fur texture's mip level for this fragment (fur_texture_lod) and the
+// The fur texture's mip level for this fragment (shell_fur_texture_lod) and the
 // gain on its hairs' edges (fur_edge_gain): set first in main, from the fur
 // uv's screen derivatives, before any discard.
 float fur_lod = 0.0;
@@ -135,11 +135,12 @@ float sharp_id(vec2 fur_uv, float id)
 // defines them all.
 void main()
 {
-    // Sharp across the view where the fur is seen at a grazing angle
-    // (docs/shading.md, The fur texture's filtering).
+    // Sharp across the view where the fur is seen at a grazing angle, and
+    // half a level finer where the footprint is round (docs/shading.md, The fur
+    // texture's filtering).
     vec2 fur_dx = dFdx(v_fur_uv), fur_dy = dFdy(v_fur_uv);
     float texels = float(textureSize(u_fur, 0).x);
-    fur_lod = fur_texture_lod(fur_dx, fur_dy, texels, v_aniso);
+    fur_lod = shell_fur_texture_lod(fur_dx, fur_dy, texels, v_aniso);
     // Seen close, where a texel spans pixels, a hair keeps its own width
     // and a pixel-wide edge (docs/shading.md, The hair's edge seen close).
     fur_gain = fur_edge_gain(fur_dx, fur_dy, texels);

@@ -138,6 +138,22 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
     const float tiny[2] = {0.25f * texel, 0.0f}, none[2] = {0.0f, 0.0f};
     CHECK_NEAR(pelt__lod_fur_texture(tiny, tiny, tile, k), -2.0f, 1e-5); /* magnified */
     CHECK(isfinite(pelt__lod_fur_texture(none, none, tile, k)));
+    /* The shells read half a level finer where the footprint is round (a
+     * trilinear read's tent is two texels wide), less as it grows longer,
+     * and as it was from twice as long as wide: there the read is already
+     * finer than the pixel across it, and sharper its rows would crawl. */
+    CHECK(PELT__FUR_TEXTURE_SHARPEN > 0.0f && PELT__FUR_TEXTURE_SHARPEN < 1.0f);
+    CHECK_NEAR(pelt__lod_shell_fur_texture(round_x, round_y, tile, k), 0.5f, 1e-5);
+    CHECK_NEAR(pelt__lod_shell_fur_texture(round_x, round_y, tile, 1.0f), 0.5f, 1e-5); /* either max_aniso */
+    CHECK_NEAR(pelt__lod_shell_fur_texture(long_x, short_y, tile, k), 2.0f, 1e-5);
+    CHECK_NEAR(pelt__lod_shell_fur_texture(long_x, wide_y, tile, k), log2f(6.0f) - 0.5f * (2.0f - 8.0f / 6.0f), 1e-5);
+    float was = -1.0f; /* the level never falls as the footprint widens */
+    for (int i = 1; i <= 16; i++) {
+        const float w[2] = {0.0f, 0.5f * (float)i * texel};
+        float lod = pelt__lod_shell_fur_texture(long_x, w, tile, k);
+        CHECK(lod >= was - 1e-6f && lod <= pelt__lod_fur_texture(long_x, w, tile, k) + 1e-6f);
+        was = lod;
+    }
 
     CHECK(pelt__lod_fur_texture_aniso(0.3f, 0.0f) == k);          /* edge-on, 0.3 px apart */
     CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.0f) == 1.0f);       /* 2 px apart: rows */
