@@ -50,6 +50,7 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     }
     p->fin_count[features] = glGetUniformLocation(p->variants[features], "u_fin_count");
     p->fin_rows[features] = glGetUniformLocation(p->variants[features], "u_fin_rows");
+    p->fin_first[features] = glGetUniformLocation(p->variants[features], "u_fin_first");
     return PELT_OK;
 }
 
@@ -134,6 +135,24 @@ static void table_write(GLenum unit, GLuint t, GLenum internal, const void *texe
                         bytes + rows * PELT_TABLE_WIDTH * 16);
 }
 
+/* Fins [first, end) of the table with the variant of `features` (the
+ * generic one where that fails to build), in instances of PELT_FIN_CHUNK. */
+static void draw_fins(pelt__fin_pass *p, const pelt__pass_frame *f, unsigned features, size_t first, size_t end,
+                      unsigned rows)
+{
+    if (end <= first) return;
+    if (!p->variants[features] && !p->failed[features]) build(p, features, NULL);
+    if (!p->variants[features]) features = PELT__FIN_FEATURES;
+    glUseProgram(p->variants[features]);
+    glUniform1i(p->fin_first[features], (GLint)first);
+    glUniform1i(p->fin_count[features], (GLint)end);
+    glUniform1i(p->fin_rows[features], (GLint)rows);
+    const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
+    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
+                            (GLsizei)((end - first + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
+    f->stats->fin_draw_calls++;
+}
+
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
 {
     unsigned level = f->lod.full_mesh ? 0 : f->lod.mesh_level;
@@ -145,11 +164,18 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     pelt_vec3 local = v3(m[0] * fwd.x + m[1] * fwd.y + m[2] * fwd.z, m[4] * fwd.x + m[5] * fwd.y + m[6] * fwd.z,
                          m[8] * fwd.x + m[9] * fwd.y + m[10] * fwd.z);
     local = v3_norm_or(local, v3(0.0f, 0.0f, -1.0f));
-    /* Where the shells' back faces are culled and the skin is drawn, it hides the fins behind too. */
+    /* Where the shells' back faces are culled and the skin is drawn, it hides the fins behind too.
+     * Wet fins drawn apart from dry ones, as the shells are (gl/shell_pass.c):
+     * on the full mesh, whose vertices the wet split marks. */
+    const unsigned wet_bits = PELT__SHELL_WET;
+    const pelt__gpu_mesh *mesh = f->mesh;
+    bool split = (f->shell_features & wet_bits) && level == 0 && mesh->split_ok && !f->draw->debug.no_wet_split;
     pelt__fin_frame_desc fd = {level, PELT_FIN_ROWS, f->lod.fin_row_error, {local.x, local.y, local.z},
-                               f->draw->fins_unfaded, f->lod.cull && !f->draw->no_skin};
+                               f->draw->fins_unfaded, f->lod.cull && !f->draw->no_skin,
+                               split ? mesh->split.vertex_wet : NULL};
     unsigned rows;
-    size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices, &rows);
+    size_t dry = 0;
+    size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices, &rows, &dry);
     if (count == 0) return;
     table_write(PELT_UNIT_FIN_EDGES, p->edges, GL_RGBA32UI, p->fins, count);
     table_write(PELT_UNIT_FIN_VERTICES, p->vertex_table, GL_RGBA32F, p->vertices,
@@ -158,18 +184,15 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     pelt__gl_blended_hair_state();
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
     glBindTexture(GL_TEXTURE_2D_ARRAY, p->texture);
-    unsigned features = f->shell_features & PELT__FIN_FEATURES;
-    if (!p->variants[features] && !p->failed[features]) build(p, features, NULL);
-    if (!p->variants[features]) features = PELT__FIN_FEATURES;
-    glUseProgram(p->variants[features]);
-    glUniform1i(p->fin_count[features], (GLint)count);
-    glUniform1i(p->fin_rows[features], (GLint)rows);
     glBindVertexArray(p->vao);
-    const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
-    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
-                            (GLsizei)((count + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
+    unsigned features = f->shell_features & PELT__FIN_FEATURES;
+    if (split) {
+        draw_fins(p, f, features & ~wet_bits, 0, dry, rows);
+        draw_fins(p, f, features, dry, count, rows);
+    } else {
+        draw_fins(p, f, features, 0, count, rows);
+    }
     glBindVertexArray(f->mesh->vao);
-    f->stats->fin_draw_calls++;
     f->stats->fins += count;
     f->stats->fin_rows = rows;
     f->stats->triangles += count * 2 * rows;

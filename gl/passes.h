@@ -66,6 +66,7 @@ typedef struct pelt__fin_pass {
     bool failed[PELT__SHELL_VARIANTS];
     GLint fin_count[PELT__SHELL_VARIANTS]; /* u_fin_count */
     GLint fin_rows[PELT__SHELL_VARIANTS];  /* u_fin_rows */
+    GLint fin_first[PELT__SHELL_VARIANTS]; /* u_fin_first */
     pelt_hooks hooks;
     GLuint vao, ebo;    /* the chunk's triangles */
     GLuint texture;     /* the fin texture, PELT_UNIT_FIN */

@@ -67,7 +67,7 @@ static float strand_bow(const fin_strand *st)
 }
 
 size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d, uint32_t *fins, float *vertices,
-                               unsigned *rows)
+                               unsigned *rows, size_t *dry)
 {
     const pelt__lod_level *l = &f->lod.levels[d->level < f->lod.count ? d->level : 0];
     const pelt_mesh_data m = pelt_mesh_get_data(f->mesh);
@@ -77,7 +77,9 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
     /* The fins and their fade, max(0, 2|p| - 1) (pelt__fin_fade), fainter
      * where they stand closer than the fin texture's slab. */
     const float slab = f->desc.fins.density / (float)f->desc.look.texture_size;
-    size_t kept = 0;
+    /* Dry fins from the front of the table, wet ones from the back. */
+    size_t kept = 0, wet_kept = 0;
+    const uint8_t *vertex_wet = l == &f->lod.levels[0] ? d->vertex_wet : NULL;
     const float *pose = f->pose; /* a posed mesh: its own positions, normals, tangents */
     for (size_t i = 0; i < l->fin_count; i++) {
         pelt_vec3 fn = v3_load(l->fin_normals + 3 * i);
@@ -103,11 +105,24 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
             pelt_vec3 pb = v3_load(pose ? pose + 10 * b : m.positions + 3 * b);
             fade *= pelt__fin_spacing_opacity(v3_len(v3_sub(pb, pa)) * f->desc.look.tiling, slab);
         }
-        uint32_t *t = fins + 4 * kept++;
+        bool wet_ends = vertex_wet && (vertex_wet[l->fins[i].a] || vertex_wet[l->fins[i].b]);
+        uint32_t *t = wet_ends ? fins + 4 * (l->fin_count - ++wet_kept) : fins + 4 * kept++;
         t[0] = l->fin_ends[2 * i], t[1] = l->fin_ends[2 * i + 1];
         memcpy(&t[2], &l->fins[i].start, sizeof t[2]);
         memcpy(&t[3], &fade, sizeof t[3]);
     }
+    /* The wet ones after the dry, in the order they came (written from the
+     * back, they stand reversed). */
+    *dry = kept;
+    if (wet_kept) memmove(fins + 4 * kept, fins + 4 * (l->fin_count - wet_kept), 4 * wet_kept * sizeof *fins);
+    for (size_t i = kept, j = kept + wet_kept; i + 1 < j; i++) { /* j: one past those left */
+        j--;
+        uint32_t t[4];
+        memcpy(t, fins + 4 * i, sizeof t);
+        memcpy(fins + 4 * i, fins + 4 * j, sizeof t);
+        memcpy(fins + 4 * j, t, sizeof t);
+    }
+    kept += wet_kept;
     if (kept == 0) return 0;
 
     /* The strands, as shell_vs.glsl displaces them: the fewest rows that

@@ -113,6 +113,10 @@ typedef struct pelt__fin_frame_desc {
        face away from the viewer (their normals' component along view_dir
        above PELT__FIN_BACK) are left out too. */
     bool hidden_back;
+    /* The full mesh's level only: per mesh vertex, 1 where a triangle at it
+       holds water (pelt__wet_split's vertex_wet), or NULL. The fins with
+       both ends dry come first in the table, then the others. */
+    const uint8_t *vertex_wet;
 } pelt__fin_frame_desc;
 
 /* How far past the silhouette a fin's ends may face away and still be
@@ -130,9 +134,10 @@ typedef struct pelt__fin_frame_desc {
  * (4 words each, room for the level's fin_count) and returns how many;
  * when any, writes all the level's fin vertices (fin_vertex_count of them)
  * into `vertices`, their strands at h = r / *rows for r = 0 .. *rows (the
- * rows chosen, see row_error). No allocation. */
+ * rows chosen, see row_error). *dry: how many of them come first with both
+ * ends dry (all of them without vertex_wet). No allocation. */
 size_t pelt__fur_gpu_fin_frame(const pelt_fur *fur, const pelt__fin_frame_desc *d, uint32_t *fins,
-                               float *vertices, unsigned *rows);
+                               float *vertices, unsigned *rows, size_t *dry);
 
 /* Lengyel et al.'s §2.4 hair lighting table for the fur's material
  * (core/fur/shading.h: pelt__lengyel_table): 32x32 texels of (diffuse,

@@ -25,7 +25,10 @@ bool pelt__wet_split_init(pelt__wet_split *s, const uint32_t *indices, size_t tr
     s->wet = pelt__alloc_zero(alloc, triangle_count ? triangle_count : 1, 1);
     s->indices = pelt__alloc(alloc, triangle_count * 3 * sizeof *s->indices);
     s->source = pelt__alloc(alloc, triangle_count * 3 * sizeof *s->source);
-    if ((triangle_count && (!s->box || !s->indices || !s->source)) || !s->wet) {
+    for (size_t i = 0; i < 3 * triangle_count; i++)
+        if (indices[i] >= s->vertex_count) s->vertex_count = (size_t)indices[i] + 1;
+    s->vertex_wet = pelt__alloc_zero(alloc, s->vertex_count ? s->vertex_count : 1, 1);
+    if ((triangle_count && (!s->box || !s->indices || !s->source)) || !s->wet || !s->vertex_wet) {
         pelt__wet_split_free(s);
         return false;
     }
@@ -62,6 +65,7 @@ void pelt__wet_split_free(pelt__wet_split *s)
     pelt__free(&s->alloc, s->wet);
     pelt__free(&s->alloc, s->indices);
     pelt__free(&s->alloc, s->source);
+    pelt__free(&s->alloc, s->vertex_wet);
     memset(s, 0, sizeof *s);
 }
 
@@ -91,9 +95,12 @@ bool pelt__wet_split_update(pelt__wet_split *s, const float *texels, const unsig
     if (!changed) return false;
     /* Dry triangles from the front, wet ones from the back: one pass. */
     size_t front = 0, back = s->triangle_count;
+    memset(s->vertex_wet, 0, s->vertex_count);
     for (size_t t = 0; t < s->triangle_count; t++) {
         size_t at = s->wet[t] ? --back : front++;
         memcpy(s->indices + 3 * at, s->source + 3 * t, 3 * sizeof *s->indices);
+        if (s->wet[t])
+            for (int k = 0; k < 3; k++) s->vertex_wet[s->source[3 * t + k]] = 1;
     }
     s->dry_count = front;
     return true;

@@ -21,6 +21,10 @@ typedef struct pelt__wet_split {
     uint8_t *wet;            /* per triangle: 1 when its box holds water */
     uint32_t *indices;       /* the triangles again, the dry ones first */
     size_t dry_count;        /* triangles in indices before the wet ones */
+    uint8_t *vertex_wet;     /* per vertex: 1 when a triangle at it is wet, so
+                                the fins know theirs (a fin's edge lies in the
+                                box of every triangle it borders) */
+    size_t vertex_count;     /* the highest index in the triangles, plus 1 */
     unsigned mask_width, mask_height;
 } pelt__wet_split;
 
@@ -33,8 +37,8 @@ void pelt__wet_split_free(pelt__wet_split *s);
 
 /* Looks again at the triangles whose box meets rect (texels {x0, y0, x1,
  * y1}, x1 and y1 exclusive) in the mask's texels (4 floats each, rho in
- * the fourth) and, when a flag changed, partitions the indices anew.
- * True when the partition changed. */
+ * the fourth) and, when a flag changed, partitions the indices anew and
+ * marks the vertices again. True when the partition changed. */
 bool pelt__wet_split_update(pelt__wet_split *s, const float *texels, const unsigned rect[4]);
 
 #endif

@@ -9,7 +9,8 @@
 // comb and are groomed with the shells. The fade comes with the fin.
 uniform highp usampler2D u_fin_edges;  // PELT_UNIT_FIN_EDGES: ends, start and fade bits
 uniform highp sampler2D u_fin_vertices; // PELT_UNIT_FIN_VERTICES: PELT_FIN_VERTEX_TEXELS each
-uniform int u_fin_count;               // fins in the table this frame
+uniform int u_fin_first;               // this draw's first fin in the table
+uniform int u_fin_count;               // this draw's end in the table (wet fins follow dry ones)
 uniform int u_fin_rows;                // quads up a fin this frame, 1..PELT_FIN_ROWS
 uniform sampler2D u_mask;              // PELT_UNIT_MASK: wet fins shine like wet shells
 
@@ -48,7 +49,7 @@ vec4 fin_vertex(uint v, int k)
 void main()
 {
     int corners = 2 * (u_fin_rows + 1);
-    int fin = gl_InstanceID * PELT_FIN_CHUNK + gl_VertexID / corners;
+    int fin = u_fin_first + gl_InstanceID * PELT_FIN_CHUNK + gl_VertexID / corners;
     int corner = gl_VertexID % corners;
     if (fin >= u_fin_count) { // the last chunk's spare fins
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);

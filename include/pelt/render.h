@@ -123,7 +123,7 @@ typedef struct pelt_render_stats {
     unsigned sub_shells;       /* wet shells drawn beyond one a layer, where
                                   tufts gather their hairs (docs/wetness.md,
                                   Sub shells) */
-    unsigned fin_draw_calls;   /* 1 when fins were drawn: all in one instanced draw */
+    unsigned fin_draw_calls;   /* instanced fin draws: 1, or 2 where wet and dry fins are drawn apart */
     unsigned shadow_draw_calls; /* the light's maps: 2 (skin depth, all shells'
                                    opacity in one instanced draw), else 0 */
     unsigned ground_draw_calls; /* 1 when the ground was drawn */

@@ -390,7 +390,8 @@ static unsigned fin_rows_for(pelt_fur *fur, float row_error)
     float *verts = malloc(l->fin_vertex_count * 4 * PELT__FIN_VERTEX_TEXELS * sizeof *verts);
     pelt__fin_frame_desc fd = {0, 3, row_error, {0.0f, 0.0f, -1.0f}, false};
     unsigned rows = 0;
-    if (fins && verts && pelt__fur_gpu_fin_frame(fur, &fd, fins, verts, &rows) == 0) rows = 0;
+    size_t dry = 0;
+    if (fins && verts && pelt__fur_gpu_fin_frame(fur, &fd, fins, verts, &rows, &dry) == 0) rows = 0;
     free(fins);
     free(verts);
     return rows;
@@ -442,8 +443,9 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
     pelt_vec3 view = v3_norm_or(v3(0.3f, -0.4f, -1.0f), v3(0, 0, -1));
     pelt__fin_frame_desc fd = {0, 3, 0.0f, {view.x, view.y, view.z}, false};
     unsigned rows = 0;
-    size_t kept = fins && verts ? pelt__fur_gpu_fin_frame(fur, &fd, fins, verts, &rows) : 0;
+    size_t dry = 0, kept = fins && verts ? pelt__fur_gpu_fin_frame(fur, &fd, fins, verts, &rows, &dry) : 0;
     CHECK(kept == 0 || rows == 3); /* row_error 0: every row */
+    CHECK(dry == kept);            /* no vertex_wet: every fin counts as dry */
     const pelt_fur_desc fdesc = pelt_fur_get_desc(fur);
     const float slab = fdesc.fins.density / (float)fdesc.look.texture_size;
     size_t shown = 0, bad_fade = 0, bad_end = 0;
@@ -475,6 +477,28 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
         bad_tip += v3_len(v3_sub(v3_load(t + 8 * 3), v3_mad(p, n, 0.1f))) > 1e-5f;
     }
     CHECK(bad_root == 0 && bad_tip == 0);
+
+    /* Wet fins drawn apart: with the vertices of one side marked wet, the
+     * same fins come out, those with both ends dry first, each part in
+     * the order above. */
+    uint8_t *vertex_wet = calloc(d.vertex_count, 1);
+    uint32_t *split = malloc(l->fin_count * 4 * sizeof *split);
+    if (vertex_wet && split && kept) {
+        for (size_t v = 0; v < d.vertex_count; v++) vertex_wet[v] = d.positions[3 * v] > 0.3f;
+        fd.vertex_wet = vertex_wet;
+        size_t split_dry = 0, split_kept = pelt__fur_gpu_fin_frame(fur, &fd, split, verts, &rows, &split_dry);
+        CHECK(split_kept == kept && split_dry > 0 && split_dry < kept);
+        size_t at_dry = 0, at_wet = split_dry, misplaced = 0;
+        for (size_t k = 0; k < kept; k++) {
+            bool wet = vertex_wet[l->fin_vertices[fins[4 * k]]] || vertex_wet[l->fin_vertices[fins[4 * k + 1]]];
+            size_t *at = wet ? &at_wet : &at_dry;
+            misplaced += memcmp(split + 4 * *at, fins + 4 * k, 4 * sizeof *fins) != 0;
+            (*at)++;
+        }
+        printf("  %zu of them dry, then %zu wet\n", split_dry, kept - split_dry);
+        CHECK(misplaced == 0 && at_dry == split_dry && at_wet == kept);
+    }
+    free(vertex_wet), free(split);
     free(fins), free(verts);
     pelt_fur_destroy(fur);
     pelt_mesh_destroy(m);

@@ -58,6 +58,16 @@ static void check_split(const pelt__wet_split *s, const pelt_mesh_data *m, const
             if (t < s->dry_count) part_dry += s->indices[3 * t + k];
         }
     CHECK(dry_sum == part_dry);
+    /* A vertex is wet exactly where a wet triangle has it (the fins' ends). */
+    CHECK(s->vertex_count == m->vertex_count);
+    size_t bad_vertex = 0;
+    for (size_t v = 0; v < m->vertex_count; v++) {
+        bool at_wet = false;
+        for (size_t t = 0; t < s->triangle_count; t++)
+            for (int k = 0; k < 3; k++) at_wet |= s->wet[t] && m->indices[3 * t + k] == v;
+        bad_vertex += s->vertex_wet[v] != at_wet;
+    }
+    CHECK(bad_vertex == 0);
     *wet_out = wet;
 }
 
@@ -101,6 +111,9 @@ static void split_follows_the_water(void)
         paint_disc(texels, 0.75f, 0.7f, 0.08f, 0.0f);
         CHECK(pelt__wet_split_update(&s, texels, all));
         CHECK(s.dry_count == s.triangle_count);
+        size_t still_wet = 0; /* dried, every vertex dry again */
+        for (size_t v = 0; v < s.vertex_count; v++) still_wet += s.vertex_wet[v];
+        CHECK(still_wet == 0);
     }
     pelt__wet_split_free(&s);
     free(texels);

@@ -158,7 +158,8 @@ static void wet_left_half(pelt_fur *fur, void *user)
 }
 
 /* Wet and dry drawn apart: a torus wet on one half draws its dry triangles
- * with the dry shader (two shell draws a shell, dry then wet) and the
+ * with the dry shader (two shell draws a shell, dry then wet), its fins
+ * with both ends dry with the dry fin shader (two fin draws), and the
  * picture is the one every triangle drawn wet gives, within mean 0.1 and
  * 0.2% of pixels off by more than 32: within a shell, triangles where the
  * two parts overlap on screen may blend in another order (two instanced
@@ -186,10 +187,12 @@ static void wet_and_dry_drawn_apart(void)
         pelt_headless_read_rgba8(gl, apart);
         pelt_render_stats st = pelt_renderer_get_stats(r);
         CHECK(st.shell_instances > 1 && st.shell_draw_calls == 2 * st.shell_instances);
+        CHECK(st.fin_draw_calls == 2); /* the fins too: dry, then wet */
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         pelt_renderer_draw(r, &v, &whole);
         pelt_headless_read_rgba8(gl, together);
         CHECK(pelt_renderer_get_stats(r).shell_draw_calls == 1);
+        CHECK(pelt_renderer_get_stats(r).fin_draw_calls == 1);
         double mean, frac;
         gl_test_compare(apart, together, (size_t)W * H, &mean, &frac);
         printf("  apart against together: mean %.3f, %.4f of pixels off by more than 32\n", mean, frac);
@@ -200,6 +203,7 @@ static void wet_and_dry_drawn_apart(void)
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
         pelt_renderer_draw(r, &v, &split);
         CHECK(pelt_renderer_get_stats(r).shell_draw_calls == 1);
+        CHECK(pelt_renderer_get_stats(r).fin_draw_calls == 1);
         for (float u = 0.6f; u < 0.95f; u += 0.05f) {
             pelt_droplet drop = {{u, 0.25f}, 0.05f, 1.0f};
             pelt_fur_add_droplet(fur, &drop, NULL);
@@ -785,8 +789,9 @@ static void renderer_allocates_through_its_hooks(void)
     CHECK(pelt_renderer_create(square, fur, &rd, &r, NULL) == PELT_OK);
     /* The renderer, the two interleaved vertex arrays (the pose's and the
      * rest's, freed before return), the staging of the fins a frame
-     * draws and of their vertices, and the wet split's four arrays. */
-    CHECK(counts.allocs == 9);
+     * draws and of their vertices, and the wet split's five arrays (its
+     * triangles' boxes, flags, indices twice, and its vertices' flags). */
+    CHECK(counts.allocs == 10);
     CHECK(counts.frees == 2);
     pelt_renderer_destroy(r);
     CHECK(counts.allocs == counts.frees);
