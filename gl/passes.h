@@ -94,6 +94,9 @@ typedef struct pelt__strands_pass {
     GLuint variants[PELT__STRAND_FEATURES + 1];
     GLint segments_uniform[PELT__STRAND_FEATURES + 1]; /* u_strand_segments of each */
     bool failed[PELT__STRAND_FEATURES + 1];
+    GLuint light_program; /* the hairs into the light's maps (PELT_LIGHT_PASS) */
+    GLint light_segments;
+    bool light_failed;
     GLuint buffer, texture; /* the hairs (RGBA32F buffer texture, PELT_UNIT_STRANDS) */
     pelt_hooks hooks;
     const pelt_fur *fur;
@@ -108,6 +111,9 @@ typedef struct pelt__strands_pass {
 void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const pelt_hooks *hooks);
 /* Draws every hair; depth tested and written, opaque. */
 void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f);
+/* Draws every hair from the light into the bound opacity slices, each
+ * adding its coverage (the light pass's state, gl/shadow_pass.c). */
+void pelt__strands_pass_draw_light(pelt__strands_pass *p, const pelt__pass_frame *f);
 void pelt__strands_pass_destroy(pelt__strands_pass *p);
 
 typedef struct pelt__shell_program {
@@ -157,6 +163,10 @@ pelt_status pelt__shadow_pass_resize(pelt__shadow_pass *p, unsigned size, pelt_e
  * test and colour mask. */
 void pelt__shadow_pass_draw(const pelt__shadow_pass *p, pelt__shell_pass *shells, const pelt__pass_frame *f,
                             const pelt__shadow_frame *sf);
+/* The same maps for the strand reference: its hairs' opacity in place of
+ * the shells', so that the reference shades itself by its own hairs. */
+void pelt__shadow_pass_draw_strands(const pelt__shadow_pass *p, pelt__strands_pass *strands,
+                                    const pelt__pass_frame *f, const pelt__shadow_frame *sf);
 /* Binds the maps to their units (after the draw, for the receivers). */
 void pelt__shadow_pass_bind(const pelt__shadow_pass *p);
 void pelt__shadow_pass_destroy(pelt__shadow_pass *p);

@@ -11,6 +11,12 @@
 #include <math.h>
 #include <string.h>
 
+/* The maps the strand reference shades its hairs with when they stand in
+ * for Kenwright's shadows (reference_self_shadow): finer than the default
+ * light's, as a reference may be slow. */
+#define PELT__REFERENCE_SHADOW_MAP 1024u
+#define PELT__REFERENCE_SHADOW_SLICES 8u
+
 struct pelt_renderer {
     pelt_hooks hooks;
     pelt_fur *fur;
@@ -158,8 +164,28 @@ static bool want_strands(const pelt__frame_plan *p) { return p->strands; }
 
 static void run_light(pelt_renderer *r, const pelt__pass_frame *f, const pelt__frame_plan *p)
 {
-    pelt__shadow_pass_draw(&r->shadow, &r->shells, f, &p->light_pass);
+    if (p->strands)
+        pelt__shadow_pass_draw_strands(&r->shadow, &r->strands, f, &p->light_pass);
+    else
+        pelt__shadow_pass_draw(&r->shadow, &r->shells, f, &p->light_pass);
     pelt__shadow_pass_bind(&r->shadow);
+}
+
+/* The strand reference has no counterpart of Kenwright's inter-fur
+ * shadows: where the shells draw them and the light's maps are off, its
+ * hairs shade each other through maps drawn from the hairs themselves
+ * (docs/reference.md, The reference's hairs shade each other), keeping
+ * Silva's gamma as the shells do. Made on the first such frame. */
+static pelt_shadow_desc reference_self_shadow(pelt_renderer *r, const pelt_draw_desc *draw)
+{
+    if (draw->mode != PELT_DRAW_STRANDS || r->shadow_desc.enabled || draw->debug.no_inter_shadow ||
+        !pelt_fur_get_desc(r->fur).look.inter_shadow)
+        return r->shadow_desc;
+    const pelt_shadow_desc want = {.enabled = true, .map_size = PELT__REFERENCE_SHADOW_MAP,
+                                   .slices = PELT__REFERENCE_SHADOW_SLICES, .keep_gamma = true};
+    pelt_shadow_desc d = pelt__shadow_resolved(&want);
+    if (pelt__shadow_pass_resize(&r->shadow, d.map_size, NULL) != PELT_OK) return r->shadow_desc;
+    return d;
 }
 
 static void run_ground(pelt_renderer *r, const pelt__pass_frame *f, const pelt__frame_plan *p)
@@ -229,7 +255,8 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
         .gpu_skin = draw->debug.skin_in_vertex_stage,
         .strands = draw->mode == PELT_DRAW_STRANDS,
     };
-    const pelt__frame_setup setup = {r->shadow_desc, r->shadow.size, r->ground_desc, r->mesh.skinned};
+    const pelt_shadow_desc shadow = reference_self_shadow(r, draw);
+    const pelt__frame_setup setup = {shadow, r->shadow.size, r->ground_desc, r->mesh.skinned};
     pelt__frame_plan plan;
     pelt__frame_plan_make(r->fur, view, &sw, &setup, &r->ground_cache, &plan);
 

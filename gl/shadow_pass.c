@@ -80,17 +80,23 @@ pelt_status pelt__shadow_pass_resize(pelt__shadow_pass *p, unsigned size, pelt_e
     return PELT_OK;
 }
 
-void pelt__shadow_pass_draw(const pelt__shadow_pass *p, pelt__shell_pass *shells, const pelt__pass_frame *f,
-                            const pelt__shadow_frame *sf)
+/* What pelt/render.h promises to leave as found. */
+typedef struct saved_state {
+    GLint draw_fbo, read_fbo, viewport[4];
+    GLboolean mask[4], scissor;
+} saved_state;
+
+/* Saves the caller's state, draws the skin's depth from the light, and
+ * leaves the opacity slices bound, cleared, with additive blending: what
+ * the fur adds comes next. */
+static void begin_maps(const pelt__shadow_pass *p, const pelt__pass_frame *f, const pelt__shadow_frame *sf,
+                       saved_state *s)
 {
-    if (!p->size) return;
-    /* What pelt/render.h promises to leave as found. */
-    GLint draw_fbo = 0, read_fbo = 0, viewport[4];
-    GLboolean mask[4], scissor = glIsEnabled(GL_SCISSOR_TEST);
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_fbo);
-    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_fbo);
-    glGetIntegerv(GL_VIEWPORT, viewport);
-    glGetBooleanv(GL_COLOR_WRITEMASK, mask);
+    s->scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_fbo);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_fbo);
+    glGetIntegerv(GL_VIEWPORT, s->viewport);
+    glGetBooleanv(GL_COLOR_WRITEMASK, s->mask);
     glDisable(GL_SCISSOR_TEST);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glViewport(0, 0, (GLsizei)p->size, (GLsizei)p->size);
@@ -116,22 +122,46 @@ void pelt__shadow_pass_draw(const pelt__shadow_pass *p, pelt__shell_pass *shells
     f->stats->shadow_draw_calls++;
     f->stats->triangles += triangles;
 
-    /* 2. The fur's opacity, every shell of the level in one draw. */
+    /* 2. The fur's opacity, added up: order does not matter. */
     glBindTexture(GL_TEXTURE_2D, p->depth);
     glBindFramebuffer(GL_FRAMEBUFFER, p->opacity_fbo);
     static const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     glClearBufferfv(GL_COLOR, 0, zero);
     glClearBufferfv(GL_COLOR, 1, zero);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    glBlendFunc(GL_ONE, GL_ONE);
+}
+
+static void end_maps(const saved_state *s)
+{
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_fbo);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_fbo);
+    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    glColorMask(s->mask[0], s->mask[1], s->mask[2], s->mask[3]);
+    if (s->scissor) glEnable(GL_SCISSOR_TEST);
+    glDisable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ZERO);
+    glDepthMask(GL_TRUE);
+}
+
+void pelt__shadow_pass_draw(const pelt__shadow_pass *p, pelt__shell_pass *shells, const pelt__pass_frame *f,
+                            const pelt__shadow_frame *sf)
+{
+    if (!p->size) return;
+    saved_state s;
+    begin_maps(p, f, sf, &s);
+    /* Every shell of the level in one draw. */
     const pelt__shell_program *sp = pelt__shell_pass_program(shells, sf->features | PELT__SHELL_LIGHT_PASS);
     if (sp) {
+        const pelt__gpu_mesh *m = f->mesh;
+        size_t triangles = sf->full_mesh ? m->triangle_count : m->level_triangles[sf->mesh_level];
+        const void *offset = (const void *)(sf->full_mesh ? 0 : m->level_offset[sf->mesh_level]);
         float span[4], next[2];
         unsigned count;
         pelt__lod_shell_uniforms(f->layers, sf->shell_level, 0.0f, 0, span, next, &count);
-        glDisable(GL_DEPTH_TEST);
-        glDepthMask(GL_FALSE);
-        glEnable(GL_BLEND);
-        glBlendEquation(GL_FUNC_ADD);
-        glBlendFunc(GL_ONE, GL_ONE);
         if (sf->cull) {
             glEnable(GL_CULL_FACE);
             glFrontFace(sf->front_cw ? GL_CW : GL_CCW);
@@ -146,15 +176,17 @@ void pelt__shadow_pass_draw(const pelt__shadow_pass *p, pelt__shell_pass *shells
         f->stats->shadow_draw_calls++;
         f->stats->triangles += triangles * count;
     }
+    end_maps(&s);
+}
 
-    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)draw_fbo);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)read_fbo);
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    glColorMask(mask[0], mask[1], mask[2], mask[3]);
-    if (scissor) glEnable(GL_SCISSOR_TEST);
-    glDisable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ZERO);
-    glDepthMask(GL_TRUE);
+void pelt__shadow_pass_draw_strands(const pelt__shadow_pass *p, pelt__strands_pass *strands,
+                                    const pelt__pass_frame *f, const pelt__shadow_frame *sf)
+{
+    if (!p->size) return;
+    saved_state s;
+    begin_maps(p, f, sf, &s);
+    pelt__strands_pass_draw_light(strands, f);
+    end_maps(&s);
 }
 
 void pelt__shadow_pass_bind(const pelt__shadow_pass *p)

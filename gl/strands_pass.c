@@ -50,6 +50,11 @@ void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
     p->broken = true;
     f->stats->strand_failures = 1;
 }
+
+void pelt__strands_pass_draw_light(pelt__strands_pass *p, const pelt__pass_frame *f)
+{
+    pelt__strands_pass_draw(p, f); /* says so once */
+}
 #else
 /* Room for every hair of `segments` pieces: staging and the buffer
  * texture. Made on the first frame of strands and again only when the
@@ -86,9 +91,10 @@ static bool make(pelt__strands_pass *p, unsigned segments)
     return reserve(p, segments);
 }
 
-void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
+/* This frame's hairs into the buffer texture; how many (0: none, or the
+ * pass is broken and says so in the stats). */
+static size_t upload_hairs(pelt__strands_pass *p, const pelt__pass_frame *f, unsigned segments)
 {
-    unsigned segments = pelt__strand_ref_segments(p->fur);
     if (!p->broken && (p->made ? segments > p->segments && !reserve(p, segments) : !make(p, segments))) {
         p->broken = true;
         pelt__log(&p->hooks.logger, PELT_LOG_ERROR, "out of memory for the strand reference's %zu hairs",
@@ -96,16 +102,23 @@ void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
     }
     if (p->broken) {
         f->stats->strand_failures = 1;
-        return;
+        return 0;
     }
     size_t n = pelt__strand_ref_build(p->fur, p->tile, p->tile_count, segments, p->hairs, p->capacity);
-    if (n == 0) return;
+    if (n == 0) return 0;
     size_t bytes = n * 16 * (size_t)PELT__STRAND_TEXELS(segments);
     glBindBuffer(GL_TEXTURE_BUFFER, p->buffer);
     glBufferSubData(GL_TEXTURE_BUFFER, 0, (GLsizeiptr)bytes, p->hairs);
     glBindBuffer(GL_TEXTURE_BUFFER, 0);
     f->stats->upload_bytes += bytes;
+    return n;
+}
 
+void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
+{
+    unsigned segments = pelt__strand_ref_segments(p->fur);
+    size_t n = upload_hairs(p, f, segments);
+    if (n == 0) return;
     unsigned features = f->shell_features & PELT__STRAND_FEATURES;
     if (!p->variants[features] && !p->failed[features]) build(p, features);
     if (!p->variants[features]) {
@@ -128,12 +141,45 @@ void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
     f->stats->triangles += n * 2 * segments;
 }
 
+void pelt__strands_pass_draw_light(pelt__strands_pass *p, const pelt__pass_frame *f)
+{
+    unsigned segments = pelt__strand_ref_segments(p->fur);
+    size_t n = upload_hairs(p, f, segments);
+    if (n == 0) return;
+    if (!p->light_program && !p->light_failed) {
+        static const char light_define[] = "#define PELT_LIGHT_PASS 1\n";
+        const char *vs[] = {light_define, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_fur_light,
+                            pelt__shader_strand_vs, NULL};
+        const char *fs[] = {light_define, pelt__shader_shading, pelt__shader_shadow_map, pelt__shader_strand_fs,
+                            NULL};
+        if (pelt__gl_program_create("strand light", vs, fs, &p->hooks, &p->light_program, NULL) == PELT_OK) {
+            glUniform1i(glGetUniformLocation(p->light_program, "u_strands"), PELT_UNIT_STRANDS);
+            p->light_segments = glGetUniformLocation(p->light_program, "u_strand_segments");
+        } else {
+            p->light_failed = true;
+        }
+    }
+    if (!p->light_program) {
+        f->stats->strand_failures = 1;
+        return;
+    }
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_STRANDS);
+    glBindTexture(GL_TEXTURE_BUFFER, p->texture);
+    glUseProgram(p->light_program);
+    glUniform1i(p->light_segments, (GLint)segments);
+    glDrawArrays(GL_TRIANGLES, 0, (GLsizei)(n * 6 * segments));
+    glBindTexture(GL_TEXTURE_BUFFER, 0);
+    f->stats->shadow_draw_calls++;
+    f->stats->triangles += n * 2 * segments;
+}
+
 #endif
 
 void pelt__strands_pass_destroy(pelt__strands_pass *p)
 {
     for (unsigned k = 0; k <= PELT__STRAND_FEATURES; k++)
         if (p->variants[k]) glDeleteProgram(p->variants[k]);
+    if (p->light_program) glDeleteProgram(p->light_program);
     if (p->texture) glDeleteTextures(1, &p->texture);
     if (p->buffer) glDeleteBuffers(1, &p->buffer);
     pelt__free(&p->hooks.allocator, p->tile);

@@ -6,7 +6,15 @@
 uniform highp samplerBuffer u_strands; // PELT_UNIT_STRANDS: 2 (segments + 1) + 2 texels a hair
 uniform int u_strand_segments;         // core's pelt__strand_ref_segments
 
+#ifdef PELT_LIGHT_PASS
+// The light pass (gl/shadow_pass.c): the hairs drawn from the light into
+// its opacity slices, so that the reference's hairs shade each other by
+// their own coverage, not the shells'.
+out float v_light_depth; // depth from the light
+out float v_cover;       // the share of the drawn ribbon the hair covers
+#else
 out vec3 v_color;
+#endif
 
 void main()
 {
@@ -27,11 +35,25 @@ void main()
 
     vec4 world = u_model * vec4(pr.xyz, 1.0);
     vec3 T = normalize(mat3(u_model) * th.xyz);
+    float scale = length(mat3(u_model)[0]);
+#ifdef PELT_LIGHT_PASS
+    // A ribbon facing the light, at least a texel of the maps wide so that
+    // it covers the texels it crosses; each covers the hair's share of it.
+    vec3 across_light = cross(T, u_light_dir);
+    float across_len = length(across_light);
+    across_light = across_len > 1e-8 ? across_light / across_len : normalize(cross(T, vec3(0.0, 1.0, 0.0)) + vec3(1e-4));
+    float texels_per_unit = length((u_light_matrix * vec4(across_light, 0.0)).xy) / u_shadow_map.z;
+    float half_width = pr.w * scale * texels_per_unit; // texels
+    float drawn = max(half_width, 0.75);
+    v_cover = half_width / drawn;
+    vec3 lc = shadow_coord(world.xyz + across_light * (side * drawn / max(texels_per_unit, 1e-8)));
+    v_light_depth = lc.z;
+    gl_Position = vec4(lc * 2.0 - 1.0, 1.0);
+#else
     vec3 to_eye = u_eye - world.xyz;
     vec3 across = cross(T, to_eye);
     float len = length(across);
     across = len > 1e-8 ? across / len : normalize(cross(T, vec3(0.0, 1.0, 0.0)) + vec3(1e-4));
-    float scale = length(mat3(u_model)[0]);
     world.xyz += across * (side * pr.w * scale);
     // The hair is a tube: seen along its length, each piece's ends show as
     // half ellipses r |T.V| deep along the projected tangent, which a flat
@@ -57,4 +79,5 @@ void main()
     v_color = wet_color(mix(root, tip, th.w) * shade_decode(ns.w) * mul, ex.x, u_wet_darken)
             + spec * (u_specular * u_light_color);
     gl_Position = u_view_proj * world;
+#endif
 }

@@ -9,7 +9,8 @@
 # is about as bright as the hairs, the fins show hair tips
 # along a grazing rim, curls shape the outline seen from the side as
 # they shape the reference's, curls are lit hair by hair, and the fur
-# on the reference torus is as sharp as its hairs.
+# on the reference torus is as sharp as its hairs, and the reference's
+# hairs shade each other where the shells draw Kenwright's shadows.
 set -u
 pelt=$1 png_diff=$2 out=$3 png_region=$4
 fails=0 passes=0
@@ -166,6 +167,22 @@ res=$("$pelt" compare "$torus" -q 2>&1)
 ss=$(field ssim "$res")
 awk -v s="${ss:-0}" 'BEGIN { exit !(s >= 0.9246) }'
 check fur_as_sharp_as_the_hairs $? "SSIM against the strands $ss (bound 0.9246)"
+
+# The reference's hairs shade each other (shadowed.json, Kenwright's
+# inter-fur shadows on the shells): its hairs drawn into the light's maps
+# darken it (40.5 -> 36.2 in luminance), the same whatever the shells
+# draw (32 or 16 layers: the maps hold the hairs, not the shells), and the
+# shells come within 10% of it (-2.3%; -12.6% against the unshaded hairs).
+shadowed="$(cd "$(dirname "$0")/../.." && pwd)/scenes/reference/shadowed.json"
+on=$("$pelt" compare "$shadowed" -q 2>&1)
+on16=$("$pelt" compare "$shadowed" --layers 16 -q 2>&1)
+off=$("$pelt" compare "$shadowed" --set fur.inter_shadow=false -q 2>&1)
+lon=$(field luminance_strands "$on") l16=$(field luminance_strands "$on16") loff=$(field luminance_strands "$off")
+lsh=$(field luminance_shells "$on")
+awk -v a="${lon:-0}" -v b="${l16:-0}" -v c="${loff:-0}" -v s="${lsh:-0}" \
+  'BEGIN { exit !(a > 0 && a < 0.95 * c && a > 0.8 * c && (a - b) ^ 2 < (0.005 * a) ^ 2 && (s - a) ^ 2 < (0.1 * a) ^ 2) }'
+check reference_hairs_shade_each_other $? \
+  "strands $lon (16 shell layers: $l16; unshaded $loff), shells $lsh (bounds: 5-20% darker, the same within 0.5%, shells within 10%)"
 
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]
