@@ -128,11 +128,14 @@ bool pelt__lod_back_hidden(float n_dot_v, float reach);
 float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso);
 
 /* The level the shells read at: pelt__lod_fur_texture's, half a level
- * finer where the footprint is round. That level makes a texel the pixel's
- * side, and a trilinear read there filters with a tent two texels wide,
- * blended into the next level's: wider than the pixel's own box, the
- * filter the strand reference's supersampling applies, so the shells came
- * out softer than the hairs they stand for. The sharpening falls linearly
+ * finer where the footprint is round. The fur texture is read from the
+ * nearest mip level (GL_LINEAR_MIPMAP_NEAREST): at the footprint's own
+ * level that rounds up to half a level coarser, texels up to 1.4 pixels a
+ * side, filtered bilinearly over two of them: wider than the pixel's own
+ * box, the filter the strand reference's supersampling applies, so the
+ * shells came out softer than the hairs they stand for. Half a level finer
+ * the nearest level is the footprint's rounded down: no texel larger than
+ * the pixel. The sharpening falls linearly
  * to none where the footprint is twice as long as wide: fur seen at a
  * grazing angle is already read finer than the pixel across it (max_aniso),
  * and sharper still its layers' rows cross-hatch the rim and crawl as it

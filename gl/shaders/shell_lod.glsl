@@ -68,8 +68,8 @@ float fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso)
 }
 
 // pelt__lod_shell_fur_texture (core/fur/lod.c): the shells read half a
-// level finer where the footprint is round, so a trilinear read's tent
-// filters no wider than the pixel; none from twice as long as wide.
+// level finer where the footprint is round, so the nearest mip level is
+// the footprint's rounded down, not up; none from twice as long as wide.
 float shell_fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso)
 {
     vec2 sides = footprint_sides(dx, dy, texels);

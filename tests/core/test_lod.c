@@ -138,8 +138,8 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
     const float tiny[2] = {0.25f * texel, 0.0f}, none[2] = {0.0f, 0.0f};
     CHECK_NEAR(pelt__lod_fur_texture(tiny, tiny, tile, k), -2.0f, 1e-5); /* magnified */
     CHECK(isfinite(pelt__lod_fur_texture(none, none, tile, k)));
-    /* The shells read half a level finer where the footprint is round (a
-     * trilinear read's tent is two texels wide), less as it grows longer,
+    /* The shells read half a level finer where the footprint is round (the
+     * nearest mip level, rounded down, not up), less as it grows longer,
      * and as it was from twice as long as wide: there the read is already
      * finer than the pixel across it, and sharper its rows would crawl. */
     CHECK(PELT__FUR_TEXTURE_SHARPEN > 0.0f && PELT__FUR_TEXTURE_SHARPEN < 1.0f);
