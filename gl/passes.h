@@ -97,6 +97,7 @@ typedef struct pelt__strands_pass {
     GLuint light_program; /* the hairs into the light's maps (PELT_LIGHT_PASS) */
     GLint light_segments;
     bool light_failed;
+    size_t light_hairs;   /* hairs the light pass uploaded for this frame's draw, or 0 */
     GLuint buffer, texture; /* the hairs (RGBA32F buffer texture, PELT_UNIT_STRANDS) */
     pelt_hooks hooks;
     const pelt_fur *fur;
@@ -112,7 +113,8 @@ void pelt__strands_pass_create(pelt__strands_pass *p, const pelt_fur *fur, const
 /* Draws every hair; depth tested and written, opaque. */
 void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f);
 /* Draws every hair from the light into the bound opacity slices, each
- * adding its coverage (the light pass's state, gl/shadow_pass.c). */
+ * adding its coverage (the light pass's state, gl/shadow_pass.c); the
+ * frame's pelt__strands_pass_draw then draws the same hairs, not built again. */
 void pelt__strands_pass_draw_light(pelt__strands_pass *p, const pelt__pass_frame *f);
 void pelt__strands_pass_destroy(pelt__strands_pass *p);
 

@@ -117,7 +117,9 @@ static size_t upload_hairs(pelt__strands_pass *p, const pelt__pass_frame *f, uns
 void pelt__strands_pass_draw(pelt__strands_pass *p, const pelt__pass_frame *f)
 {
     unsigned segments = pelt__strand_ref_segments(p->fur);
-    size_t n = upload_hairs(p, f, segments);
+    /* The light pass, earlier in the frame, built and uploaded them already. */
+    size_t n = p->light_hairs ? p->light_hairs : upload_hairs(p, f, segments);
+    p->light_hairs = 0;
     if (n == 0) return;
     unsigned features = f->shell_features & PELT__STRAND_FEATURES;
     if (!p->variants[features] && !p->failed[features]) build(p, features);
@@ -145,6 +147,7 @@ void pelt__strands_pass_draw_light(pelt__strands_pass *p, const pelt__pass_frame
 {
     unsigned segments = pelt__strand_ref_segments(p->fur);
     size_t n = upload_hairs(p, f, segments);
+    p->light_hairs = n; /* the frame's draw of the hairs follows (gl/renderer.c) */
     if (n == 0) return;
     if (!p->light_program && !p->light_failed) {
         static const char light_define[] = "#define PELT_LIGHT_PASS 1\n";

@@ -21,6 +21,24 @@ float shadow_sigma(float a)
     return -log(1.0 - clamp(a, 0.0, 0.98));
 }
 
+// What a light pass's fragment at map texel `texel`, `depth` from the
+// light, of coverage a adds to slices 0-3 (s0) and 4-7 (s1): its
+// -ln(1 - a) at and behind its depth in the slab in front of the skin.
+// False where it lies behind the skin: in the body's shadow, it shades
+// nothing that is lit (the caller discards it).
+bool shadow_slices_add(ivec2 texel, float depth, float a, out vec4 s0, out vec4 s1)
+{
+    s0 = s1 = vec4(0.0);
+    float z_skin = texelFetch(u_shadow_depth, texel, 0).r;
+    if (depth - u_shadow_slab.z > z_skin) return false;
+    float k = (depth - (z_skin - u_shadow_slab.x)) / u_shadow_slab.x * u_shadow_map.y;
+    shadow_slice_weights(k, u_shadow_map.y, s0, s1);
+    float sigma = shadow_sigma(a);
+    s0 *= sigma;
+    s1 *= sigma;
+    return true;
+}
+
 // The opacity in front of slice position k (pelt__shadow_opacity).
 float shadow_opacity(vec4 s0, vec4 s1, float S, float k)
 {

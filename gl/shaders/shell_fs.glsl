@@ -192,14 +192,7 @@ void main()
     // behind its depth in the slab in front of the skin. Hair behind the
     // skin is in the body's shadow and shades nothing that is lit.
     if (hair.a < 0.05) discard;
-    float z_skin = texelFetch(u_shadow_depth, ivec2(gl_FragCoord.xy), 0).r;
-    if (v_light_depth - u_shadow_slab.z > z_skin) discard;
-    float k = (v_light_depth - (z_skin - u_shadow_slab.x)) / u_shadow_slab.x * u_shadow_map.y;
-    vec4 w0, w1;
-    shadow_slice_weights(k, u_shadow_map.y, w0, w1);
-    float sigma = shadow_sigma(hair.a);
-    o_slices0 = sigma * w0;
-    o_slices1 = sigma * w1;
+    if (!shadow_slices_add(ivec2(gl_FragCoord.xy), v_light_depth, hair.a, o_slices0, o_slices1)) discard;
     return;
 #else
     if (hair.a < 0.05) {

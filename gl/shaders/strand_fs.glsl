@@ -12,14 +12,7 @@ layout(location = 1) out vec4 o_slices1;
 
 void main()
 {
-    float z_skin = texelFetch(u_shadow_depth, ivec2(gl_FragCoord.xy), 0).r;
-    if (v_light_depth - u_shadow_slab.z > z_skin) discard;
-    float k = (v_light_depth - (z_skin - u_shadow_slab.x)) / u_shadow_slab.x * u_shadow_map.y;
-    vec4 w0, w1;
-    shadow_slice_weights(k, u_shadow_map.y, w0, w1);
-    float sigma = shadow_sigma(v_cover);
-    o_slices0 = sigma * w0;
-    o_slices1 = sigma * w1;
+    if (!shadow_slices_add(ivec2(gl_FragCoord.xy), v_light_depth, v_cover, o_slices0, o_slices1)) discard;
 }
 #else
 in vec3 v_color;

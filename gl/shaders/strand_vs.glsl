@@ -16,6 +16,15 @@ out float v_cover;       // the share of the drawn ribbon the hair covers
 out vec3 v_color;
 #endif
 
+// The unit direction across a hair of tangent T seen along d (towards the
+// eye or the light): the ribbon's width lies along it.
+vec3 ribbon_across(vec3 T, vec3 d)
+{
+    vec3 across = cross(T, d);
+    float len = length(across);
+    return len > 1e-8 ? across / len : normalize(cross(T, vec3(0.0, 1.0, 0.0)) + vec3(1e-4));
+}
+
 void main()
 {
     int per_hair = 6 * u_strand_segments;
@@ -39,9 +48,7 @@ void main()
 #ifdef PELT_LIGHT_PASS
     // A ribbon facing the light, at least a texel of the maps wide so that
     // it covers the texels it crosses; each covers the hair's share of it.
-    vec3 across_light = cross(T, u_light_dir);
-    float across_len = length(across_light);
-    across_light = across_len > 1e-8 ? across_light / across_len : normalize(cross(T, vec3(0.0, 1.0, 0.0)) + vec3(1e-4));
+    vec3 across_light = ribbon_across(T, u_light_dir);
     float texels_per_unit = length((u_light_matrix * vec4(across_light, 0.0)).xy) / u_shadow_map.z;
     float half_width = pr.w * scale * texels_per_unit; // texels
     float drawn = max(half_width, 0.75);
@@ -51,9 +58,7 @@ void main()
     gl_Position = vec4(lc * 2.0 - 1.0, 1.0);
 #else
     vec3 to_eye = u_eye - world.xyz;
-    vec3 across = cross(T, to_eye);
-    float len = length(across);
-    across = len > 1e-8 ? across / len : normalize(cross(T, vec3(0.0, 1.0, 0.0)) + vec3(1e-4));
+    vec3 across = ribbon_across(T, to_eye);
     world.xyz += across * (side * pr.w * scale);
     // The hair is a tube: seen along its length, each piece's ends show as
     // half ellipses r |T.V| deep along the projected tangent, which a flat
