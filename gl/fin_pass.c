@@ -68,13 +68,17 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
     glGenTextures(1, &p->texture);
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
     glBindTexture(GL_TEXTURE_2D_ARRAY, p->texture);
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)fs->fin_width, (GLsizei)fs->fin_height,
-                 (GLsizei)fs->ringlet_levels, 0, GL_RGBA, GL_UNSIGNED_BYTE, fs->fin_texture);
+    unsigned fw = fs->fin_width, fh = fs->fin_height;
+    uint8_t *chain = pelt__alloc(&hooks->allocator, pelt__gpu_hair_chain_bytes(fw, fh));
+    if (!chain) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fin texture's mip chain");
+    pelt__gpu_hair_array_create(fw, fh, fs->ringlet_levels);
+    for (unsigned k = 0; k < fs->ringlet_levels; k++)
+        pelt__gpu_hair_array_slice(k, fs->fin_texture + (size_t)k * fw * fh * 4, fw, fh, chain);
+    pelt__free(&hooks->allocator, chain);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
 
     /* Room for the most fins and fin vertices any level has. */
     _Static_assert(PELT__FIN_HEIGHTS == PELT_FIN_HEIGHTS && PELT__FIN_VERTEX_TEXELS == PELT_FIN_VERTEX_TEXELS &&

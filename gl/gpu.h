@@ -99,7 +99,18 @@ typedef struct pelt__gpu_fur {
     unsigned color_version;
 } pelt__gpu_fur;
 
-void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs);
+/* A hair texture (the fur volume, the fin texture) as a 2D array with
+ * every mip level, made by pelt__fur_gpu_mip_down: each level's id is its
+ * block's most covering hair's, where glGenerateMipmap would average ids.
+ * _create allocates the levels of the bound GL_TEXTURE_2D_ARRAY, _slice
+ * uploads slice z and its chain through `chain`, a scratch of
+ * pelt__gpu_hair_chain_bytes(w, h). */
+size_t pelt__gpu_hair_chain_bytes(unsigned w, unsigned h);
+void pelt__gpu_hair_array_create(unsigned w, unsigned h, unsigned depth);
+void pelt__gpu_hair_array_slice(unsigned z, const uint8_t *texels, unsigned w, unsigned h, uint8_t *chain);
+
+pelt_status pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs,
+                                 const pelt_hooks *hooks, pelt_error *err);
 /* Uploads a new colour texture and the changed rectangle of the mask (in
  * mask_rect; empty when none); returns bytes sent. */
 size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs, unsigned mask_rect[4]);

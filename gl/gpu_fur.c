@@ -6,6 +6,8 @@
 #include "gl/gpu.h"
 
 #include "core/fur/fur_gpu.h"
+#include "core/base/error.h"
+#include "core/base/hooks.h"
 
 #include <string.h>
 
@@ -15,7 +17,45 @@ static void bind(GLenum unit, GLenum target, GLuint texture)
     glBindTexture(target, texture);
 }
 
-void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *snap)
+size_t pelt__gpu_hair_chain_bytes(unsigned w, unsigned h)
+{
+    size_t bytes = 0;
+    while (w > 1 || h > 1) {
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+        bytes += (size_t)w * h * 4;
+    }
+    return bytes ? bytes : 4;
+}
+
+void pelt__gpu_hair_array_create(unsigned w, unsigned h, unsigned depth)
+{
+    for (GLint m = 0;; m++, w = w > 1 ? w / 2 : 1, h = h > 1 ? h / 2 : 1) {
+        glTexImage3D(GL_TEXTURE_2D_ARRAY, m, GL_RGBA8, (GLsizei)w, (GLsizei)h, (GLsizei)depth, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, NULL);
+        if (w == 1 && h == 1) break;
+    }
+}
+
+void pelt__gpu_hair_array_slice(unsigned z, const uint8_t *texels, unsigned w, unsigned h, uint8_t *chain)
+{
+    glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)z, (GLsizei)w, (GLsizei)h, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                    texels);
+    const uint8_t *up = texels;
+    uint8_t *down = chain;
+    for (GLint m = 1; w > 1 || h > 1; m++) {
+        pelt__fur_gpu_mip_down(up, w, h, down);
+        w = w > 1 ? w / 2 : 1;
+        h = h > 1 ? h / 2 : 1;
+        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, m, 0, 0, (GLint)z, (GLsizei)w, (GLsizei)h, 1, GL_RGBA,
+                        GL_UNSIGNED_BYTE, down);
+        up = down;
+        down += (size_t)w * h * 4;
+    }
+}
+
+pelt_status pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *snap,
+                                 const pelt_hooks *hooks, pelt_error *err)
 {
     pelt__gl_unpack_defaults();
     const pelt__fur_snapshot fs = *snap;
@@ -29,21 +69,21 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snaps
     /* Ringlets: one such set per amplitude level of the curl. */
     unsigned levels = fs.ringlet_levels, stride = slices + lod_slices;
     size_t slice_bytes = (size_t)size * size * 4;
-    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_RGBA8, (GLsizei)size, (GLsizei)size, (GLsizei)(levels * stride),
-                 0, GL_RGBA, GL_UNSIGNED_BYTE, NULL);
+    uint8_t *chain = pelt__alloc(&hooks->allocator, pelt__gpu_hair_chain_bytes(size, size));
+    if (!chain) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the fur texture's mip chain");
+    pelt__gpu_hair_array_create(size, size, levels * stride);
     for (unsigned k = 0; k < levels; k++) {
-        glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)(k * stride), (GLsizei)size, (GLsizei)size,
-                        (GLsizei)slices, GL_RGBA, GL_UNSIGNED_BYTE, volume + (size_t)k * slices * slice_bytes);
-        if (lod_slices)
-            glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, (GLint)(k * stride + slices), (GLsizei)size,
-                            (GLsizei)size, (GLsizei)lod_slices, GL_RGBA, GL_UNSIGNED_BYTE,
-                            lod + (size_t)k * lod_slices * slice_bytes);
+        for (unsigned s = 0; s < stride; s++) {
+            const uint8_t *slice = s < slices ? volume + ((size_t)k * slices + s) * slice_bytes
+                                              : lod + ((size_t)k * lod_slices + (s - slices)) * slice_bytes;
+            pelt__gpu_hair_array_slice(k * stride + s, slice, size, size, chain);
+        }
     }
+    pelt__free(&hooks->allocator, chain);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
 
     /* White until the fur has a colour texture: the hair colour alone. */
     static const uint8_t white[4] = {255, 255, 255, 255};
@@ -79,6 +119,7 @@ void pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snaps
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return PELT_OK;
 }
 
 size_t pelt__gpu_fur_upload(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fur_snapshot *fs, unsigned mask_rect[4])

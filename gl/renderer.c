@@ -67,8 +67,8 @@ pelt_status pelt_renderer_create(const pelt_mesh *mesh, pelt_fur *fur,
     if (st == PELT_OK) st = pelt__ground_pass_create(&r->ground, &hooks, err);
     if (st == PELT_OK) st = pelt__gpu_mesh_create(&r->mesh, mesh, fur, &hooks, err);
     pelt__strands_pass_create(&r->strands, fur, &hooks);
+    if (st == PELT_OK) st = pelt__gpu_fur_create(&r->textures, fur, &fs, &hooks, err);
     if (st == PELT_OK) {
-        pelt__gpu_fur_create(&r->textures, fur, &fs);
         pelt__gpu_blocks_create(&r->blocks);
         pelt__gpu_blocks_set_fur(&r->blocks, fur, &fs);
     }

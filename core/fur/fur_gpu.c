@@ -69,3 +69,27 @@ void pelt__fur_gpu_linear_rgb(const float srgb[3], float out[3])
 {
     for (int k = 0; k < 3; k++) out[k] = pelt__srgb_decode(srgb[k]);
 }
+
+void pelt__fur_gpu_mip_down(const uint8_t *up, unsigned w, unsigned h, uint8_t *down)
+{
+    unsigned dw = w > 1 ? w / 2 : 1, dh = h > 1 ? h / 2 : 1;
+    unsigned sx = w > 1 ? 2 : 1, sy = h > 1 ? 2 : 1, n = sx * sy;
+    for (unsigned y = 0; y < dh; y++) {
+        for (unsigned x = 0; x < dw; x++) {
+            unsigned sum[4] = {0, 0, 0, 0};
+            const uint8_t *top = NULL; /* the texel with the most coverage */
+            for (unsigned j = 0; j < sy; j++) {
+                for (unsigned i = 0; i < sx; i++) {
+                    const uint8_t *t = up + ((size_t)(y * sy + j) * w + x * sx + i) * 4;
+                    for (int c = 0; c < 4; c++) sum[c] += t[c];
+                    if (!top || t[3] > top[3]) top = t;
+                }
+            }
+            uint8_t *o = down + ((size_t)y * dw + x) * 4;
+            for (int c = 0; c < 4; c++) o[c] = (uint8_t)((sum[c] + n - 1) / n);
+            /* The top texel's own id (b / a) at the block's coverage. */
+            unsigned id = top[3] ? (top[2] * o[3] + top[3] / 2u) / top[3] : 0;
+            o[2] = (uint8_t)(id < o[3] ? id : o[3]);
+        }
+    }
+}

@@ -139,6 +139,19 @@ typedef struct pelt__fin_frame_desc {
 size_t pelt__fur_gpu_fin_frame(const pelt_fur *fur, const pelt__fin_frame_desc *d, uint32_t *fins,
                                float *vertices, unsigned *rows, size_t *dry);
 
+/* One mip level of a hair texture's slice (the fur volume, the fin
+ * texture) from the level above it (w x h texels,
+ * premultiplied as the volume is; an odd side of 1 kept): each 2 x 2
+ * block's mean, rounded up so a thin hair's faint edge lasts down the
+ * chain (glGenerateMipmap on Mesa's llvmpipe rounds likewise, within
+ * 0.1/255 on average), except the id. A mean of several hairs' ids is an
+ * id none of them has: the ringlets' phase and grooming's density test
+ * read it. So the id is that of the block's texel with the most coverage,
+ * premultiplied by the block's coverage: a read at any level finds a real
+ * hair's id, and the ringlets need no second read at the finest level.
+ * Writes max(w/2,1) x max(h/2,1) texels to `down`. */
+void pelt__fur_gpu_mip_down(const uint8_t *up, unsigned w, unsigned h, uint8_t *down);
+
 /* Lengyel et al.'s §2.4 hair lighting table for the fur's material
  * (core/fur/shading.h: pelt__lengyel_table): 32x32 texels of (diffuse,
  * specular). */

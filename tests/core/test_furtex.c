@@ -1,10 +1,12 @@
 /* Fur texture synthesis (Lengyel et al. 2001 §2.2). */
 #include "support/check.h"
 
+#include "core/fur/fur_gpu.h"
 #include "core/fur/furtex.h"
 #include "core/fur/fur_shape.h"
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -424,6 +426,73 @@ static void strand_curl_slope_is_the_drawn_curl_derivative(void)
     CHECK(worst < 0.05 * largest);
 }
 
+/* The volume's mip chain: coverage, shade and height are each block's mean
+ * (rounded up), the id is the most covering hair's, never a mix. A slice of
+ * the real volume, taken down to 8 x 8 texels. */
+static void furtex_mip_chain_keeps_a_real_hair_id(void)
+{
+    uint8_t *v = make(&base);
+    CHECK(v != NULL);
+    if (!v) return;
+    unsigned n = base.size;
+    const uint8_t *slice = v + (size_t)4 * n * n * 4; /* layer 3 of 16 */
+    /* The ids that occur at the finest level. */
+    bool present[256] = {false};
+    for (size_t i = 0; i < (size_t)n * n; i++) {
+        const uint8_t *t = slice + i * 4;
+        if (t[3] >= 128) present[(t[2] * 255 + t[3] / 2) / t[3]] = true;
+    }
+    uint8_t *a = malloc((size_t)n * n * 2), *b = malloc((size_t)n * n * 2);
+    CHECK(a && b);
+    const uint8_t *up = slice;
+    uint8_t *down = a;
+    unsigned mixed_mean = 0, mixed_top = 0, blocks = 0;
+    for (unsigned side = n; side > 8; side /= 2) {
+        pelt__fur_gpu_mip_down(up, side, side, down);
+        unsigned half = side / 2;
+        for (unsigned y = 0; y < half; y++) {
+            for (unsigned x = 0; x < half; x++) {
+                const uint8_t *o = down + ((size_t)y * half + x) * 4;
+                unsigned sum[4] = {0, 0, 0, 0}, top = 0;
+                for (unsigned k = 0; k < 4; k++) {
+                    const uint8_t *t = up + ((size_t)(2 * y + k / 2) * side + 2 * x + k % 2) * 4;
+                    for (int c = 0; c < 4; c++) sum[c] += t[c];
+                    if (t[3] > up[((size_t)(2 * y + top / 2) * side + 2 * x + top % 2) * 4 + 3]) top = k;
+                }
+                CHECK(o[3] == (sum[3] + 3) / 4 && o[0] == (sum[0] + 3) / 4 && o[1] == (sum[1] + 3) / 4);
+                CHECK(o[2] <= o[3]);
+                if (o[3] < 128) continue;
+                /* At the first level down, where the id still sits on 8
+                   bits, it is one the finest level has; the mean of the
+                   block's ids often is not. */
+                if (side == n) {
+                    blocks++;
+                    unsigned id = (o[2] * 255 + o[3] / 2) / o[3];
+                    bool near = false;
+                    for (int e = -2; e <= 2; e++)
+                        if ((int)id + e >= 0 && (int)id + e < 256 && present[id + e]) near = true;
+                    mixed_top += !near;
+                    unsigned mean = (sum[2] * 255 + sum[3] / 2) / sum[3];
+                    bool mean_near = false;
+                    const uint8_t *t0 = up + ((size_t)(2 * y + top / 2) * side + 2 * x + top % 2) * 4;
+                    unsigned top_id = (t0[2] * 255 + t0[3] / 2) / t0[3];
+                    mean_near = mean + 2 >= top_id && mean <= top_id + 2;
+                    mixed_mean += !mean_near;
+                    CHECK(id + 2 >= top_id && id <= top_id + 2);
+                }
+            }
+        }
+        up = down;
+        down = down == a ? b : a;
+    }
+    CHECK(blocks > 100);
+    CHECK(mixed_top == 0);
+    CHECK(mixed_mean > blocks / 20); /* where hairs meet, a mean is no hair's id */
+    free(a);
+    free(b);
+    free(v);
+}
+
 int main(void)
 {
     RUN(furtex_innermost_slice_is_opaque_skin);
@@ -435,6 +504,7 @@ int main(void)
     RUN(furtex_rejects_sizes_that_overflow);
     RUN(furtex_curly_strands_circle_out_of_step);
     RUN(furtex_wave_moves_strands_along_u_only);
+    RUN(furtex_mip_chain_keeps_a_real_hair_id);
     RUN(ringlets_turn_neighbouring_strands_out_of_step);
     RUN(furtex_curled_strands_are_as_opaque_as_straight_ones);
     RUN(strand_curl_slope_is_the_drawn_curl_derivative);

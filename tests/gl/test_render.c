@@ -788,11 +788,13 @@ static void renderer_allocates_through_its_hooks(void)
     pelt_renderer_desc rd = {.hooks.allocator = {count_alloc, count_free, &counts}};
     CHECK(pelt_renderer_create(square, fur, &rd, &r, NULL) == PELT_OK);
     /* The renderer, the two interleaved vertex arrays (the pose's and the
-     * rest's, freed before return), the staging of the fins a frame
-     * draws and of their vertices, and the wet split's five arrays (its
-     * triangles' boxes, flags, indices twice, and its vertices' flags). */
-    CHECK(counts.allocs == 10);
-    CHECK(counts.frees == 2);
+     * rest's, freed before return), the mip chains of the fin texture and
+     * the fur volume (one slice's at a time, freed before return), the
+     * staging of the fins a frame draws and of their vertices, and the wet
+     * split's five arrays (its triangles' boxes, flags, indices twice, and
+     * its vertices' flags). */
+    CHECK(counts.allocs == 12);
+    CHECK(counts.frees == 4);
     pelt_renderer_destroy(r);
     CHECK(counts.allocs == counts.frees);
     pelt_renderer_desc half = {.hooks.allocator = {count_alloc, NULL, &counts}};
@@ -818,6 +820,58 @@ static void refusing_free(void *ptr, void *user)
 {
     (void)user;
     free(ptr);
+}
+
+/* An allocator that refuses its `fail_at`-th allocation (from 0). */
+typedef struct failing_allocator {
+    int count, fail_at, live;
+} failing_allocator;
+
+static void *failing_alloc(size_t size, void *user)
+{
+    failing_allocator *f = user;
+    if (f->count++ == f->fail_at) return NULL;
+    f->live++;
+    return malloc(size);
+}
+
+static void failing_free(void *ptr, void *user)
+{
+    if (ptr) ((failing_allocator *)user)->live--;
+    free(ptr);
+}
+
+/* Whichever allocation of the renderer's creation fails (the mip chains'
+ * scratch included), it says out of memory and gives everything back;
+ * only the wet split, which saves time, does without (every triangle then
+ * draws wet) and the renderer is made. */
+static void renderer_creation_survives_each_failed_allocation(void)
+{
+    pelt_fur *fur = NULL;
+    CHECK(pelt_fur_create(square, &(pelt_fur_desc){.look.texture_size = 32}, &fur, NULL) == PELT_OK);
+    int refused = 0, failed = 0, done = 0;
+    for (int n = 0; n < 64 && !done; n++) {
+        failing_allocator f = {0, n, 0};
+        pelt_renderer_desc rd = {.hooks.allocator = {failing_alloc, failing_free, &f}};
+        pelt_renderer *r = NULL;
+        pelt_error err = {0};
+        pelt_status st = pelt_renderer_create(square, fur, &rd, &r, &err);
+        done = f.count <= n; /* every allocation made: nothing was refused */
+        refused += !done;
+        if (st == PELT_OK) {
+            CHECK(r != NULL);
+            pelt_renderer_destroy(r);
+        } else {
+            failed++;
+            CHECK(st == PELT_ERR_OUT_OF_MEMORY && r == NULL);
+            CHECK(strstr(err.message, "memory") != NULL);
+        }
+        CHECK(f.live == 0);
+    }
+    printf("  %d allocations refused one at a time: %d creations failed, out of memory\n", refused, failed);
+    CHECK(done);
+    CHECK(refused >= 12 && failed >= 7 && failed < refused);
+    pelt_fur_destroy(fur);
 }
 
 /* A strand reference that cannot be drawn says so in the stats as well as
@@ -1248,6 +1302,7 @@ int main(void)
         RUN(tuft_highlight_rises_with_wetness);
         RUN(wet_skin_sheen_rises_with_wetness);
         RUN(renderer_allocates_through_its_hooks);
+        RUN(renderer_creation_survives_each_failed_allocation);
         RUN(program_errors_reach_the_logger);
         RUN(strand_reference_failure_is_reported);
         RUN(every_shell_variant_compiles);
