@@ -66,22 +66,30 @@ vec3 free_light_inverse(float free_diffuse, vec2 reach)
 // does from the volume's levels (1 - rho); the texture's curl stays, as
 // in the texture. The wet variants' vertex stage folded the free hair's
 // light into base; the dry one left it out (ringlet_light_mul).
+// ringlet_own: the curl's own dots (T.L, T.E); ringlet_light lights them.
+vec2 ringlet_own(float id, float rho, float h, vec3 ring_l, vec3 ring_e, vec3 ring_g)
+{
+    float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
+    float psi = ringlet_phase(id);
+    vec2 extra = strand_curl_slope(u_strand_curl_radius, u_strand_curl_omega, u_strand_curl_wave > 0.5, h, psi);
+    return ringlet_dots(ring_l, ring_e, ring_g, k, u_curl_frequency, h, psi, extra);
+}
+
+// 1 / the free hair's light from its dots (t.L, t.E) under wetness rho,
+// where the vertex stage folded that light into base (the wet variants).
+vec3 free_light_inverse_dots(float t_l, float t_e, float rho, vec2 reach)
+{
+    vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
+    return free_light_inverse(kajiya_kay_dots(t_l, t_e, shine.x).x, reach);
+}
+
 void ringlet_light(float id, float rho, float h, vec2 reach, vec3 ring_l, vec3 ring_e, vec3 ring_g,
                    inout vec3 base, inout float spec)
 {
 #ifdef PELT_WET
-    const bool free_in_base = true;
+    vec3 inv_free = free_light_inverse_dots(ring_l.x, ring_e.x, rho, reach);
 #else
-    const bool free_in_base = false;
-#endif
-    float k = (1.0 - rho) * u_ringlet_radius / max(u_length, 1e-6);
-    float psi = ringlet_phase(id);
-    vec2 extra = strand_curl_slope(u_strand_curl_radius, u_strand_curl_omega, u_strand_curl_wave > 0.5, h, psi);
-    vec2 own = ringlet_dots(ring_l, ring_e, ring_g, k, u_curl_frequency, h, psi, extra);
     vec3 inv_free = vec3(1.0);
-    if (free_in_base) {
-        vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
-        inv_free = free_light_inverse(kajiya_kay_dots(ring_l.x, ring_e.x, shine.x).x, reach);
-    }
-    own_light_dots(own, reach, inv_free, rho, base, spec);
+#endif
+    own_light_dots(ringlet_own(id, rho, h, ring_l, ring_e, ring_g), reach, inv_free, rho, base, spec);
 }

@@ -213,11 +213,17 @@ void main()
 #endif
     base = wet_color(base, rho, u_wet_darken); // darker, more saturated
     float spec = v_spec;
-#ifdef PELT_WET
+#if defined(PELT_WET) && defined(PELT_RINGLETS)
+    // A tuft's hair along its tuft, the others along their ringlet: one
+    // light for either (a fragment's block works out both ways where its
+    // pixels split, so the light's own work is done once). The free
+    // hair's light from the dots the ringlets' frame carries.
+    vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
+    vec3 T = tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, t.xy + lean - q, u_clump_tightness * rho * v_clump_slope);
+    vec2 own = clump == CLUMP_DISPLACED ? vec2(dot(T, L), dot(T, E)) : ringlet_own(hair.b, rho, v_h, v_ring_l, v_ring_e, v_ring_g);
+    own_light_dots(own, v_light, free_light_inverse_dots(v_ring_l.x, v_ring_e.x, rho, v_light), rho, base, spec);
+#elif defined(PELT_WET)
     if (clump == CLUMP_DISPLACED) tuft_light(t.xy + lean - q, rho, base, spec);
-#ifdef PELT_RINGLETS
-    else shell_ringlet_light(hair.b, rho, base, spec);
-#endif
 #elif defined(PELT_RINGLETS)
     shell_ringlet_light(hair.b, rho, base, spec);
 #endif
