@@ -75,8 +75,6 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
     for (unsigned k = 0; k < fs->ringlet_levels; k++)
         pelt__gpu_hair_array_slice(k, fs->fin_texture + (size_t)k * fw * fh * 4, fw, fh, chain);
     pelt__free(&hooks->allocator, chain);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 

@@ -102,7 +102,9 @@ typedef struct pelt__gpu_fur {
 /* A hair texture (the fur volume, the fin texture) as a 2D array with
  * every mip level, made by pelt__fur_gpu_mip_down: each level's id is its
  * block's most covering hair's, where glGenerateMipmap would average ids.
- * _create allocates the levels of the bound GL_TEXTURE_2D_ARRAY, _slice
+ * _create allocates the levels of the bound GL_TEXTURE_2D_ARRAY and
+ * filters it from the nearest level, bilinear within it (the shells
+ * and fins pick it, fur_texture_lod), _slice
  * uploads slice z and its chain through `chain`, a scratch of
  * pelt__gpu_hair_chain_bytes(w, h). */
 size_t pelt__gpu_hair_chain_bytes(unsigned w, unsigned h);

@@ -35,6 +35,8 @@ void pelt__gpu_hair_array_create(unsigned w, unsigned h, unsigned depth)
                      GL_UNSIGNED_BYTE, NULL);
         if (w == 1 && h == 1) break;
     }
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
 }
 
 void pelt__gpu_hair_array_slice(unsigned z, const uint8_t *texels, unsigned w, unsigned h, uint8_t *chain)
@@ -80,8 +82,6 @@ pelt_status pelt__gpu_fur_create(pelt__gpu_fur *g, pelt_fur *fur, const pelt__fu
         }
     }
     pelt__free(&hooks->allocator, chain);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_REPEAT);
 

@@ -92,19 +92,21 @@ vec4 wet_hair(vec2 fur_uv, float rho)
 }
 
 #if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
-// A tuft's hair lit along its tangent T in the tuft (own_light.glsl).
-void own_light(vec3 T, float rho, inout vec3 base, inout float spec)
+// The dots (T.L, T.E) of a tuft's hair along its tangent T in the tuft.
+vec2 tuft_dots(vec2 to_centre, float rho)
+{
+    vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
+    vec3 T = tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, to_centre, u_clump_tightness * rho * v_clump_slope);
+    return vec2(dot(T, L), dot(T, E));
+}
+
+// A tuft's hair lit along its tuft (own_light.glsl).
+void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 {
     vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
     vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
     float free_hair = kajiya_kay(normalize(v_hair_t), L, E, shine.x).x;
-    own_light_dots(vec2(dot(T, L), dot(T, E)), v_light, free_light_inverse(free_hair, v_light), rho, base, spec);
-}
-
-void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
-{
-    own_light(tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, to_centre, u_clump_tightness * rho * v_clump_slope), rho,
-              base, spec);
+    own_light_dots(tuft_dots(to_centre, rho), v_light, free_light_inverse(free_hair, v_light), rho, base, spec);
 }
 #endif
 
@@ -218,9 +220,8 @@ void main()
     // light for either (a fragment's block works out both ways where its
     // pixels split, so the light's own work is done once). The free
     // hair's light from the dots the ringlets' frame carries.
-    vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
-    vec3 T = tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, t.xy + lean - q, u_clump_tightness * rho * v_clump_slope);
-    vec2 own = clump == CLUMP_DISPLACED ? vec2(dot(T, L), dot(T, E)) : ringlet_own(hair.b, rho, v_h, v_ring_l, v_ring_e, v_ring_g);
+    vec2 own = clump == CLUMP_DISPLACED ? tuft_dots(t.xy + lean - q, rho)
+                                        : ringlet_own(hair.b, rho, v_h, v_ring_l, v_ring_e, v_ring_g);
     own_light_dots(own, v_light, free_light_inverse_dots(v_ring_l.x, v_ring_e.x, rho, v_light), rho, base, spec);
 #elif defined(PELT_WET)
     if (clump == CLUMP_DISPLACED) tuft_light(t.xy + lean - q, rho, base, spec);
