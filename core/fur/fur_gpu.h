@@ -145,10 +145,11 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *fur, const pelt__fin_frame_desc *
  * block's mean, rounded up so a thin hair's faint edge lasts down the
  * chain (glGenerateMipmap on Mesa's llvmpipe rounds likewise, within
  * 0.1/255 on average), except the id. A mean of several hairs' ids is an
- * id none of them has: the ringlets' phase and grooming's density test
- * read it. So the id is that of the block's texel with the most coverage,
- * premultiplied by the block's coverage: a read at any level finds a real
- * hair's id, and the ringlets need no second read at the finest level.
+ * id none of them has: the ringlets' phase (the fins') and grooming's
+ * density test read it. So the id is that of the block's texel with the
+ * most coverage, premultiplied by the block's coverage: a read at any
+ * level finds a real hair's id. (The shells' ringlets still read theirs
+ * at the finest level: the bilinear read blends up to four texels' ids.)
  * Writes max(w/2,1) x max(h/2,1) texels to `down`. */
 void pelt__fur_gpu_mip_down(const uint8_t *up, unsigned w, unsigned h, uint8_t *down);
 

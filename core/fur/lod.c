@@ -390,14 +390,12 @@ float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, 
     return 0.5f * log2f(fmaxf(fmaxf(longer / (max_aniso * max_aniso), shorter), 1e-12f));
 }
 
-float pelt__lod_shell_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso,
-                                  float curl)
+float pelt__lod_shell_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso)
 {
     float longer, shorter;
     footprint_sides(dx, dy, texels, &longer, &shorter);
     float elongation = sqrtf(longer / fmaxf(shorter, 1e-12f));
     float sharpen = PELT__FUR_TEXTURE_SHARPEN * fminf(fmaxf(2.0f - elongation, 0.0f), 1.0f);
-    sharpen += PELT__FUR_TEXTURE_RINGLET_SHARPEN * fminf(fmaxf(curl, 0.0f), 1.0f);
     return pelt__lod_fur_texture(dx, dy, texels, max_aniso) - sharpen;
 }
 

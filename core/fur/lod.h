@@ -142,21 +142,9 @@ float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, 
  * moves. The fins keep the footprint's level: sharper, their sparse hair
  * drops out of the outline seen from afar (docs/reference.md, The fur
  * texture read half a level sharper). Mirrors shell_fur_texture_lod() and
- * FUR_TEXTURE_SHARPEN in shell_lod.glsl.
- * Curly fur reads PELT__FUR_TEXTURE_RINGLET_SHARPEN times `curl` finer
- * still, whatever the footprint's shape (`curl`: the share of the
- * ringlets' amplitude that water leaves, 1 dry, 0 soaked or straight
- * fur, whose hair is then read as straight fur's): each pixel lights its ringlet
- * from the id the read finds, and a coarser read's texels hold more
- * hairs, their ids blended across the bilinear read's four (the mip chain
- * keeps one hair's id a texel, pelt__fur_gpu_mip_down); the curls come out
- * in blotches. Silva Fig. 7d against the strand reference: SSIM 0.630 at
- * the shells' level, 0.642 half a level finer, 0.649 a whole level finer,
- * where the curly torus loses 0.002 (docs/method.md, Ringlets). */
+ * FUR_TEXTURE_SHARPEN in shell_lod.glsl. */
 #define PELT__FUR_TEXTURE_SHARPEN 0.5f
-#define PELT__FUR_TEXTURE_RINGLET_SHARPEN 0.5f
-float pelt__lod_shell_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso,
-                                  float curl);
+float pelt__lod_shell_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso);
 
 /* The fins read their texture the same way (derivatives in texels, texels
  * 1): a fin is one quad, whose hair is foreshortened up the fin, and has no

@@ -111,13 +111,24 @@ void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 #endif
 
 #if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
-// The ringlet of the hair with this id at this shell's height. The
-// coverage read's id is a hair's own at every level: the fur texture's mip
-// chain keeps each block's most covering hair's (pelt__fur_gpu_mip_down),
-// not the mean of several, a phase none of them has.
+// The ringlet of the hair with this id at this shell's height.
 void shell_ringlet_light(float id, float rho, inout vec3 base, inout float spec)
 {
     ringlet_light(id, rho, v_h, v_light, v_ring_l, v_ring_e, v_ring_g, base, spec);
+}
+
+// The id of the hair this pixel shows, read at the fur texture's finest
+// level (docs/method.md, Ringlets): where the coverage is read coarser,
+// its texel's id is one hair's (pelt__fur_gpu_mip_down), but the bilinear
+// read blends up to four texels' ids and neighbouring pixels share them
+// (Silva Fig. 7d against the strands: SSIM 0.630 from that id, 0.640 from
+// this one). The full
+// curl's slice: water, which reads other levels, takes the ringlet out.
+// `id` (the coverage read's) where the finest level has no hair.
+float sharp_id(vec2 fur_uv, float id)
+{
+    vec4 h0 = textureLod(u_fur, vec3(fur_uv, v_slices.x), 0.0);
+    return h0.a > 0.05 ? h0.b / h0.a : id;
 }
 #endif
 
@@ -127,8 +138,12 @@ void shell_ringlet_light(float id, float rho, inout vec3 base, inout float spec)
 // defines them all.
 void main()
 {
+    // Sharp across the view where the fur is seen at a grazing angle, and
+    // half a level finer where the footprint is round (docs/shading.md, The fur
+    // texture's filtering).
     vec2 fur_dx = dFdx(v_fur_uv), fur_dy = dFdy(v_fur_uv);
     float texels = float(textureSize(u_fur, 0).x);
+    fur_lod = shell_fur_texture_lod(fur_dx, fur_dy, texels, v_aniso);
     // Seen close, where a texel spans pixels, a hair keeps its own width
     // and a pixel-wide edge (docs/shading.md, The hair's edge seen close).
     fur_gain = fur_edge_gain(fur_dx, fur_dy, texels);
@@ -137,22 +152,11 @@ void main()
     vec2 d = vec2(0.0);
     float rho = 0.0;
 #ifdef PELT_WET
-    vec4 t = clump_texel(u_mask, v_uv);
-    rho = t.a;
-#endif
-    // Sharp across the view where the fur is seen at a grazing angle, and
-    // half a level finer where the footprint is round (docs/shading.md, The fur
-    // texture's filtering); curly fur half a level finer again, less as
-    // water straightens its curl.
-#ifdef PELT_RINGLETS
-    fur_lod = shell_fur_texture_lod(fur_dx, fur_dy, texels, v_aniso, 1.0 - clamp(rho, 0.0, 1.0));
-#else
-    fur_lod = shell_fur_texture_lod(fur_dx, fur_dy, texels, v_aniso, 0.0);
-#endif
-#ifdef PELT_WET
     // Clumps (Silva Eq. 5, Alg. 2 as docs/wetness.md reads them): sample the hair
     // rooted at q; colour and fur coordinates move together.
     vec2 q;
+    vec4 t = clump_texel(u_mask, v_uv);
+    rho = t.a;
     vec2 lean = clump_lean(t, u_clump_lean);
     int clump = clump_lookup_texel(u_mask, t, v_uv, v_clump_profile, u_clump_tightness, lean, q);
     // The clump squeezes its strands towards the centre by k (squeeze): the
@@ -221,12 +225,12 @@ void main()
     // pixels split, so the light's own work is done once). The free
     // hair's light from the dots the ringlets' frame carries.
     vec2 own = clump == CLUMP_DISPLACED ? tuft_dots(t.xy + lean - q, rho)
-                                        : ringlet_own(hair.b, rho, v_h, v_ring_l, v_ring_e, v_ring_g);
+                                        : ringlet_own(sharp_id(fur_uv, hair.b), rho, v_h, v_ring_l, v_ring_e, v_ring_g);
     own_light_dots(own, v_light, free_light_inverse_dots(v_ring_l.x, v_ring_e.x, rho, v_light), rho, base, spec);
 #elif defined(PELT_WET)
     if (clump == CLUMP_DISPLACED) tuft_light(t.xy + lean - q, rho, base, spec);
 #elif defined(PELT_RINGLETS)
-    shell_ringlet_light(hair.b, rho, base, spec);
+    shell_ringlet_light(sharp_id(fur_uv, hair.b), rho, base, spec);
 #endif
     float alpha = layer_share(shell_overcount_alpha(hair.a, v_overcount));
     o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), alpha);

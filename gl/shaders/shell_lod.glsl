@@ -29,7 +29,6 @@ bool shell_back_hidden(float n_dot_v, float reach)
 const float FUR_TEXTURE_ANISO = 2.0;   // PELT__FUR_TEXTURE_ANISO
 const float FIN_TEXTURE_ANISO = 4.0;   // PELT__FIN_TEXTURE_ANISO
 const float FUR_TEXTURE_SHARPEN = 0.5; // PELT__FUR_TEXTURE_SHARPEN
-const float FUR_TEXTURE_RINGLET_SHARPEN = 0.5; // PELT__FUR_TEXTURE_RINGLET_SHARPEN
 
 // footprint_sides (core/fur/lod.c): a texture read's footprint from its uv
 // derivatives dx, dy and the texture's size, the squared lengths of its
@@ -71,16 +70,11 @@ float fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso)
 // pelt__lod_shell_fur_texture (core/fur/lod.c): the shells read half a
 // level finer where the footprint is round, so the nearest mip level is
 // the footprint's rounded down, not up; none from twice as long as wide.
-// Curly fur half a level finer still by the share of its curl left
-// (PELT__FUR_TEXTURE_RINGLET_SHARPEN), so each pixel's ringlet id is fewer
-// hairs'.
-float shell_fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso, float curl)
+float shell_fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso)
 {
     vec2 sides = footprint_sides(dx, dy, texels);
     float elongation = sqrt(sides.x / max(sides.y, 1e-12));
-    float sharpen = FUR_TEXTURE_SHARPEN * clamp(2.0 - elongation, 0.0, 1.0);
-    sharpen += FUR_TEXTURE_RINGLET_SHARPEN * clamp(curl, 0.0, 1.0);
-    return fur_texture_lod(dx, dy, texels, max_aniso) - sharpen;
+    return fur_texture_lod(dx, dy, texels, max_aniso) - FUR_TEXTURE_SHARPEN * clamp(2.0 - elongation, 0.0, 1.0);
 }
 
 // pelt__lod_fur_edge_gain (core/fur/lod.c): how many pixels a texel of

@@ -143,23 +143,17 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
      * and as it was from twice as long as wide: there the read is already
      * finer than the pixel across it, and sharper its rows would crawl. */
     CHECK(PELT__FUR_TEXTURE_SHARPEN > 0.0f && PELT__FUR_TEXTURE_SHARPEN < 1.0f);
-    CHECK_NEAR(pelt__lod_shell_fur_texture(round_x, round_y, tile, k, 0.0f), 0.5f, 1e-5);
-    CHECK_NEAR(pelt__lod_shell_fur_texture(round_x, round_y, tile, 1.0f, 0.0f), 0.5f, 1e-5); /* either max_aniso */
-    CHECK_NEAR(pelt__lod_shell_fur_texture(long_x, short_y, tile, k, 0.0f), 2.0f, 1e-5);
-    CHECK_NEAR(pelt__lod_shell_fur_texture(long_x, wide_y, tile, k, 0.0f), log2f(6.0f) - 0.5f * (2.0f - 8.0f / 6.0f), 1e-5);
+    CHECK_NEAR(pelt__lod_shell_fur_texture(round_x, round_y, tile, k), 0.5f, 1e-5);
+    CHECK_NEAR(pelt__lod_shell_fur_texture(round_x, round_y, tile, 1.0f), 0.5f, 1e-5); /* either max_aniso */
+    CHECK_NEAR(pelt__lod_shell_fur_texture(long_x, short_y, tile, k), 2.0f, 1e-5);
+    CHECK_NEAR(pelt__lod_shell_fur_texture(long_x, wide_y, tile, k), log2f(6.0f) - 0.5f * (2.0f - 8.0f / 6.0f), 1e-5);
     float was = -1.0f; /* the level never falls as the footprint widens */
     for (int i = 1; i <= 16; i++) {
         const float w[2] = {0.0f, 0.5f * (float)i * texel};
-        float lod = pelt__lod_shell_fur_texture(long_x, w, tile, k, 0.0f);
+        float lod = pelt__lod_shell_fur_texture(long_x, w, tile, k);
         CHECK(lod >= was - 1e-6f && lod <= pelt__lod_fur_texture(long_x, w, tile, k) + 1e-6f);
-        /* Curly fur half a level finer again, round or long; soaked as straight. */
-        CHECK_NEAR(pelt__lod_shell_fur_texture(long_x, w, tile, k, 1.0f), lod - PELT__FUR_TEXTURE_RINGLET_SHARPEN,
-                   1e-5);
-        CHECK_NEAR(pelt__lod_shell_fur_texture(long_x, w, tile, k, 0.5f),
-                   lod - 0.5f * PELT__FUR_TEXTURE_RINGLET_SHARPEN, 1e-5); /* half the curl left */
         was = lod;
     }
-    CHECK(PELT__FUR_TEXTURE_RINGLET_SHARPEN > 0.0f && PELT__FUR_TEXTURE_RINGLET_SHARPEN <= 1.0f);
 
     CHECK(pelt__lod_fur_texture_aniso(0.3f, 0.0f) == k);          /* edge-on, 0.3 px apart */
     CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.0f) == 1.0f);       /* 2 px apart: rows */
@@ -237,13 +231,13 @@ static void lod_fur_edge_keeps_a_hair_its_width(void)
     CHECK_NEAR(in[0] / in[3], 0.5f, 1e-5);
 
     const float r = 1.6f, width = 2.0f * r; /* the default strand radius */
-    float plain = hair_width_seen(r, 4.0f, 8, 0.0f), sharp = hair_width_seen(r, 4.0f, 8, true);
+    float plain = hair_width_seen(r, 4.0f, 8, false), sharp = hair_width_seen(r, 4.0f, 8, true);
     printf("  a %.1f-texel hair at 4 px a texel through 8 shells: %.2f texels wide read plain, %.2f steepened\n",
            width, plain, sharp);
     CHECK(plain > 1.3f * width);
     CHECK(fabsf(sharp - width) < 0.1f * width);
     CHECK(fabsf(hair_width_seen(r, 4.0f, 1, true) - width) < 0.05f * width); /* one shell: its width kept */
-    CHECK_NEAR(hair_width_seen(r, 1.0f, 8, true), hair_width_seen(r, 1.0f, 8, 0.0f), 1e-4); /* a pixel a texel */
+    CHECK_NEAR(hair_width_seen(r, 1.0f, 8, true), hair_width_seen(r, 1.0f, 8, false), 1e-4); /* a pixel a texel */
 }
 
 /* The shells' over-count of a hair seen along its length: a ray that

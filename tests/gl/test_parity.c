@@ -784,7 +784,6 @@ static void footprint(int x, int y, float lo, float span, float dx[2], float dy[
  * fur_texture_lod half a level finer where the footprint is round, in
  * shell_lod.glsl) against
  * pelt__lod_shell_fur_texture over footprints from magnified to 64 texels, round
- * (curls from -0.1 to 1.1: below none and above the whole clamped)
  * to 16 to 1 in every direction, at the shaders' FUR_TEXTURE_ANISO; and
  * fur_texture_aniso against pelt__lod_fur_texture_aniso over spacings and
  * view angles; the fins' FIN_TEXTURE_ANISO and fin_texture_aniso against
@@ -797,8 +796,7 @@ static void fur_texture_lod_glsl_matches_c(void)
         "  vec2 c = floor(gl_FragCoord.xy), dx, dy;\n"
         "  footprint(c, -2.0, 8.0, dx, dy);\n"
         "  float side = 0.05 * c.x, ndv = -1.0 + 2.0 * c.y / 47.0;\n"
-        "  float curl = mod(c.x + 2.0 * c.y, 3.0) * 0.6 - 0.1;\n"
-        "  o = vec4(shell_fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO, curl), fur_texture_aniso(side, ndv),\n"
+        "  o = vec4(shell_fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO), fur_texture_aniso(side, ndv),\n"
         "           FIN_TEXTURE_ANISO, fin_texture_aniso(dx * 256.0, dy * 256.0));\n"
         "}\n";
     const char *fs[] = {pelt__shader_shell_lod, footprint_glsl, main_glsl, NULL};
@@ -809,8 +807,7 @@ static void fur_texture_lod_glsl_matches_c(void)
         for (int x = 0; x < W; x++) {
             float dx[2], dy[2];
             footprint(x, y, -2.0f, 8.0f, dx, dy);
-            float r = pelt__lod_shell_fur_texture(dx, dy, 256.0f, PELT__FUR_TEXTURE_ANISO,
-                                                  (float)((x + 2 * y) % 3) * 0.6f - 0.1f);
+            float r = pelt__lod_shell_fur_texture(dx, dy, 256.0f, PELT__FUR_TEXTURE_ANISO);
             worst = fmax(worst, fabs(out[4 * (y * W + x)] - r));
             float q = pelt__lod_fur_texture_aniso(0.05f * (float)x, -1.0f + 2.0f * (float)y / 47.0f);
             worst = fmax(worst, fabs(out[4 * (y * W + x) + 1] - q));
