@@ -157,7 +157,7 @@ static void draw_fins(pelt__fin_pass *p, const pelt__pass_frame *f, unsigned fea
 
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
 {
-    unsigned level = f->lod.full_mesh ? 0 : f->lod.mesh_level;
+    unsigned level = f->lod.full_mesh ? 0 : f->lod.fin_level;
     const pelt__lod_level *l = &p->lod->levels[level];
     /* The view direction in mesh space: the transpose of the model's
      * rotation (exact for rotations and uniform scale). */

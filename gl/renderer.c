@@ -264,6 +264,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
     stats.upload_bytes = r->pending_upload + pelt__gpu_blocks_set_frame(&r->blocks, view, draw, &plan.shadow);
     r->pending_upload = 0;
     stats.mesh_level = plan.lod.mesh_level;
+    stats.fin_level = plan.lod.fin_level;
     stats.mesh_triangles = plan.lod.full_mesh ? r->mesh.triangle_count : r->mesh.level_triangles[plan.lod.mesh_level];
     stats.shell_level = plan.lod.shell_level;
     stats.shell_blend = plan.lod.shell_blend;

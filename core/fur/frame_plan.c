@@ -86,6 +86,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     unsigned shell_levels = pelt__lod_shell_levels(fd->layers);
     if (fl.mode == PELT_LOD_FIXED) {
         l.mesh_level = fl.mesh_level < c->count ? fl.mesh_level : c->count - 1;
+        l.fin_level = l.mesh_level;
         l.shell_level = sw->one_height ? 0 : fl.shell_level < shell_levels ? fl.shell_level : shell_levels - 1;
         return l;
     }
@@ -101,6 +102,9 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     }
     if (v->height == 0) ppu = INFINITY;
     l.mesh_level = pelt__lod_pick(c, ppu, fl.mesh_error_pixels, fl.mesh_edge_pixels);
+    /* Fins up to a slab of the fin texture apart (docs/lod.md, The fins' own level). */
+    const float slab = fd->look.tiling > 0.0f ? fd->fins.density / ((float)fd->look.texture_size * fd->look.tiling) : 0.0f;
+    l.fin_level = pelt__lod_pick_fins(c, l.mesh_level, ppu, fl.mesh_error_pixels, slab);
     float fur_px = fd->length * ppu;
     if (!sw->one_height) pelt__lod_shell_choice(fd->layers, fur_px, fl.shell_pixels, &l.shell_level, &l.shell_blend);
     /* Where the fur is seen face-on a vertex needs fewer shells: it blends

@@ -15,7 +15,9 @@
 /* The levels of detail of one frame (core/fur/lod.h). */
 typedef struct pelt__frame_lod {
     bool full_mesh;       /* level of detail off: the mesh's own triangles */
-    unsigned mesh_level;  /* else this geometric level's triangles and fins */
+    unsigned mesh_level;  /* else this geometric level's triangles ... */
+    unsigned fin_level;   /* ... and this one's fins: mesh_level or coarser
+                             (pelt__lod_pick_fins) */
     unsigned shell_level; /* Lengyel §2.4: ceil(N / 2^level) shells ... */
     float shell_blend;    /* ... blending this far towards the next level */
     /* The view's shell budget (pelt__lod_view_blend, the shells' u_shell_view):

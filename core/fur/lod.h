@@ -54,6 +54,16 @@ void pelt__lod_chain_free(pelt__lod_chain *c, const pelt_allocator *alloc);
  * unit at the mesh's nearest point (0 or less, or not finite: level 0). */
 unsigned pelt__lod_pick(const pelt__lod_chain *c, float pixels_per_unit, float max_error_px, float max_edge_px);
 
+/* The fins' level: the coarsest level from `mesh_level` on whose error on
+ * screen stays within max_error_px and whose mean edge (mesh units) is at
+ * most max_edge, the fin texture's slab: a fin shows the hair of a slab
+ * along its edge, so fins closer than a slab only overlap (each is drawn
+ * the fainter, pelt__fin_spacing_opacity), and on llvmpipe a fin costs its
+ * pixels whatever it shows. The shells' edge bound on screen is for
+ * lighting and shaping across a triangle, which a fin does not do. */
+unsigned pelt__lod_pick_fins(const pelt__lod_chain *c, unsigned mesh_level, float pixels_per_unit, float max_error_px,
+                             float max_edge);
+
 /* Pixels per mesh unit at the bounding sphere's nearest point to the eye:
  * `proj_y` is the projection's [1][1] (cot of half the vertical field of
  * view), `height` the viewport's, `scale` the model matrix's largest

@@ -141,8 +141,8 @@ typedef struct pelt_render_stats {
                                   and curled strands to within a pixel */
     size_t triangles;          /* triangles submitted by all passes, every shell
                                   layer counted */
-    unsigned mesh_level;       /* the shells' and fins' geometric level of detail
-                                  (0: the full mesh) */
+    unsigned mesh_level;       /* the shells' geometric level of detail (0: the
+                                  full mesh) */
     size_t mesh_triangles;     /* triangles of that level */
     unsigned shell_level;      /* Lengyel §2.4: ceil(layers / 2^shell_level) shells */
     float shell_blend;         /* how far towards the next shell level (0..1) */
@@ -152,6 +152,9 @@ typedef struct pelt_render_stats {
                                   (strand tips, colour texture, changed mask
                                   rectangle, uniform blocks, the fins a view shows
                                   and their strands) */
+    unsigned fin_level;        /* the fins' geometric level: mesh_level, or
+                                  coarser where that level's fins would stand
+                                  closer than the fin texture's slab */
 } pelt_render_stats;
 
 /* GL state contract of pelt_renderer_create, pelt_renderer_upload and

@@ -5,6 +5,7 @@
 #include "support/check.h"
 
 #include "core/fur/frame_plan.h"
+#include "core/fur/fur_gpu.h"
 #include "core/fur/lod.h"
 #include "pelt/camera.h"
 #include "pelt/fur.h"
@@ -331,8 +332,45 @@ static void run_tufts_sweep_follows_the_view(void) { on_torus((pelt_fur_desc){.l
 static void run_back_shells_carry_the_silhouette_without_fins(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, back_shells_carry_the_silhouette_without_fins); }
 static void run_the_view_budget_follows_the_view(void) { on_torus((pelt_fur_desc){.layers = 32, .look.texture_size = 32}, the_view_budget_follows_the_view); }
 
+/* The fins' level (pelt__lod_pick_fins): a dense mesh whose fins would
+ * stand closer than the fin texture's slab draws them from a coarser level,
+ * within the slab and the error bound; where the edges are longer than the
+ * slab, the shells' own level. */
+static void fins_stand_up_to_a_slab_apart(void)
+{
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_torus(1.0f, 0.4f, 192, 96, &m, NULL) == PELT_OK);
+    if (!m) return;
+    const pelt__frame_setup setup = setup_with(false, false);
+    pelt__ground_cache cache = {0};
+    const unsigned densities[] = {8, 1}; /* slabs of 1/4 and 1/32 of a tile (the default is 1/16) */
+    for (int k = 0; k < 2; k++) {
+        pelt_fur *fur = NULL;
+        pelt_fur_desc d = {.look.texture_size = 32, .fins.density = (float)densities[k]};
+        CHECK(pelt_fur_create(m, &d, &fur, NULL) == PELT_OK);
+        if (!fur) continue;
+        pelt__fur_snapshot fs;
+        pelt__fur_gpu_snapshot(fur, &fs);
+        const pelt_fur_desc fd = pelt_fur_get_desc(fur);
+        float slab = fd.fins.density / ((float)fd.look.texture_size * fd.look.tiling);
+        pelt_view v = view_at(3.0f);
+        pelt__frame_plan p;
+        pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+        const pelt__lod_level *fins = &fs.lod->levels[p.lod.fin_level];
+        printf("  slab %.3f: mesh level %u (edge %.3f), fins from level %u (edge %.3f)\n", (double)slab,
+               p.lod.mesh_level, (double)fs.lod->levels[p.lod.mesh_level].edge, p.lod.fin_level, (double)fins->edge);
+        CHECK(p.lod.fin_level >= p.lod.mesh_level);
+        if (p.lod.fin_level > p.lod.mesh_level) CHECK(fins->edge <= slab);
+        if (k == 0) CHECK(p.lod.fin_level > p.lod.mesh_level);
+        else CHECK(p.lod.fin_level == p.lod.mesh_level && fs.lod->levels[p.lod.mesh_level + 1].edge > slab);
+        pelt_fur_destroy(fur);
+    }
+    pelt_mesh_destroy(m);
+}
+
 int main(void)
 {
+    RUN(fins_stand_up_to_a_slab_apart);
     RUN(run_the_view_budget_follows_the_view);
     RUN(run_back_shells_carry_the_silhouette_without_fins);
     RUN(open_mesh_leaves_out_the_shells_behind_their_skin);

@@ -62,6 +62,33 @@ static void lod_levels_shrink_and_their_error_grows(void)
     pelt_mesh_destroy(m);
 }
 
+/* The fins' level (pelt__lod_pick_fins): as coarse as the error on screen
+ * allows while the mean edge stays within the fin texture's slab, never
+ * finer than the shells' level. */
+static void lod_fins_take_a_coarser_level_within_a_slab(void)
+{
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_torus(1.0f, 0.35f, 96, 48, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt__lod_chain c;
+    CHECK(pelt__lod_chain_build(m, 1, 0, &heap, &c, NULL) == PELT_OK);
+    CHECK(c.count >= 4);
+    /* Far away every error passes: the slab alone stops the fins. */
+    CHECK(pelt__lod_pick_fins(&c, 0, 1e-6f, 0.5f, 1.01f * c.levels[2].edge) == 2);
+    CHECK(pelt__lod_pick_fins(&c, 0, 1e-6f, 0.5f, 0.99f * c.levels[1].edge) == 0);
+    /* Never finer than the shells, whatever the slab. */
+    CHECK(pelt__lod_pick_fins(&c, 3, 1e-6f, 0.5f, 0.5f * c.levels[0].edge) == 3);
+    /* Close, the error bounds them as it bounds the shells. */
+    CHECK(pelt__lod_pick_fins(&c, 0, 300.0f, 0.5f, INFINITY) == pelt__lod_pick(&c, 300.0f, 0.5f, INFINITY));
+    unsigned k = pelt__lod_pick_fins(&c, 0, 300.0f, 0.5f, INFINITY);
+    CHECK(c.levels[k].error * 300.0f <= 0.5f);
+    /* No measure of the view: the shells' level. */
+    CHECK(pelt__lod_pick_fins(&c, 1, 0.0f, 0.5f, INFINITY) == 1);
+    CHECK(pelt__lod_pick_fins(&c, 1, INFINITY, 0.5f, INFINITY) == 1);
+    pelt__lod_chain_free(&c, &heap);
+    pelt_mesh_destroy(m);
+}
+
 static void lod_an_open_square_is_not_closed(void)
 {
     pelt_mesh *m = NULL;
@@ -507,6 +534,7 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
 int main(void)
 {
     RUN(lod_levels_shrink_and_their_error_grows);
+    RUN(lod_fins_take_a_coarser_level_within_a_slab);
     RUN(lod_an_open_square_is_not_closed);
     RUN(lod_pixels_per_unit_follow_the_distance);
     RUN(lod_shell_levels_halve_to_one_shell);

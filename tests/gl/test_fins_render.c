@@ -251,6 +251,54 @@ static void fins_add_up_alike_on_fine_and_coarse_meshes(void)
     pelt_mesh_destroy(fine);
 }
 
+/* A mesh whose edges are shorter than the fin texture's slab draws its
+ * fins from a coarser level (pelt__lod_pick_fins): fewer, each less faded
+ * by its spacing, they put as much fin into the band outside the shells'
+ * silhouette as the full mesh's fins (within 1.25x either way). */
+static void fins_from_a_coarser_level_add_up_alike(void)
+{
+    pelt_mesh *dense = NULL;
+    CHECK(pelt_mesh_torus(1.0f, 0.4f, 192, 96, &dense, NULL) == PELT_OK);
+    if (!dense) return;
+    /* A slab of 128 texels, half a fur tile: longer than the edges of the
+     * torus's first levels. */
+    const pelt_fur_desc d = {.length = 0.15f, .fins.density = 128.0f};
+    pelt_fur_desc full = d;
+    full.lod.mode = PELT_LOD_FIXED; /* mesh level 0 and its own fins */
+    const pelt_draw_desc shells = {.no_fins = true}, fins = {.debug.no_shells = true};
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    CHECK(pelt_fur_create(dense, &d, &fur, NULL) == PELT_OK);
+    CHECK(fur && pelt_renderer_create(dense, fur, NULL, &r, NULL) == PELT_OK);
+    if (r) {
+        pelt_view v;
+        memset(&v, 0, sizeof v);
+        pelt_camera_to_view(&torus_cam, (float)W / H, &v);
+        v.width = W, v.height = H;
+        gl_test_draw_primitives(r, &v, &fins);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        printf("  mesh level %u, fins from level %u (%zu fins)\n", st.mesh_level, st.fin_level, st.fins);
+        CHECK(st.fin_level > st.mesh_level);
+    }
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+    uint8_t *a = gl_test_render_sized(gl, dense, &d, &torus_cam, &shells, NULL, NULL, true);
+    uint8_t *coarse = a ? gl_test_render_sized(gl, dense, &d, &torus_cam, &fins, NULL, NULL, true) : NULL;
+    uint8_t *own = coarse ? gl_test_render_sized(gl, dense, &full, &torus_cam, &fins, NULL, NULL, true) : NULL;
+    CHECK(a && coarse && own);
+    if (a && coarse && own) {
+        double in_coarse = band_amount(a, 5, coarse), in_own = band_amount(a, 5, own);
+        printf("  fin in the band: from the coarser level %.1f px, from the mesh's own %.1f (x%.2f)\n", in_coarse,
+               in_own, in_own > 0.0 ? in_coarse / in_own : 0.0);
+        CHECK(in_own > 100.0);
+        CHECK(in_coarse <= 1.25 * in_own && in_coarse >= 0.8 * in_own);
+    }
+    free(a);
+    free(coarse);
+    free(own);
+    pelt_mesh_destroy(dense);
+}
+
 /* (vi) One draw call for all fins whatever the mesh; GL's primitive count
  * is the fins' strips, fins x 2 x rows triangles (1..PELT_FIN_ROWS rows,
  * as few as follow the strands). */
@@ -285,7 +333,7 @@ static void all_fins_are_one_draw_call(void)
                                         &(pelt_draw_desc){.no_skin = true, .debug.no_shells = true, .fins_unfaded = true});
         pelt_render_stats all = pelt_renderer_get_stats(r);
         CHECK(all.fin_draw_calls == 1 && all.fins >= st.fins);
-        CHECK(st.mesh_level > 0 || all.fins >= edges);
+        CHECK(st.fin_level > 0 || all.fins >= edges);
         CHECK(prims == chunked(all.fins) * 2 * all.fin_rows);
         pelt_renderer_destroy(r);
         pelt_fur_destroy(fur);
@@ -360,6 +408,7 @@ int main(void)
     RUN(inter_fur_shadows_make_hairs_stand_out);
     RUN(all_fins_are_one_draw_call);
     RUN(fins_add_up_alike_on_fine_and_coarse_meshes);
+    RUN(fins_from_a_coarser_level_add_up_alike);
     RUN(wet_fins_gather_into_tufts);
     pelt_mesh_destroy(torus);
     pelt_mesh_destroy(square);

@@ -33,10 +33,12 @@ static inline pelt_headless *gl_test_open(unsigned w, unsigned h, bool float_tar
 
 /* Renders `mesh` with fur `d` at w x h; returns malloc'd RGBA8 (top row
  * first) or NULL (and a printed reason). `tweak` may change the fur; dd
- * picks passes and layers (NULL: everything). */
-static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, const pelt_fur_desc *d,
-                               const pelt_camera *cam, const pelt_draw_desc *dd,
-                               void (*tweak)(pelt_fur *, void *), void *user)
+ * picks passes and layers (NULL: everything). The view has no size, so
+ * the finest levels of detail draw (gl_test_render_sized gives it the
+ * viewport's: the levels the view picks). */
+static inline uint8_t *gl_test_render_sized(pelt_headless *gl, const pelt_mesh *mesh, const pelt_fur_desc *d,
+                                            const pelt_camera *cam, const pelt_draw_desc *dd,
+                                            void (*tweak)(pelt_fur *, void *), void *user, bool sized)
 {
     pelt_error err = {0};
     pelt_fur *fur = NULL;
@@ -57,6 +59,7 @@ static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, 
     pelt_view v;
     memset(&v, 0, sizeof v);
     pelt_camera_to_view(cam, (float)vp[2] / (float)vp[3], &v);
+    if (sized) v.width = (unsigned)vp[2], v.height = (unsigned)vp[3];
     v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.5f, 1.45f, 1.4f}, 0.25f};
     glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -66,6 +69,13 @@ static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, 
     pelt_renderer_destroy(r);
     pelt_fur_destroy(fur);
     return px;
+}
+
+static inline uint8_t *gl_test_render(pelt_headless *gl, const pelt_mesh *mesh, const pelt_fur_desc *d,
+                                      const pelt_camera *cam, const pelt_draw_desc *dd,
+                                      void (*tweak)(pelt_fur *, void *), void *user)
+{
+    return gl_test_render_sized(gl, mesh, d, cam, dd, tweak, user, false);
 }
 
 /* An RGBA8 pixel's largest channel difference from the background, 0..255. */
