@@ -443,6 +443,17 @@ float pelt__lod_shell_overcount_alpha(float a, float k)
     return 1.0f - powf(fmaxf(1.0f - a, 0.0f), 1.0f / fmaxf(k, 1.0f));
 }
 
+float pelt__lod_coverage_log(float a)
+{
+    float clear = 1.0f - a;
+    return clear > 0.0f ? log2f(clear) : -1e30f;
+}
+
+float pelt__lod_coverage_share(float clear_log, float e)
+{
+    return 1.0f - exp2f(clear_log * e);
+}
+
 float pelt__lod_shell_hair_span(float width, float taper, float h, float layers, float length)
 {
     return width * (1.0f - taper * fminf(fmaxf(h, 0.0f), 1.0f)) * layers / fmaxf(length, 1e-6f);

@@ -212,6 +212,16 @@ float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float 
  * so that the k composite to a. Mirrors shell_overcount_alpha(). */
 float pelt__lod_shell_overcount_alpha(float a, float k);
 
+/* A shell fragment's coverage in the form that composes its powers: the
+ * overcount's share (above), a tuft's squeeze (pelt__clump_coverage) and a
+ * layer's sub shells (pelt__sub_shell_alpha) are each 1 - (1 - a)^e, so
+ * together 1 - (1 - a)^(e1 e2 e3): log2(1 - a) once (pelt__lod_coverage_log;
+ * an opaque hair's is -1e30, which any positive exponent keeps opaque) and
+ * pelt__lod_coverage_share(log, e1 e2 e3) once.
+ * Mirror coverage_log() and coverage_share() in shell_lod.glsl. */
+float pelt__lod_coverage_log(float a);
+float pelt__lod_coverage_share(float clear_log, float e);
+
 /* The hair's width over the layer spacing at height h: its root width
  * `width` (world units) tapered by `taper` towards the tip (h standing in
  * for the share of its length), over the spacing length / layers. Mirrors

@@ -51,6 +51,19 @@ float layer_share(float a)
 #endif
 }
 
+// layer_share's exponent (coverage_share): 1 / the sub shells.
+float layer_share_exponent()
+{
+#ifdef PELT_WET
+    return 1.0 / max(u_sub_shells, 1.0);
+#else
+    return 1.0;
+#endif
+}
+
+// log2(1 - 0.05): a coverage below 0.05 draws no hair (coverage_log).
+const float COVERAGE_CLEAR_LOG = -0.0740005814;
+
 #ifdef PELT_LIGHT_PASS
 // The light pass (gl/shadow_pass.c): the fur's opacity into slices 0-3, 4-7.
 in float v_light_depth;
@@ -183,22 +196,28 @@ void main()
     hair = shell_view_texel(v_view, fur_edge(hair, fur_gain)) * v_alpha;
     hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
     if (!groom_keeps(hair.b, v_density)) discard;
+    // The tuft's squeeze, the shells a ray crosses inside the hair and the
+    // layer's sub shells each raise the coverage's complement to a power
+    // (coverage_share, shell_lod.glsl): their exponents multiply, so one
+    // log2 and one exp2 stand for clump_coverage, shell_overcount_alpha and
+    // layer_share.
+    float clear_log = coverage_log(hair.a);
+    float tuft_e = 1.0;
 #ifdef PELT_WET
-    if (clump == CLUMP_DISPLACED) {
-        // The bundle is 1/k times as dense where the read averages its
-        // hairs (see docs/wetness.md).
-        hair.a = clump_coverage(hair.a, clump_bundle_squeeze(squeeze, fur_lod));
-    }
+    // The bundle is 1/k times as dense where the read averages its
+    // hairs (see docs/wetness.md): clump_coverage's exponent.
+    if (clump == CLUMP_DISPLACED) tuft_e = 1.0 / clump_bundle_squeeze(squeeze, fur_lod);
 #endif
 #ifdef PELT_LIGHT_PASS
     // Deep opacity maps: this hair's -ln(1 - alpha) into the slices at and
     // behind its depth in the slab in front of the skin. Hair behind the
     // skin is in the body's shadow and shades nothing that is lit.
+    hair.a = coverage_share(clear_log, tuft_e);
     if (hair.a < 0.05) discard;
     if (!shadow_slices_add(ivec2(gl_FragCoord.xy), v_light_depth, hair.a, o_slices0, o_slices1)) discard;
     return;
 #else
-    if (hair.a < 0.05) {
+    if (clear_log * tuft_e > COVERAGE_CLEAR_LOG) { // the tuft's coverage below 0.05
 #ifdef PELT_INTER_SHADOW
         // Kenwright: no hair here, but the hair a step towards the light
         // casts its shadow on what lies below, with that hair's coverage.
@@ -232,7 +251,7 @@ void main()
 #elif defined(PELT_RINGLETS)
     shell_ringlet_light(sharp_id(fur_uv, hair.b), rho, base, spec);
 #endif
-    float alpha = layer_share(shell_overcount_alpha(hair.a, v_overcount));
+    float alpha = coverage_share(clear_log, tuft_e / max(v_overcount, 1.0) * layer_share_exponent());
     o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), alpha);
 #endif
 }

@@ -125,6 +125,27 @@ float shell_overcount_alpha(float a, float k)
     return 1.0 - pow(max(1.0 - a, 0.0), 1.0 / max(k, 1.0));
 }
 
+// pelt__lod_coverage_log / _share: a shell fragment's coverage in the
+// form that composes its powers. Each of the hair's coverage a shared
+// among the k shells a ray crosses inside it (shell_overcount_alpha),
+// squeezed into a tuft k times as dense (clump_coverage) and shared among
+// a layer's k sub shells (sub_shell_alpha) is 1 - (1 - a)^e, e = 1/k:
+// together 1 - (1 - a)^(e1 e2 e3), so a fragment takes log2 of 1 - a once
+// and exp2 once instead of three powers.
+// An opaque hair's log2(0): finite, so that it stays an opaque hair's
+// under any positive exponent (exp2 of it is 0), where log2(0) is
+// undefined in GLSL.
+float coverage_log(float a)
+{
+    float clear = 1.0 - a;
+    return clear > 0.0 ? log2(clear) : -1e30;
+}
+
+float coverage_share(float clear_log, float e)
+{
+    return 1.0 - exp2(clear_log * e);
+}
+
 // pelt__lod_shell_hair_span: the hair's width over the layer spacing at h.
 float shell_hair_span(float width, float taper, float h, float layers, float length)
 {

@@ -7,6 +7,7 @@
 #include "core/fur/fins.h"
 #include "core/fur/fur_gpu.h"
 #include "core/fur/lod.h"
+#include "core/wet/clump.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -304,6 +305,39 @@ static void lod_shell_overcount_counts_a_hair_once(void)
     CHECK_NEAR(pelt__lod_shell_overcount_alpha(0.6f, 1.0f), 0.6f, 1e-6);
 }
 
+/* A shell fragment's coverage composed in one power: the log of the
+ * complement times the three exponents gives what the tuft's squeeze, the
+ * overcount's share and the sub shells' share give one after the other
+ * (in double precision; the three in float lose up to 5e-4 where the
+ * coverage nears 1, the one power less), and each alone what its own
+ * function gives. */
+static void lod_coverage_powers_compose(void)
+{
+    double worst_once = 0.0, worst_chained = 0.0;
+    for (int i = 0; i <= 20; i++)
+        for (int j = 0; j <= 8; j++) {
+            float a = 0.05f * (float)i; /* 0 .. 1, both ends included */
+            float squeeze = 0.1f + 0.1125f * (float)j, k = 1.0f + 0.25f * (float)j, sub = 1.0f + (float)(j % 3);
+            double exact = 1.0 - pow(1.0 - (double)a, 1.0 / ((double)squeeze * (double)k * (double)sub));
+            float chained = pelt__sub_shell_alpha(pelt__lod_shell_overcount_alpha(pelt__clump_coverage(a, squeeze), k), sub);
+            float once = pelt__lod_coverage_share(pelt__lod_coverage_log(a), 1.0f / squeeze / k / sub);
+            worst_once = fmax(worst_once, fabs(exact - (double)once));
+            worst_chained = fmax(worst_chained, fabs(exact - (double)chained));
+            CHECK_NEAR(pelt__lod_coverage_share(pelt__lod_coverage_log(a), 1.0f / k), pelt__lod_shell_overcount_alpha(a, k),
+                       2e-6);
+            CHECK_NEAR(pelt__lod_coverage_share(pelt__lod_coverage_log(a), 1.0f / squeeze), pelt__clump_coverage(a, squeeze),
+                       2e-6);
+        }
+    printf("  worst |one power - exact| = %.3g, |three - exact| = %.3g\n", worst_once, worst_chained);
+    CHECK(worst_once < 1e-5);
+    CHECK(worst_once <= worst_chained);
+    /* The ends: no hair stays none, an opaque hair opaque. */
+    CHECK(pelt__lod_coverage_share(pelt__lod_coverage_log(0.0f), 0.3f) == 0.0f);
+    CHECK(pelt__lod_coverage_share(pelt__lod_coverage_log(1.0f), 0.3f) == 1.0f);
+    /* The shells' cut (coverage below 0.05) read on the log. */
+    CHECK(pelt__lod_coverage_log(0.049f) > -0.0740005814f && pelt__lod_coverage_log(0.051f) < -0.0740005814f);
+}
+
 /* The view's budget: edge-on every shell, face-on half of them; the
  * weight grows as the fur turns towards the eye. An even shell's texel at
  * weight 1 is the texel composited over itself (what it stands for). */
@@ -547,5 +581,6 @@ int main(void)
     RUN(lod_fur_texture_keeps_the_short_side_sharp);
     RUN(lod_fur_edge_keeps_a_hair_its_width);
     RUN(lod_shell_overcount_counts_a_hair_once);
+    RUN(lod_coverage_powers_compose);
     return check_summary();
 }

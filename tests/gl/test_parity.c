@@ -720,6 +720,34 @@ static void shell_view_blend_glsl_matches_c(void)
     CHECK(worst < 1e-4);
 }
 
+/* A shell fragment's coverage in one power (coverage_log, coverage_share),
+ * GLSL vs C, over coverages 0..1 (both ends) and exponents 0.05..3. */
+static void coverage_share_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy);\n"
+        "  float a = c.x / 63.0, e = 0.05 + 2.95 * c.y / 47.0;\n"
+        "  float l = coverage_log(a);\n"
+        "  o = vec4(coverage_share(l, e), l < -1e29 ? 1.0 : 0.0, l > -0.0740005814 ? 1.0 : 0.0, 0.0);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int flags_off = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float a = (float)x / 63.0f, e = 0.05f + 2.95f * (float)y / 47.0f;
+            float l = pelt__lod_coverage_log(a);
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fabs(g[0] - pelt__lod_coverage_share(l, e)));
+            flags_off += (g[1] > 0.5f) != (l < -1e29f) || (g[2] > 0.5f) != (l > -0.0740005814f);
+        }
+    printf("  worst |GLSL - C| = %.3g, %d opaque or clear flags differ\n", worst, flags_off);
+    CHECK(worst < 2e-4 && flags_off == 0);
+}
+
 /* The shells' over-count of a hair seen along its length (shell_lod.glsl)
  * against pelt__lod_shell_overcount and its companions: widths, angles and
  * drifts over the grid, and the share of coverage each shell takes. */
@@ -1035,6 +1063,7 @@ int main(void)
     RUN(fur_texture_lod_glsl_matches_c);
     RUN(fur_edge_glsl_matches_c);
     RUN(shell_overcount_glsl_matches_c);
+    RUN(coverage_share_glsl_matches_c);
     RUN(lengyel_table_lookup_matches_the_formula);
     RUN(hair_model_glsl_matches_c);
     RUN(display_glsl_matches_c);
