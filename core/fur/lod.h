@@ -220,6 +220,8 @@ float pelt__lod_shell_overcount_alpha(float a, float k);
  * pelt__lod_coverage_share(log, e1 e2 e3) once.
  * Mirror coverage_log() and coverage_share() in shell_lod.glsl. */
 float pelt__lod_coverage_log(float a);
+/* log2(1 - 0.05): a coverage below 0.05 draws no hair. Mirrors COVERAGE_CLEAR_LOG. */
+#define PELT__COVERAGE_CLEAR_LOG (-0.0740005814f)
 float pelt__lod_coverage_share(float clear_log, float e);
 
 /* The hair's width over the layer spacing at height h: its root width

@@ -61,9 +61,6 @@ float layer_share_exponent()
 #endif
 }
 
-// log2(1 - 0.05): a coverage below 0.05 draws no hair (coverage_log).
-const float COVERAGE_CLEAR_LOG = -0.0740005814;
-
 #ifdef PELT_LIGHT_PASS
 // The light pass (gl/shadow_pass.c): the fur's opacity into slices 0-3, 4-7.
 in float v_light_depth;

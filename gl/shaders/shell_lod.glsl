@@ -141,6 +141,9 @@ float coverage_log(float a)
     return clear > 0.0 ? log2(clear) : -1e30;
 }
 
+// log2(1 - 0.05): a coverage below 0.05 draws no hair. PELT__COVERAGE_CLEAR_LOG.
+const float COVERAGE_CLEAR_LOG = -0.0740005814;
+
 float coverage_share(float clear_log, float e)
 {
     return 1.0 - exp2(clear_log * e);

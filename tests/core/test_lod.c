@@ -335,7 +335,8 @@ static void lod_coverage_powers_compose(void)
     CHECK(pelt__lod_coverage_share(pelt__lod_coverage_log(0.0f), 0.3f) == 0.0f);
     CHECK(pelt__lod_coverage_share(pelt__lod_coverage_log(1.0f), 0.3f) == 1.0f);
     /* The shells' cut (coverage below 0.05) read on the log. */
-    CHECK(pelt__lod_coverage_log(0.049f) > -0.0740005814f && pelt__lod_coverage_log(0.051f) < -0.0740005814f);
+    CHECK_NEAR(PELT__COVERAGE_CLEAR_LOG, log2(0.95), 1e-7);
+    CHECK(pelt__lod_coverage_log(0.049f) > PELT__COVERAGE_CLEAR_LOG && pelt__lod_coverage_log(0.051f) < PELT__COVERAGE_CLEAR_LOG);
 }
 
 /* The view's budget: edge-on every shell, face-on half of them; the

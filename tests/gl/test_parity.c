@@ -730,7 +730,7 @@ static void coverage_share_glsl_matches_c(void)
         "  vec2 c = floor(gl_FragCoord.xy);\n"
         "  float a = c.x / 63.0, e = 0.05 + 2.95 * c.y / 47.0;\n"
         "  float l = coverage_log(a);\n"
-        "  o = vec4(coverage_share(l, e), l < -1e29 ? 1.0 : 0.0, l > -0.0740005814 ? 1.0 : 0.0, 0.0);\n"
+        "  o = vec4(coverage_share(l, e), l < -1e29 ? 1.0 : 0.0, l > COVERAGE_CLEAR_LOG ? 1.0 : 0.0, 0.0);\n"
         "}\n";
     const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
     CHECK(gl_test_eval(gl, fs, W, H, out));
@@ -742,7 +742,7 @@ static void coverage_share_glsl_matches_c(void)
             float l = pelt__lod_coverage_log(a);
             const float *g = out + 4 * (y * W + x);
             worst = fmax(worst, fabs(g[0] - pelt__lod_coverage_share(l, e)));
-            flags_off += (g[1] > 0.5f) != (l < -1e29f) || (g[2] > 0.5f) != (l > -0.0740005814f);
+            flags_off += (g[1] > 0.5f) != (l < -1e29f) || (g[2] > 0.5f) != (l > PELT__COVERAGE_CLEAR_LOG);
         }
     printf("  worst |GLSL - C| = %.3g, %d opaque or clear flags differ\n", worst, flags_off);
     CHECK(worst < 2e-4 && flags_off == 0);
