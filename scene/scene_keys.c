@@ -50,6 +50,7 @@ static const pelt__scene_key scene_keys[] = {
     {"fur.preset", K_PRESET, OFF(fur_preset), 0, 0, 0, 0, 0, pelt_curl_preset_names},
     {"animation.name", K_NAME, OFF(animation.name), 0, 0, 0, 0, 0, NULL},
     PARAM("fur.layers", "layers"),
+    PARAM("fur.layers_per_turn", "layers_per_turn"),
     PARAM("fur.length", "length"),
     PARAM("fur.texture_size", "look.texture_size"),
     PARAM("fur.seed", "seed"),

@@ -41,6 +41,27 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh)
         float lo = sqrtf(20.0f / hairs_per_area), hi = sqrtf(100.0f / hairs_per_area);
         d->wet.clump_size = d->length < lo ? lo : d->length > hi ? hi : d->length;
     }
+    d->layers = pelt__fur_curl_layers(d);
+}
+
+float pelt__fur_curl_turns(const pelt_fur_desc *d)
+{
+    float turns = 0.0f;
+    if (d->look.curl_radius > 0.0f) turns += fabsf(d->look.curl_frequency) / 6.2831853f;
+    if (d->look.strand_curl > 0.0f) turns += fabsf(d->look.strand_curl_turns);
+    return turns;
+}
+
+/* A shell draws its slab of a curled hair flat: the arc the hair turns
+ * through within it, at one height. 32 shells give the six turns of Silva
+ * Fig. 7d's many small curls 67 degrees each, and the helix reads as rings
+ * printed one above the other (docs/method.md); layers_per_turn shells a
+ * turn keep it a helix. */
+unsigned pelt__fur_curl_layers(const pelt_fur_desc *d)
+{
+    float need = ceilf(pelt__fur_curl_turns(d) * d->layers_per_turn - 1e-3f);
+    if (!(need > (float)d->layers)) return d->layers;
+    return need < 256.0f ? (unsigned)need : 256u;
 }
 
 bool pelt__fur_has_ringlets(const pelt_fur_desc *d)

@@ -64,6 +64,12 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh);
 
 /* Whether d's curl is ringlets: a curl radius and PELT_CURL_RINGLETS. */
 bool pelt__fur_has_ringlets(const pelt_fur_desc *d);
+/* The turns the hair's curl makes over its length: Silva's (look.curl_*)
+ * and the texture's own (look.strand_curl_*) added. */
+float pelt__fur_curl_turns(const pelt_fur_desc *d);
+/* The shells the fur takes: `layers`, or layers_per_turn for every turn
+ * of its curl where that is more (at most 256). */
+unsigned pelt__fur_curl_layers(const pelt_fur_desc *d);
 
 /* The curl radius the shells' vertex stage (and the fins' strands) move
  * by: look.curl_radius, or 0 when the texture holds the curl as ringlets. */

@@ -13,13 +13,7 @@
 
 unsigned pelt__strand_ref_segments(const pelt_fur *f)
 {
-    const pelt__furtex_desc td = pelt__fur_texture_desc(&f->desc);
-    const float two_pi = 6.2831853f;
-    float turns = 0.0f;
-    if (td.curl_radius > 0.0f) turns += fabsf(td.curl_turns);
-    if (td.ringlet_radius > 0.0f) turns += fabsf(td.ringlet_omega) / two_pi;
-    if (pelt__fur_vertex_curl_radius(&f->desc) > 0.0f) turns += fabsf(f->desc.look.curl_frequency) / two_pi;
-    float s = ceilf(8.0f * turns);
+    float s = ceilf(8.0f * pelt__fur_curl_turns(&f->desc));
     /* A tuft gathers its hairs within a few layers above its base
      * (pelt__clump_tuft_profile's log term): 8 even pieces cut that bend
      * off with one chord, and the tuft's flanks came out straight. */

@@ -210,7 +210,17 @@ typedef struct pelt_fur_lod {
 typedef struct pelt_fur_desc {
     unsigned layers;         /* shells N where the fur is seen edge-on (half of
                                 them face-on, lod.shell_pixels), default 32,
-                                at most 256 */
+                                at most 256; curled hair takes more
+                                (layers_per_turn), and pelt_fur_get_desc
+                                gives the count the fur has */
+    float layers_per_turn;   /* shells a turn of the hair's curl takes at least
+                                (Silva's look.curl_* and the texture's
+                                look.strand_curl_*, their turns added): a
+                                curl of T turns over the length gets
+                                max(layers, ceil(T layers_per_turn)) shells,
+                                at most 256. Fewer draw a helix as flat rings
+                                (docs/method.md). Default 12; 1 keeps
+                                `layers` for any curl of fewer turns */
     float length;            /* fur length L0 in world units, default 3% of
                                 the mesh's bounding-box diagonal */
     uint32_t seed;           /* texture and dynamics seed, default 1 */

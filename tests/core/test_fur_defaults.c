@@ -155,7 +155,8 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK(diag > 2.8f && diag < 4.1f); /* the torus's box is 2.8 x 0.8 x 2.8 */
     pelt_fur_desc d = pelt_fur_get_desc(fur);
 
-    CHECK(d.layers == 32);
+    CHECK(d.layers == 32); /* straight hair: no curl to add shells for */
+    CHECK_REL(d.layers_per_turn, 12.0f);
     CHECK_REL(d.length, 0.03f * diag); /* 3% of the bounding-box diagonal */
     CHECK(d.seed == 1);
 
@@ -247,8 +248,64 @@ static void derived_defaults_follow_the_given_fields(void)
     pelt_mesh_destroy(m);
 }
 
+static unsigned layers_of(pelt_mesh *m, const pelt_fur_desc *in)
+{
+    pelt_fur *fur = fur_on(m, in);
+    CHECK(fur != NULL);
+    unsigned layers = fur ? pelt_fur_get_desc(fur).layers : 0;
+    pelt_fur_destroy(fur);
+    return layers;
+}
+
+static void curled_hair_takes_its_shells_a_turn(void)
+{
+    /* layers is the count edge-on for hair that does not curl; a curl of
+     * T turns takes ceil(T layers_per_turn) where that is more. */
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_square(2.0f, 4, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt_fur_desc in = {0};
+    in.look.texture_size = 32; /* small: the texture is made here */
+    in.length = 0.1f;
+    /* Silva Fig. 7's presets: one turn (wavy), two, six. */
+    const struct {
+        const char *preset;
+        unsigned layers;
+    } looks[] = {{"straight", 32}, {"wavy", 32}, {"few-large-curls", 32}, {"many-small-curls", 72}};
+    for (size_t i = 0; i < sizeof looks / sizeof looks[0]; i++) {
+        pelt_fur_desc d = in;
+        CHECK(pelt_fur_desc_curl_preset(&d, m, looks[i].preset, NULL) == PELT_OK);
+        unsigned seen = layers_of(m, &d);
+        if (seen != looks[i].layers) fprintf(stderr, "  %s: %u layers\n", looks[i].preset, seen);
+        CHECK(seen == looks[i].layers);
+    }
+    /* Given layers stay where they are already enough, and the turns of
+     * the texture's own curl count with Silva's. */
+    pelt_fur_desc d = in;
+    CHECK(pelt_fur_desc_curl_preset(&d, m, "many-small-curls", NULL) == PELT_OK);
+    d.layers = 96;
+    CHECK(layers_of(m, &d) == 96);
+    d.layers = 16;
+    d.layers_per_turn = 4.0f;
+    CHECK(layers_of(m, &d) == 24);
+    d.layers_per_turn = 1.0f;
+    CHECK(layers_of(m, &d) == 16);
+    d = in;
+    d.look.strand_curl = 6.0f;
+    d.look.strand_curl_turns = 3.0f;
+    CHECK(layers_of(m, &d) == 36);
+    d.look.curl_frequency = 6.2831853f * 2.5f; /* coherent or ringlets alike */
+    d.look.curl_radius = 0.01f;
+    CHECK(layers_of(m, &d) == 66);
+    /* Never past the 256 a fur may have. */
+    d.look.strand_curl_turns = 32.0f;
+    CHECK(layers_of(m, &d) == 256);
+    pelt_mesh_destroy(m);
+}
+
 int main(void)
 {
+    RUN(curled_hair_takes_its_shells_a_turn);
     RUN(zero_desc_gets_every_documented_default);
     RUN(derived_defaults_follow_the_given_fields);
     RUN(every_row_has_its_default_in_range_and_its_field_in_the_desc);

@@ -120,6 +120,7 @@ static void full_scene_sets_every_field(void)
 
     CHECK(strcmp(s.fur_preset, "many-small-curls") == 0 || strcmp(s.fur_preset, "small_curls") == 0);
     CHECK(s.fur.layers == 32);
+    CHECK_NEAR(s.fur.layers_per_turn, 8, 0);
     CHECK_NEAR(s.fur.length, 0.05, 1e-7);
     CHECK(s.fur.look.texture_size == 128);
     CHECK(s.fur.seed == 4000000000u);
