@@ -367,9 +367,10 @@ static float view_spacing(float side_px, float n_dot_v)
     return side_px * sqrtf(1.0f - c * c);
 }
 
-float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px)
+float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px, float drift)
 {
-    float spacing = fmaxf(view_spacing(side_px, n_dot_v), 1e-6f);
+    float fore = view_spacing(side_px, n_dot_v), across = side_px * drift;
+    float spacing = fmaxf(sqrtf(fore * fore + across * across), 1e-6f);
     return fminf(fmaxf(log2f(target_px / spacing), 0.0f), 1.0f);
 }
 

@@ -114,8 +114,14 @@ float pelt__lod_shell_instance(const float shells[4], const float next[2], float
  * shell stands for itself and the faded one below it, its premultiplied
  * texel composited over itself by w (pelt__lod_view_texel): the hair of
  * neighbouring slices is nearly the same, and it costs no second fetch.
- * Mirrors shell_view_blend() in gl/shaders/shell_lod.glsl. */
-float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px);
+ * A curled hair also moves sideways from one layer to the next, drift
+ * times the spacing (pelt__lod_shell_hair_drift), in the surface's plane,
+ * which a face-on view shows whole: the spacing the budget weighs is
+ * side_px sqrt(sin^2(theta) + drift^2), so that curls keep the shells that
+ * draw each turn ([method.md], Shells a turn of the curl); straight hair
+ * (drift 0) as above. Mirrors shell_view_blend() in
+ * gl/shaders/shell_lod.glsl. */
+float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px, float drift);
 
 /* The back-facing shells of a closed mesh seen without fins: the skin
  * hides them unless they stand near the silhouette, where their hair

@@ -14,9 +14,11 @@ float shell_view_spacing(float side_px, float n_dot_v)
     return side_px * sqrt(1.0 - c * c);
 }
 
-float shell_view_blend(float side_px, float n_dot_v, float target_px)
+// A curled hair's sideways drift per layer counts too, seen whole face-on.
+float shell_view_blend(float side_px, float n_dot_v, float target_px, float drift)
 {
-    float spacing = max(shell_view_spacing(side_px, n_dot_v), 1e-6);
+    float fore = shell_view_spacing(side_px, n_dot_v), across = side_px * drift;
+    float spacing = max(sqrt(fore * fore + across * across), 1e-6);
     return clamp(log2(target_px / spacing), 0.0, 1.0);
 }
 

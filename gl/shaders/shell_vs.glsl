@@ -99,18 +99,6 @@ void main()
 #ifndef PELT_LIGHT_PASS
     vec3 root = (u_model * vec4(position, 1.0)).xyz;
     float n_dot_v = dot(normalize(mat3(u_model) * n), normalize(u_eye - root));
-    if (u_shell_view.x > 0.0) {
-        // Face-on, the shells' spacing is foreshortened: the odd shells
-        // (from the outside) fade and the even ones stand for them.
-        float w_clip = max((u_view_proj * vec4(root, 1.0)).w, 1e-6);
-        float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_shell_view.y);
-        bool odd = mod(u_shells.x - 1.0 - instance, 2.0) > 0.5;
-        v_alpha *= odd ? 1.0 - w : 1.0;
-        v_view = odd ? 0.0 : w;
-        // Sharp across a grazing view, unless the shells stand far enough
-        // apart on screen to show as rows (docs/shading.md).
-        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip, n_dot_v);
-    }
 #endif
     float h = (1.0 + layer) / u_layers;
     vec3 u = normalize(tangent.xyz);
@@ -136,6 +124,21 @@ void main()
     // Water takes the ringlet out.
     float drift = shell_hair_drift((1.0 - rho) * u_ringlet_radius, u_curl_frequency, h, L, u_strand_curl_radius,
                                    u_strand_curl_omega);
+#ifndef PELT_LIGHT_PASS
+    if (u_shell_view.x > 0.0) {
+        // Face-on, the shells' spacing is foreshortened: the odd shells
+        // (from the outside) fade and the even ones stand for them, unless
+        // the hair curls, moving sideways from one shell to the next.
+        float w_clip = max((u_view_proj * vec4(root, 1.0)).w, 1e-6);
+        float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_shell_view.y, drift);
+        bool odd = mod(u_shells.x - 1.0 - instance, 2.0) > 0.5;
+        v_alpha *= odd ? 1.0 - w : 1.0;
+        v_view = odd ? 0.0 : w;
+        // Sharp across a grazing view, unless the shells stand far enough
+        // apart on screen to show as rows (docs/shading.md).
+        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip, n_dot_v);
+    }
+#endif
     v_overcount = u_no_overcount != 0 ? 1.0
                 : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
                                   dot(world_t, normalize(u_eye - world.xyz)), drift);

@@ -162,16 +162,18 @@ check curls_lit_hair_by_hair $? "SSIM against the strands $ss (bound 0.63)"
 # Curly fur drawn with its shells a turn (scenes/reference/curly.json, six
 # turns over the length): 32 shells give each a 67-degree arc of every
 # hair, drawn flat at one height, and the helix reads as printed rings;
-# 12 a turn (72 shells) draw it as the hairs' helix. SSIM against the
-# strands 0.616 at 32, 0.669 at 72. Bounds: the look's own (1 - SSIM at
-# most 60% of the baseline's 0.558, so at least 0.6652) and at least 0.03
-# over the same fur at 32 shells.
+# 12 a turn (72 shells) draw it as the hairs' helix, and the view's
+# budget keeps them where the fur is seen face-on, where a curl's step
+# from shell to shell shows whole. SSIM against the strands 0.616 at 32
+# (0.621 kept face-on), 0.669 at 72 halved face-on, 0.687 kept. Bounds:
+# at least 0.68 (the look's own asks 0.6652: 1 - SSIM at most 60% of the
+# baseline's 0.558) and 0.05 over the same fur at 32 shells.
 curly="$(cd "$(dirname "$0")/../.." && pwd)/scenes/reference/curly.json"
 res=$("$pelt" compare "$curly" -q 2>&1)
 res32=$("$pelt" compare "$curly" --set fur.layers_per_turn=1 -q 2>&1)
 ss=$(field ssim "$res") ss32=$(field ssim "$res32")
-awk -v s="${ss:-0}" -v t="${ss32:-1}" 'BEGIN { exit !(s >= 0.6652 && s >= t + 0.03) }'
-check curls_drawn_as_helices $? "SSIM against the strands $ss, at 32 shells $ss32 (bounds: 0.6652, 0.03 over 32 shells)"
+awk -v s="${ss:-0}" -v t="${ss32:-1}" 'BEGIN { exit !(s >= 0.68 && s >= t + 0.05) }'
+check curls_drawn_as_helices $? "SSIM against the strands $ss, at 32 shells $ss32 (bounds: 0.68, 0.05 over 32 shells)"
 
 # The fur as sharp as the hairs (the reference torus, 480x360): read at
 # the footprint's own level, the nearest mip level's bilinear read

@@ -344,19 +344,24 @@ static void lod_coverage_powers_compose(void)
  * weight 1 is the texel composited over itself (what it stands for). */
 static void lod_view_blend_follows_the_view(void)
 {
-    CHECK(pelt__lod_view_blend(0.6f, 0.0f, 0.5f) == 0.0f);   /* edge-on, 0.6 px > 0.5 */
-    CHECK(pelt__lod_view_blend(0.6f, 0.95f, 0.5f) == 1.0f);  /* face-on: 0.19 px */
-    CHECK(pelt__lod_view_blend(0.6f, 1.0f, 0.5f) == 1.0f);   /* straight on: no spacing at all */
-    CHECK(pelt__lod_view_blend(0.6f, -0.95f, 0.5f) == 1.0f); /* from behind, the same */
+    CHECK(pelt__lod_view_blend(0.6f, 0.0f, 0.5f, 0.0f) == 0.0f);   /* edge-on, 0.6 px > 0.5 */
+    CHECK(pelt__lod_view_blend(0.6f, 0.95f, 0.5f, 0.0f) == 1.0f);  /* face-on: 0.19 px */
+    CHECK(pelt__lod_view_blend(0.6f, 1.0f, 0.5f, 0.0f) == 1.0f);   /* straight on: no spacing at all */
+    CHECK(pelt__lod_view_blend(0.6f, -0.95f, 0.5f, 0.0f) == 1.0f); /* from behind, the same */
     float last = 0.0f;
     for (int k = 0; k <= 100; k++) {
-        float w = pelt__lod_view_blend(0.6f, k / 100.0f, 0.5f);
+        float w = pelt__lod_view_blend(0.6f, k / 100.0f, 0.5f, 0.0f);
         CHECK(w >= last - 1e-6f && w >= 0.0f && w <= 1.0f);
         last = w;
     }
+    /* A curled hair moving sideways from shell to shell keeps them face-on:
+     * 0.6 px apart side-on drifting 1.5 spacings a layer is 0.9 px. */
+    CHECK(pelt__lod_view_blend(0.6f, 1.0f, 0.5f, 1.5f) == 0.0f);
+    CHECK(pelt__lod_view_blend(0.6f, 0.95f, 0.5f, 0.3f) > 0.0f); /* a slight drift: some */
+    CHECK(pelt__lod_view_blend(0.6f, 0.95f, 0.5f, 0.3f) < 1.0f);
     /* Exactly between: spacing 0.6 sin = 0.5 / sqrt(2) gives a weight of one half. */
     float s = 0.5f / sqrtf(2.0f) / 0.6f;
-    CHECK_NEAR(pelt__lod_view_blend(0.6f, sqrtf(1.0f - s * s), 0.5f), 0.5f, 1e-4);
+    CHECK_NEAR(pelt__lod_view_blend(0.6f, sqrtf(1.0f - s * s), 0.5f, 0.0f), 0.5f, 1e-4);
     float t[4] = {0.2f, 0.1f, 0.05f, 0.4f};
     pelt__lod_view_texel(1.0f, t); /* 0.4 over 0.4: 0.4 + 0.4 * 0.6 */
     CHECK_NEAR(t[3], 0.64f, 1e-6);

@@ -692,7 +692,8 @@ static void shell_view_blend_glsl_matches_c(void)
         "  float side = 0.05 + 0.05 * floor(gl_FragCoord.x);\n"     /* 0.05 .. 3.2 px */
         "  float ndv = -1.0 + 2.0 * fract(gl_FragCoord.y / 16.0);\n"
         "  float target = 0.25 + 0.25 * mod(floor(gl_FragCoord.y / 16.0), 4.0);\n"
-        "  float w = shell_view_blend(side, ndv, target);\n"
+        "  float drift = mod(floor(gl_FragCoord.x / 3.0), 3.0) * 0.4;\n" /* 0, 0.4, 0.8 */
+        "  float w = shell_view_blend(side, ndv, target, drift);\n"
         "  vec4 t = shell_view_texel(w, vec4(0.3, 0.2, 0.1, 0.1) * fract(gl_FragCoord.x / 7.0) * 9.0);\n"
         "  o = vec4(w, t.rgb);\n"
         "}\n";
@@ -706,7 +707,8 @@ static void shell_view_blend_glsl_matches_c(void)
             float side = 0.05f + 0.05f * floorf(fx);
             float ndv = -1.0f + 2.0f * (fy / 16.0f - floorf(fy / 16.0f));
             float target = 0.25f + 0.25f * fmodf(floorf(fy / 16.0f), 4.0f);
-            float r = pelt__lod_view_blend(side, ndv, target);
+            float drift = fmodf(floorf(fx / 3.0f), 3.0f) * 0.4f;
+            float r = pelt__lod_view_blend(side, ndv, target, drift);
             float f = fx / 7.0f - floorf(fx / 7.0f);
             float t[4] = {0.3f * f * 9.0f, 0.2f * f * 9.0f, 0.1f * f * 9.0f, 0.1f * f * 9.0f};
             pelt__lod_view_texel(r, t);
