@@ -118,7 +118,7 @@ float pelt__lod_shell_instance(const float shells[4], const float next[2], float
  * times the spacing (pelt__lod_shell_hair_drift), in the surface's plane,
  * which a face-on view shows whole: the spacing the budget weighs is
  * side_px sqrt(sin^2(theta) + drift^2), so that curls keep the shells that
- * draw each turn ([method.md], Shells a turn of the curl); straight hair
+ * draw each turn (docs/method.md, Shells a turn of the curl); straight hair
  * (drift 0) as above. Mirrors shell_view_blend() in
  * gl/shaders/shell_lod.glsl. */
 float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px, float drift);
