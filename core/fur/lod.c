@@ -232,11 +232,9 @@ unsigned pelt__lod_pick(const pelt__lod_chain *c, float pixels_per_unit, float m
 unsigned pelt__lod_pick_fins(const pelt__lod_chain *c, unsigned mesh_level, float pixels_per_unit, float max_error_px,
                              float max_edge)
 {
-    unsigned pick = mesh_level;
-    if (!(pixels_per_unit > 0.0f) || !isfinite(pixels_per_unit)) return pick;
-    for (unsigned i = mesh_level + 1; i < c->count; i++)
-        if (c->levels[i].error * pixels_per_unit <= max_error_px && c->levels[i].edge <= max_edge) pick = i;
-    return pick;
+    /* The shells' pick with the slab, on screen, as the edge bound. */
+    unsigned pick = pelt__lod_pick(c, pixels_per_unit, max_error_px, max_edge * pixels_per_unit);
+    return pick > mesh_level ? pick : mesh_level;
 }
 
 float pelt__lod_pixels_per_unit(float proj_y, float height, float scale, float distance, float radius)
