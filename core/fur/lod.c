@@ -429,12 +429,17 @@ void pelt__lod_fur_edge(float rgba[4], float gain)
     for (int k = 0; k < 4; k++) rgba[k] *= scale;
 }
 
-float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift)
+float pelt__lod_shell_overcount_cap(float layers)
+{
+    return fmaxf(PELT__SHELL_OVERCOUNT_MAX, layers * PELT__SHELL_OVERCOUNT_REACH);
+}
+
+float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float cap)
 {
     float c = fminf(fmaxf(fabsf(cos_view), 1e-3f), 1.0f);
     float tan_view = sqrtf(fmaxf(1.0f - c * c, 0.0f)) / c;
     float k = width_over_spacing / fmaxf(sqrtf(tan_view * tan_view + drift * drift), 1e-3f);
-    return fminf(fmaxf(k, 1.0f), PELT__SHELL_OVERCOUNT_MAX);
+    return fminf(fmaxf(k, 1.0f), cap);
 }
 
 float pelt__lod_shell_overcount_alpha(float a, float k)

@@ -207,12 +207,22 @@ void pelt__lod_fur_edge(float rgba[4], float gain);
  * and the hair (cos_view = |T.V|), plus the hair's own drift per spacing
  * (its curl in the fur texture, its ringlet), in quadrature. width_over_
  * spacing is the hair's width over the layer spacing. Between 1 and
- * PELT__SHELL_OVERCOUNT_MAX: past a few shells the texture's hairs lean
- * and bend off the ray, which then meets other hairs (docs/reference.md,
- * The shells count a hair's edge once). Mirrors shell_overcount() in
- * gl/shaders/shell_lod.glsl. */
+ * `cap` (pelt__lod_shell_overcount_cap): past a few shells the texture's
+ * hairs lean and bend off the ray, which then meets other hairs
+ * (docs/reference.md, The shells count a hair's edge once). Mirrors
+ * shell_overcount() in gl/shaders/shell_lod.glsl. */
+float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float cap);
+
+/* The cap on k for `layers` layers: at least PELT__SHELL_OVERCOUNT_MAX
+ * shells, and as many as lie within PELT__SHELL_OVERCOUNT_REACH of the
+ * fur's length. The ray leaves the hair after a height of the fur, not a
+ * number of shells: with the cap held at 3 shells, 64 shells drew the fur
+ * seen face-on brighter than 32 and 128 brighter still, where the hairs
+ * stay as they are (docs/reference.md, The shells' count of a hair follows
+ * the layers). Mirrors shell_overcount_cap(). */
 #define PELT__SHELL_OVERCOUNT_MAX 3.0f
-float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift);
+#define PELT__SHELL_OVERCOUNT_REACH (3.0f / 32.0f)
+float pelt__lod_shell_overcount_cap(float layers);
 
 /* A shell's coverage when k shells show the same hair: 1 - (1 - a)^(1/k),
  * so that the k composite to a. Mirrors shell_overcount_alpha(). */

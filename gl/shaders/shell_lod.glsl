@@ -109,16 +109,24 @@ float shell_instance(float i, vec4 shells, vec2 next, float N, out vec3 slices, 
     return N - 1.0 - j * shells.y;
 }
 
+// pelt__lod_shell_overcount_cap (core/fur/lod.c): the most shells a ray
+// stays in one hair across, for `layers` layers.
+const float SHELL_OVERCOUNT_MAX = 3.0;           // PELT__SHELL_OVERCOUNT_MAX
+const float SHELL_OVERCOUNT_REACH = 3.0 / 32.0;  // PELT__SHELL_OVERCOUNT_REACH
+float shell_overcount_cap(float layers)
+{
+    return max(SHELL_OVERCOUNT_MAX, layers * SHELL_OVERCOUNT_REACH);
+}
+
 // pelt__lod_shell_overcount (core/fur/lod.c): how many consecutive shells
 // a ray of sight crosses inside one hair, from the hair's width over the
-// layer spacing, |T.V| and the hair's own drift per spacing; 1 .. 3.
-const float SHELL_OVERCOUNT_MAX = 3.0; // PELT__SHELL_OVERCOUNT_MAX
-float shell_overcount(float width_over_spacing, float cos_view, float drift)
+// layer spacing, |T.V| and the hair's own drift per spacing; 1 .. cap.
+float shell_overcount(float width_over_spacing, float cos_view, float drift, float cap)
 {
     float c = clamp(abs(cos_view), 1e-3, 1.0);
     float tan_view = sqrt(max(1.0 - c * c, 0.0)) / c;
     float k = width_over_spacing / max(sqrt(tan_view * tan_view + drift * drift), 1e-3);
-    return clamp(k, 1.0, SHELL_OVERCOUNT_MAX);
+    return clamp(k, 1.0, cap);
 }
 
 // pelt__lod_shell_overcount_alpha: a shell's share when k show the hair.

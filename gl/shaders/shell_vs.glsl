@@ -141,7 +141,7 @@ void main()
 #endif
     v_overcount = u_no_overcount != 0 ? 1.0
                 : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
-                                  dot(world_t, normalize(u_eye - world.xyz)), drift);
+                                  dot(world_t, normalize(u_eye - world.xyz)), drift, shell_overcount_cap(u_layers));
     vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS
     // Drawn from the light into its opacity slices: no lighting.

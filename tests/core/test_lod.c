@@ -280,19 +280,26 @@ static void lod_shell_overcount_counts_a_hair_once(void)
     float span = pelt__lod_shell_hair_span(0.004f, 0.8f, 0.0f, 32.0f, 0.08f); /* 1.6 spacings at the root */
     CHECK_NEAR(span, 1.6f, 1e-5);
     CHECK_NEAR(pelt__lod_shell_hair_span(0.004f, 0.8f, 1.0f, 32.0f, 0.08f), 0.2f * 1.6f, 1e-5); /* tapered */
-    CHECK(pelt__lod_shell_overcount(span, 0.0f, 0.0f) == 1.0f);  /* side-on */
-    CHECK_NEAR(pelt__lod_shell_overcount(span, 1.0f, 0.0f), PELT__SHELL_OVERCOUNT_MAX, 1e-6); /* along it: capped */
-    float prev = PELT__SHELL_OVERCOUNT_MAX + 1.0f;
+    /* The cap: 3 shells up to 32 layers, 3/32 of the fur's height beyond. */
+    const float cap = pelt__lod_shell_overcount_cap(32.0f);
+    CHECK(cap == PELT__SHELL_OVERCOUNT_MAX && pelt__lod_shell_overcount_cap(16.0f) == PELT__SHELL_OVERCOUNT_MAX);
+    CHECK_NEAR(pelt__lod_shell_overcount_cap(128.0f), 4.0f * PELT__SHELL_OVERCOUNT_MAX, 1e-5);
+    /* Along a hair at 128 layers its width spans 4x the shells: 4x the count. */
+    CHECK_NEAR(pelt__lod_shell_overcount(4.0f * span, 1.0f, 0.0f, pelt__lod_shell_overcount_cap(128.0f)),
+               4.0f * pelt__lod_shell_overcount(span, 1.0f, 0.0f, cap), 1e-5);
+    CHECK(pelt__lod_shell_overcount(span, 0.0f, 0.0f, cap) == 1.0f);  /* side-on */
+    CHECK_NEAR(pelt__lod_shell_overcount(span, 1.0f, 0.0f, cap), cap, 1e-6); /* along it: capped */
+    float prev = cap + 1.0f;
     for (int i = 0; i <= 10; i++) { /* tilting off the hair: fewer */
-        float k = pelt__lod_shell_overcount(4.0f, cosf(0.15f * (float)i), 0.0f);
-        CHECK(k <= prev && k >= 1.0f && k <= PELT__SHELL_OVERCOUNT_MAX);
+        float k = pelt__lod_shell_overcount(4.0f, cosf(0.15f * (float)i), 0.0f, cap);
+        CHECK(k <= prev && k >= 1.0f && k <= cap);
         prev = k;
     }
-    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f) < PELT__SHELL_OVERCOUNT_MAX); /* between the bounds */
-    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f) > 1.0f);
+    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f, cap) < cap); /* between the bounds */
+    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f, cap) > 1.0f);
     /* A curl carries the hair off the ray: many small curls leave one shell. */
     float drift = pelt__lod_shell_hair_drift(0.0f, 0.0f, 0.5f, 0.15f, 0.5f, 6.2831853f * 4.0f);
-    CHECK(pelt__lod_shell_overcount(span, 1.0f, drift) == 1.0f);
+    CHECK(pelt__lod_shell_overcount(span, 1.0f, drift, cap) == 1.0f);
     CHECK(pelt__lod_shell_hair_drift(0.0f, 30.0f, 0.5f, 0.1f, 0.0f, 0.0f) == 0.0f); /* straight hair */
     CHECK(pelt__lod_shell_hair_drift(0.01f, 30.0f, 0.8f, 0.1f, 0.0f, 0.0f) >
           pelt__lod_shell_hair_drift(0.01f, 30.0f, 0.2f, 0.1f, 0.0f, 0.0f)); /* the helix widens */
