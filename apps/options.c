@@ -99,6 +99,10 @@ static const flag flags[] = {
      "fin hair height as a multiple of the fur length (default 1)"},
     {"--fin-density", NULL, "TEXELS", FLAG_KEY, "fins.density",
      "width of the slab of hair in the fin texture: denser fins (default texture size / 16)"},
+    {"--high-quality", NULL, NULL, FLAG_SWITCH,
+     "fur.layers=128 fur.texture_size=512 fur.lod_shell_pixels=0.01 fur.lod_mesh_error=0.1",
+     "shells as close to the hairs as the look measures them (docs/reference.md): 128 layers, a 512 texture, "
+     "every shell drawn, the full mesh; about 4x the frame and the memory"},
     {"--inter-shadow", NULL, NULL, FLAG_SWITCH, "fur.inter_shadow=true",
      "Kenwright's inter-fur shadows: each hair shades the hair behind it from the light"},
     {"--shadows", NULL, NULL, FLAG_SWITCH, "shadows.enabled=true",
@@ -193,10 +197,17 @@ static bool apply(const char *cmd, const flag *f, const char *value, cli_options
     case FLAG_KEY:
         return set_key(cmd, f->name, &o->scene, f->key, value);
     case FLAG_SWITCH: {
-        const char *eq = strchr(f->key, '=');
-        char key[64];
-        snprintf(key, sizeof key, "%.*s", (int)(eq - f->key), f->key);
-        return set_key(cmd, f->name, &o->scene, key, eq + 1);
+        /* One KEY=VALUE or several, space-separated, set in order. */
+        for (const char *p = f->key; *p;) {
+            size_t n = strcspn(p, " ");
+            const char *eq = memchr(p, '=', n);
+            char key[64], val[64];
+            snprintf(key, sizeof key, "%.*s", (int)(eq - p), p);
+            snprintf(val, sizeof val, "%.*s", (int)(p + n - eq - 1), eq + 1);
+            if (!set_key(cmd, f->name, &o->scene, key, val)) return false;
+            p += n + (p[n] == ' ');
+        }
+        return true;
     }
     case FLAG_VEC3: {
         /* Exactly three comma-separated numbers. */

@@ -9,6 +9,9 @@
  * implementation must offer (GL_MAX_SAMPLES >= 4). */
 enum { STRAND_MSAA = 4 };
 
+/* The most shell layers drawn into an 8-bit colour target (below). */
+enum { SESSION_8BIT_LAYERS = 32 };
+
 static void print_warning(pelt_log_level level, const char *message, void *user)
 {
     const char *cmd = user;
@@ -36,7 +39,14 @@ bool cli_session_open(const char *cmd, const pelt_scene *sc, cli_session *s)
      * supersampling changes the picture by less than 1/255 (docs/reference.md). */
     unsigned msaa = sc->output.msaa;
     if (s->draw.mode == PELT_DRAW_STRANDS && msaa < STRAND_MSAA) msaa = STRAND_MSAA;
-    pelt_headless_desc hd = {sc->output.width * s->samples, sc->output.height * s->samples, msaa, false};
+    pelt_headless_desc hd = {sc->output.width * s->samples, sc->output.height * s->samples, msaa, false, false};
+    /* Each shell blends into the colour target: an 8-bit target rounds
+     * every blend, and over more than 32 layers of small coverage the
+     * rounding adds up to speckles of another hue (docs/reference.md, At
+     * high quality). A half-float target takes them; it costs about a
+     * tenth of the frame on llvmpipe, so 32 layers keep the 8-bit one. */
+    hd.half_float_target = s->draw.mode != PELT_DRAW_STRANDS &&
+                           pelt_fur_get_desc(pelt_scene_instance_fur(s->instance)).layers > SESSION_8BIT_LAYERS;
     if (pelt_headless_create(&hd, &s->gl, &err) != PELT_OK ||
         pelt_renderer_create(pelt_scene_instance_mesh(s->instance),
                              pelt_scene_instance_fur(s->instance), NULL, &s->renderer,

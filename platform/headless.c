@@ -63,7 +63,7 @@ static EGLDisplay open_any_display(char *tried, size_t tried_size)
 
 static bool make_framebuffer(pelt_headless *c, pelt_error *err)
 {
-    GLenum color_format = c->desc.float_target ? GL_RGBA32F : GL_RGBA8;
+    GLenum color_format = c->desc.float_target ? GL_RGBA32F : c->desc.half_float_target ? GL_RGBA16F : GL_RGBA8;
     GLsizei w = (GLsizei)c->desc.width, h = (GLsizei)c->desc.height;
     GLsizei samples = (GLsizei)c->desc.samples;
     GLint max_samples = 0;

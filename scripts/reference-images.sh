@@ -7,26 +7,30 @@
 #   scripts/reference-images.sh OUTDIR [PELT_BINARY] [SET]
 #
 # PELT_BINARY defaults to build/pelt of this checkout. SET is `reference`
-# (default: scenes/reference/, docs/reference.md) or `wet` (the wet close-up
-# and the partly wet creature of scenes/wet/ beside the curly hair:
+# (default: scenes/reference/, docs/reference.md), `high-quality` (the same
+# scenes drawn with --high-quality) or `wet` (the wet close-up and the
+# partly wet creature of scenes/wet/ beside the curly hair:
 # docs/gallery-papers.md). The creature scenes render the Stanford bunny
 # of Debian's libcgal-demo (CGAL_ARCHIVE, default
 # /usr/share/doc/libcgal-dev/data.tar.gz); without it their rows are skipped.
 set -euo pipefail
 
 if [ $# -lt 1 ] || [ $# -gt 3 ] || [ "${1:-}" = -h ] || [ "${1:-}" = --help ]; then
-  echo "usage: $0 OUTDIR [PELT_BINARY] [reference|wet]" >&2
+  echo "usage: $0 OUTDIR [PELT_BINARY] [reference|high-quality|wet]" >&2
   exit 2
 fi
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out=$1
 pelt=${2:-$here/build/pelt}
 set_name=${3:-reference}
+flags=()
 case "$set_name" in
-  reference) scenes="reference/torus reference/torus-rim reference/creature reference/long-hair reference/combed
-                     reference/curly reference/shadowed reference/distant" ;;
+  reference|high-quality)
+    scenes="reference/torus reference/torus-rim reference/creature reference/long-hair reference/combed
+            reference/curly reference/shadowed reference/distant"
+    [ "$set_name" = high-quality ] && flags=(--high-quality) ;;
   wet) scenes="wet/wet-closeup wet/wet-creature reference/curly" ;;
-  *) echo "$0: unknown set '$set_name' (reference or wet)" >&2; exit 2 ;;
+  *) echo "$0: unknown set '$set_name' (reference, high-quality or wet)" >&2; exit 2 ;;
 esac
 mkdir -p "$out"
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/reference.XXXXXX")"
@@ -52,7 +56,7 @@ for path in $scenes; do
     fi
     args+=(--mesh "$M/bunny00.off")
   fi
-  res=$("$pelt" compare "${args[@]}" -q -o "$out/$scene.png")
+  res=$("$pelt" compare "${args[@]}" ${flags[@]+"${flags[@]}"} -q -o "$out/$scene.png")
   printf '| %s | %s | %s | %s / %s | %s | %s / %s |\n' "$scene" \
     "$(field ssim "$res")" "$(field mae "$res")" \
     "$(field silhouette_shells "$res")" "$(field silhouette_strands "$res")" \

@@ -15,6 +15,8 @@ typedef struct pelt_headless_desc {
     unsigned width, height; /* framebuffer size, required */
     unsigned samples;       /* MSAA samples, 0 = none */
     bool float_target;      /* RGBA32F colour target (for shader tests) */
+    bool half_float_target; /* RGBA16F colour target: many blended layers
+                               without an 8-bit target's rounding at each */
 } pelt_headless_desc;
 
 /* Creates the context, makes it current and binds the framebuffer. When no

@@ -19,6 +19,13 @@
  *   png_region --red A.png X0 Y0 X1 Y1
  *       Prints red=N: pixels in the box that are clearly red (R > 180,
  *       G and B < 110): the HUD's error colour.
+ *   png_region --chroma A.png X0 Y0 X1 Y1
+ *       Prints chroma_noise=N: colour noise in the box, the mean over its
+ *       pixels brighter than 20 (R + G + B over 60) of how far the
+ *       pixel's chromaticity (r, g over r + g + b) lies from the mean of
+ *       its 3 x 3 neighbours', x 1000: speckles of another hue (an 8-bit
+ *       target rounding many blended layers) raise it, smooth shading
+ *       and brightness do not.
  *   png_region --outline A.png X0 X1 R
  *       Prints roughness=P top=T: the top outline of the picture in the
  *       columns X0..X1-1 (per column, the first row from the top whose
@@ -30,6 +37,7 @@
 #include <stb_image.h>
 
 #include <math.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -108,6 +116,34 @@ int main(int argc, char **argv)
         stbi_image_free(a);
         return 0;
     }
+    if (argc == 7 && !strcmp(argv[1], "--chroma")) {
+        int w, h;
+        unsigned char *a = load(argv[2], &w, &h);
+        if (!a) return 2;
+        int x0 = atoi(argv[3]), y0 = atoi(argv[4]), x1 = atoi(argv[5]), y1 = atoi(argv[6]);
+        double sum = 0.0;
+        long n = 0;
+        for (int y = (y0 < 1 ? 1 : y0); y < y1 && y < h - 1; y++)
+            for (int x = (x0 < 1 ? 1 : x0); x < x1 && x < w - 1; x++) {
+                double c[2] = {0, 0}, own[2] = {0, 0};
+                bool dark = false;
+                for (int j = -1; j <= 1; j++)
+                    for (int i = -1; i <= 1; i++) {
+                        const unsigned char *p = a + 4 * ((size_t)(y + j) * w + x + i);
+                        double t = (double)p[0] + p[1] + p[2];
+                        if (t <= 60.0) { dark = true; continue; }
+                        double r = p[0] / t, g = p[1] / t;
+                        if (i == 0 && j == 0) own[0] = r, own[1] = g;
+                        else c[0] += r / 8.0, c[1] += g / 8.0;
+                    }
+                if (dark) continue;
+                sum += hypot(own[0] - c[0], own[1] - c[1]);
+                n++;
+            }
+        printf("chroma_noise=%.3f\n", n ? 1000.0 * sum / (double)n : 0.0);
+        stbi_image_free(a);
+        return 0;
+    }
     if (argc == 6 && !strcmp(argv[1], "--axis")) {
         int w, h;
         unsigned char *a = load(argv[2], &w, &h);
@@ -135,7 +171,8 @@ int main(int argc, char **argv)
     if (argc == 6 && !strcmp(argv[1], "--outline")) return outline(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]));
     if (argc != 6) {
         fprintf(stderr, "usage: png_region A.png B.png CX CY R | png_region --red A.png X0 Y0 X1 Y1 | "
-                        "png_region --axis A.png CX CY R | png_region --outline A.png X0 X1 R\n");
+                        "png_region --axis A.png CX CY R | png_region --chroma A.png X0 Y0 X1 Y1 | "
+                        "png_region --outline A.png X0 X1 R\n");
         return 2;
     }
     int w, h, w2, h2;
