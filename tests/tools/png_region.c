@@ -1,5 +1,6 @@
-/* png_region: where two pictures of the same view differ, for the viewer
- * tests (tests/cli/cli_view.sh).
+/* png_region: where two pictures of the same view differ, and what one
+ * picture holds, for the viewer and reference tests (tests/cli/cli_view.sh,
+ * tests/cli/cli_reference.sh).
  *
  *   png_region A.png B.png CX CY R
  *       Compares B with A inside the disc of radius R pixels around
@@ -21,11 +22,11 @@
  *       G and B < 110): the HUD's error colour.
  *   png_region --chroma A.png X0 Y0 X1 Y1
  *       Prints chroma_noise=N: colour noise in the box, the mean over its
- *       pixels brighter than 20 (R + G + B over 60) of how far the
- *       pixel's chromaticity (r, g over r + g + b) lies from the mean of
- *       its 3 x 3 neighbours', x 1000: speckles of another hue (an 8-bit
- *       target rounding many blended layers) raise it, smooth shading
- *       and brightness do not.
+ *       pixels whose 3 x 3 neighbourhood is lit (R + G + B above 60 in
+ *       each) of how far the pixel's chromaticity (r, g over r + g + b)
+ *       lies from the mean of its 8 neighbours', x 1000: speckles of
+ *       another hue (an 8-bit target rounding many blended layers) raise
+ *       it, smooth shading and brightness do not.
  *   png_region --outline A.png X0 X1 R
  *       Prints roughness=P top=T: the top outline of the picture in the
  *       columns X0..X1-1 (per column, the first row from the top whose
