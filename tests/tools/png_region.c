@@ -100,6 +100,36 @@ static int outline(const char *path, int x0, int x1, int r)
     return 0;
 }
 
+/* --chroma: colour noise in the box (see the top of this file). */
+static int chroma(const char *path, int x0, int y0, int x1, int y1)
+{
+    int w, h;
+    unsigned char *a = load(path, &w, &h);
+    if (!a) return 2;
+    double sum = 0.0;
+    long n = 0;
+    for (int y = (y0 < 1 ? 1 : y0); y < y1 && y < h - 1; y++)
+        for (int x = (x0 < 1 ? 1 : x0); x < x1 && x < w - 1; x++) {
+            double c[2] = {0, 0}, own[2] = {0, 0};
+            bool dark = false;
+            for (int j = -1; j <= 1; j++)
+                for (int i = -1; i <= 1; i++) {
+                    const unsigned char *p = a + 4 * ((size_t)(y + j) * w + x + i);
+                    double t = (double)p[0] + p[1] + p[2];
+                    if (t <= 60.0) { dark = true; continue; }
+                    double r = p[0] / t, g = p[1] / t;
+                    if (i == 0 && j == 0) own[0] = r, own[1] = g;
+                    else c[0] += r / 8.0, c[1] += g / 8.0;
+                }
+            if (dark) continue;
+            sum += hypot(own[0] - c[0], own[1] - c[1]);
+            n++;
+        }
+    printf("chroma_noise=%.3f\n", n ? 1000.0 * sum / (double)n : 0.0);
+    stbi_image_free(a);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 7 && !strcmp(argv[1], "--red")) {
@@ -117,34 +147,8 @@ int main(int argc, char **argv)
         stbi_image_free(a);
         return 0;
     }
-    if (argc == 7 && !strcmp(argv[1], "--chroma")) {
-        int w, h;
-        unsigned char *a = load(argv[2], &w, &h);
-        if (!a) return 2;
-        int x0 = atoi(argv[3]), y0 = atoi(argv[4]), x1 = atoi(argv[5]), y1 = atoi(argv[6]);
-        double sum = 0.0;
-        long n = 0;
-        for (int y = (y0 < 1 ? 1 : y0); y < y1 && y < h - 1; y++)
-            for (int x = (x0 < 1 ? 1 : x0); x < x1 && x < w - 1; x++) {
-                double c[2] = {0, 0}, own[2] = {0, 0};
-                bool dark = false;
-                for (int j = -1; j <= 1; j++)
-                    for (int i = -1; i <= 1; i++) {
-                        const unsigned char *p = a + 4 * ((size_t)(y + j) * w + x + i);
-                        double t = (double)p[0] + p[1] + p[2];
-                        if (t <= 60.0) { dark = true; continue; }
-                        double r = p[0] / t, g = p[1] / t;
-                        if (i == 0 && j == 0) own[0] = r, own[1] = g;
-                        else c[0] += r / 8.0, c[1] += g / 8.0;
-                    }
-                if (dark) continue;
-                sum += hypot(own[0] - c[0], own[1] - c[1]);
-                n++;
-            }
-        printf("chroma_noise=%.3f\n", n ? 1000.0 * sum / (double)n : 0.0);
-        stbi_image_free(a);
-        return 0;
-    }
+    if (argc == 7 && !strcmp(argv[1], "--chroma"))
+        return chroma(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
     if (argc == 6 && !strcmp(argv[1], "--axis")) {
         int w, h;
         unsigned char *a = load(argv[2], &w, &h);
