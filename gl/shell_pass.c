@@ -11,7 +11,7 @@
 
 static const char *const feature_defines[] = {"PELT_WET", "PELT_INTER_SHADOW", "PELT_LOD_BLEND",
                                               "PELT_COLOR_TEXTURE", "PELT_SHADING_KK", "PELT_SHADING_TABLE",
-                                              "PELT_SHADOW_MAP", "PELT_RINGLETS", "PELT_LIGHT_PASS",
+                                              "PELT_SHADOW_MAP", "PELT_RINGLETS", "PELT_FUR_TAPS", "PELT_LIGHT_PASS",
                                               "PELT_GPU_SKIN"};
 
 void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFINES_MAX])
@@ -50,6 +50,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     sp->no_inter_shadow = glGetUniformLocation(sp->program, "u_no_inter_shadow");
     sp->sub_shells = glGetUniformLocation(sp->program, "u_sub_shells");
     sp->no_overcount = glGetUniformLocation(sp->program, "u_no_overcount");
+    sp->fur_taps = glGetUniformLocation(sp->program, "u_fur_taps");
     return PELT_OK;
 }
 
@@ -114,6 +115,7 @@ static void use_program(const pelt__shell_program *sp, const pelt__pass_frame *f
     glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
     glUniform1f(sp->sub_shells, 1.0f);
     glUniform1i(sp->no_overcount, f->draw->debug.no_overcount ? 1 : 0);
+    glUniform1f(sp->fur_taps, (float)f->lod.texture_taps);
 }
 
 /* draw_instanced with sp and the shell pass's uniforms. */

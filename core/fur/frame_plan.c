@@ -64,6 +64,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     memset(&l, 0, sizeof l);
     l.back_reach = -1.0f;
     const pelt_fur_lod fl = fd->lod;
+    l.texture_taps = fl.texture_taps > 1 ? fl.texture_taps : 1;
     pelt__fur_snapshot fs;
     pelt__fur_gpu_snapshot(fur, &fs);
     const pelt__lod_chain *c = fs.lod;
@@ -214,6 +215,7 @@ static unsigned shell_features(const pelt_fur *fur, const pelt_fur_desc *fd, con
     if (fs.ringlet_levels > 1 || fd->look.strand_curl > 0.0f) f |= PELT__SHELL_RINGLETS;
     if (fd->look.inter_shadow && sw->inter_shadow) f |= PELT__SHELL_INTER_SHADOW;
     if (lod->shell_blend > 0.0f) f |= PELT__SHELL_LOD_BLEND;
+    if (lod->texture_taps > 1) f |= PELT__SHELL_FUR_TAPS;
     if (fs.color) f |= PELT__SHELL_COLOR_TEXTURE;
     /* Neither model bit: Scheuermann-Marschner (gl/shaders/fur_light.glsl). */
     if (fd->look.shading == PELT_SHADING_LENGYEL_TABLE) f |= PELT__SHELL_LIGHT_TABLE;

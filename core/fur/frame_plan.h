@@ -38,6 +38,8 @@ typedef struct pelt__frame_lod {
     bool cull;            /* back-facing shells culled (closed meshes) */
     bool cull_skin;       /* back-facing skin culled: a closed mesh hides it */
     bool front_cw;        /* the mesh winds its outside faces clockwise */
+    unsigned texture_taps; /* the most fur-texture fetches a shell fragment
+                              takes (lod.texture_taps, at least 1) */
 } pelt__frame_lod;
 
 /* The frame block's shadow fields (gl/shaders/blocks.glsl). */
@@ -69,10 +71,11 @@ enum {
     PELT__SHELL_RINGLETS = 1 << 7,      /* curly hair (ringlets or the texture's own curl):
                                            each hair lit along its curl; with _WET
                                            two ringlet levels blended */
-    PELT__SHELL_GENERIC = (1 << 8) - 1, /* everything, chosen per fragment */
-    PELT__SHELL_LIGHT_PASS = 1 << 8,    /* drawn from the light into its opacity slices */
-    PELT__SHELL_GPU_SKIN = 1 << 9,      /* skinned in the vertex stage (for measuring) */
-    PELT__SHELL_VARIANTS = 1 << 10
+    PELT__SHELL_FUR_TAPS = 1 << 8,      /* lod.texture_taps > 1: fetches along the footprint */
+    PELT__SHELL_GENERIC = (1 << 9) - 1, /* everything, chosen per fragment */
+    PELT__SHELL_LIGHT_PASS = 1 << 9,    /* drawn from the light into its opacity slices */
+    PELT__SHELL_GPU_SKIN = 1 << 10,     /* skinned in the vertex stage (for measuring) */
+    PELT__SHELL_VARIANTS = 1 << 11
 };
 
 /* What the caller asks of this frame (pelt_draw_desc, read by the renderer). */

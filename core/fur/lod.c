@@ -408,6 +408,19 @@ float pelt__lod_shell_fur_texture(const float dx[2], const float dy[2], float te
     return pelt__lod_fur_texture(dx, dy, texels, max_aniso) - sharpen;
 }
 
+unsigned pelt__lod_fur_texture_taps(const float dx[2], const float dy[2], float texels, float max_aniso,
+                                    unsigned max_taps, float *lod)
+{
+    float longer, shorter;
+    footprint_sides(dx, dy, texels, &longer, &shorter);
+    float n = fminf(fmaxf(ceilf(sqrtf(longer / fmaxf(shorter, 1e-12f)) / max_aniso), 1.0f), (float)max_taps);
+    if (n > 1.0f)
+        *lod = 0.5f * log2f(fmaxf(fmaxf(longer / (max_aniso * max_aniso * n * n), shorter), 1e-12f));
+    else
+        *lod = pelt__lod_shell_fur_texture(dx, dy, texels, max_aniso);
+    return n > 1.0f ? (unsigned)n : 1u;
+}
+
 float pelt__lod_fin_texture_aniso(const float dx[2], const float dy[2])
 {
     float longer, shorter;

@@ -162,6 +162,18 @@ float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, 
 #define PELT__FUR_TEXTURE_SHARPEN 0.5f
 float pelt__lod_shell_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso);
 
+/* The shells' read in n fetches (lod.texture_taps up to max_taps): a
+ * footprint longer than max_aniso times its shorter side takes
+ *   n = min(ceil(longer / (max_aniso shorter)), max_taps)
+ * fetches spaced evenly along its longer side, each at the level of its
+ * n-th part, log2(max(longer / (max_aniso n), shorter)): what anisotropic
+ * filtering does, so fur seen at a grazing angle keeps its hairs n times
+ * sharper across the view without aliasing along it. One fetch reads at
+ * pelt__lod_shell_fur_texture's level. Returns n and writes the level.
+ * Mirrors fur_texture_taps() in gl/shaders/shell_lod.glsl. */
+unsigned pelt__lod_fur_texture_taps(const float dx[2], const float dy[2], float texels, float max_aniso,
+                                    unsigned max_taps, float *lod);
+
 /* The fins read their texture the same way (derivatives in texels, texels
  * 1): a fin is one quad, whose hair is foreshortened up the fin, and has no
  * rows to turn into stripes. Their max_aniso is PELT__FIN_TEXTURE_ANISO

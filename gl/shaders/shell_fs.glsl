@@ -40,6 +40,9 @@ uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
 uniform sampler2D u_mask;          // PELT_UNIT_MASK
 uniform int u_no_inter_shadow;     // the shell pass's own: 1 skips inter-fur shadows
 uniform float u_sub_shells;        // wet: sub shells drawn for this layer (shell_vs.glsl)
+#ifdef PELT_FUR_TAPS
+uniform float u_fur_taps;          // lod.texture_taps: the most fetches of a hair
+#endif
 
 // A layer's coverage a, shared among the sub shells drawn for it.
 float layer_share(float a)
@@ -75,16 +78,37 @@ out vec4 o_color;
 // uv's screen derivatives, before any discard.
 float fur_lod = 0.0;
 float fur_gain = 1.0;
+// The fetches along the footprint's longer side (fur_texture_taps) and the
+// step between them in fur uv: one fetch unless lod.texture_taps asks more.
+float fur_taps = 1.0;
+vec2 fur_step = vec2(0.0);
 
-// The hair of this shell at fur_uv, `offset` slices along the volume (a
-// ringlet level), blended into the next shell level where it fades.
-vec4 shell_hair(vec2 fur_uv, float offset)
+// One fetch of the hair of this shell at fur_uv, `offset` slices along the
+// volume, blended into the next shell level where it fades.
+vec4 shell_fetch(vec2 fur_uv, float offset)
 {
     vec4 hair = textureLod(u_fur, vec3(fur_uv, v_slices.x + offset), fur_lod);
 #ifdef PELT_LOD_BLEND
     hair = mix(hair, textureLod(u_fur, vec3(fur_uv, v_slices.y + offset), fur_lod), v_slices.z);
 #endif
     return hair;
+}
+
+// The hair of this shell at fur_uv, `offset` slices along the volume (a
+// ringlet level): fur_taps fetches across the footprint, averaged.
+vec4 shell_hair(vec2 fur_uv, float offset)
+{
+#ifdef PELT_FUR_TAPS
+    vec4 sum = vec4(0.0);
+    vec2 at = fur_uv - fur_step * (0.5 * fur_taps - 0.5);
+    for (float i = 0.0; i < fur_taps; i += 1.0) {
+        sum += shell_fetch(at, offset);
+        at += fur_step;
+    }
+    return sum / fur_taps;
+#else
+    return shell_fetch(fur_uv, offset);
+#endif
 }
 
 // The hair at fur_uv under wetness rho: with ringlets, water takes the
@@ -153,7 +177,14 @@ void main()
     // texture's filtering).
     vec2 fur_dx = dFdx(v_fur_uv), fur_dy = dFdy(v_fur_uv);
     float texels = float(textureSize(u_fur, 0).x);
+#ifdef PELT_FUR_TAPS
+    // Several fetches along a long footprint: sharp across the view at
+    // any grazing angle (docs/shading.md, Fetches along the footprint).
+    fur_taps = fur_texture_taps(fur_dx, fur_dy, texels, v_aniso, u_fur_taps, fur_lod);
+    fur_step = (dot(fur_dx, fur_dx) > dot(fur_dy, fur_dy) ? fur_dx : fur_dy) / fur_taps;
+#else
     fur_lod = shell_fur_texture_lod(fur_dx, fur_dy, texels, v_aniso);
+#endif
     // Seen close, where a texel spans pixels, a hair keeps its own width
     // and a pixel-wide edge (docs/shading.md, The hair's edge seen close).
     fur_gain = fur_edge_gain(fur_dx, fur_dy, texels);
@@ -175,6 +206,7 @@ void main()
     if (clump == CLUMP_DISPLACED) {
         d = q - v_uv;
         fur_lod -= log2(squeeze);
+        fur_step /= squeeze; // the footprint as much longer
         fur_gain = max(fur_gain * squeeze, 1.0); // and its texels span less
     }
 #endif

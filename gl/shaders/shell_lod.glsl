@@ -79,6 +79,18 @@ float shell_fur_texture_lod(vec2 dx, vec2 dy, float texels, float max_aniso)
     return fur_texture_lod(dx, dy, texels, max_aniso) - FUR_TEXTURE_SHARPEN * clamp(2.0 - elongation, 0.0, 1.0);
 }
 
+// pelt__lod_fur_texture_taps (core/fur/lod.c): the fetches a shell
+// fragment takes along its footprint's longer side, at most max_taps, and
+// the level each reads at.
+float fur_texture_taps(vec2 dx, vec2 dy, float texels, float max_aniso, float max_taps, out float lod)
+{
+    vec2 sides = footprint_sides(dx, dy, texels);
+    float n = clamp(ceil(sqrt(sides.x / max(sides.y, 1e-12)) / max_aniso), 1.0, max_taps);
+    lod = n > 1.0 ? 0.5 * log2(max(max(sides.x / (max_aniso * max_aniso * n * n), sides.y), 1e-12))
+                  : shell_fur_texture_lod(dx, dy, texels, max_aniso);
+    return n;
+}
+
 // pelt__lod_fur_edge_gain (core/fur/lod.c): how many pixels a texel of
 // the fur texture spans along the footprint's longer side, at least 1.
 float fur_edge_gain(vec2 dx, vec2 dy, float texels)

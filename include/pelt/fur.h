@@ -199,6 +199,12 @@ typedef struct pelt_fur_lod {
                                 back-facing shells carry the silhouette
                                 where N.V >= -back_reach (further round the
                                 back the skin hides them), default 0.3 */
+    unsigned texture_taps;   /* the most fetches a shell fragment takes of the
+                                fur texture along its footprint's longer
+                                side, 1..8: where the fur is seen at a
+                                grazing angle one fetch blurs its hairs
+                                across the view, n fetches n times less
+                                (docs/shading.md). Default 1 */
 } pelt_fur_lod;
 
 /* Fur parameters, one home each. A zero field means its documented

@@ -217,6 +217,16 @@ awk -v a="${lon:-0}" -v b="${l16:-0}" -v c="${loff:-0}" -v s="${lsh:-0}" \
 check reference_hairs_shade_each_other $? \
   "strands $lon (16 shell layers: $l16; unshaded $loff), shells $lsh (bounds: 5-20% darker, the same within 0.5%, shells within 10%)"
 
+# Fetches along the footprint (fur.texture_taps): the hole's walls and lip,
+# seen at a grazing angle, read with one fetch blur their hairs across the
+# view into a pale sheet; four fetches along the footprint keep them apart,
+# and the shells come closer to their hairs (SSIM 0.7965 -> 0.8187 here).
+# Bound: at least 0.01 higher.
+taps=$("$pelt" compare "$shadowed" --set fur.texture_taps=4 -q 2>&1)
+s1=$(field ssim "$on") s4=$(field ssim "$taps")
+awk -v a="${s1:-1}" -v b="${s4:-0}" 'BEGIN { exit !(b >= a + 0.01) }'
+check fetches_along_the_footprint $? "SSIM against the strands $s4 with 4 fetches, $s1 with 1 (bound +0.01)"
+
 # Long hair at high quality (--high-quality: 128 layers, a 512 texture,
 # every shell drawn, the full mesh): the shells converge with their layers
 # (more_layers_draw_the_same_fur above) and long hair reads as close to its

@@ -205,6 +205,41 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
     }
 }
 
+/* Fetches along the footprint (lod.texture_taps): a round footprint and one
+ * within max_aniso of round take one fetch at the shells' own level; an
+ * 8-to-1 one at max_aniso 2 takes 4, each at the short side's level, so
+ * the hairs stay a texel wide across the view; capped at 2 fetches each
+ * covers half (level 1); allowed 1 it is the one-fetch read. More fetches
+ * never read coarser. */
+static void lod_fur_texture_taps_split_a_long_footprint(void)
+{
+    const float tile = 256.0f, texel = 1.0f / tile, k = PELT__FUR_TEXTURE_ANISO;
+    const float round_x[2] = {2.0f * texel, 0.0f}, round_y[2] = {0.0f, 2.0f * texel};
+    const float long_x[2] = {8.0f * texel * 0.6f, 8.0f * texel * 0.8f}, short_y[2] = {-texel * 0.8f, texel * 0.6f};
+    const float near_x[2] = {1.9f * texel, 0.0f}, near_y[2] = {0.0f, texel};
+    float lod = -99.0f;
+    CHECK(pelt__lod_fur_texture_taps(round_x, round_y, tile, k, 4, &lod) == 1);
+    CHECK_NEAR(lod, pelt__lod_shell_fur_texture(round_x, round_y, tile, k), 1e-6);
+    CHECK(pelt__lod_fur_texture_taps(near_x, near_y, tile, k, 4, &lod) == 1);
+    CHECK_NEAR(lod, pelt__lod_shell_fur_texture(near_x, near_y, tile, k), 1e-6);
+    CHECK(pelt__lod_fur_texture_taps(long_x, short_y, tile, k, 4, &lod) == 4);
+    CHECK_NEAR(lod, 0.0f, 1e-5);
+    CHECK(pelt__lod_fur_texture_taps(short_y, long_x, tile, k, 4, &lod) == 4); /* either way */
+    CHECK(pelt__lod_fur_texture_taps(long_x, short_y, tile, k, 8, &lod) == 4); /* no more than it needs */
+    CHECK(pelt__lod_fur_texture_taps(long_x, short_y, tile, k, 2, &lod) == 2);
+    CHECK_NEAR(lod, 1.0f, 1e-5);
+    CHECK(pelt__lod_fur_texture_taps(long_x, short_y, tile, k, 1, &lod) == 1);
+    CHECK_NEAR(lod, pelt__lod_shell_fur_texture(long_x, short_y, tile, k), 1e-6);
+    CHECK(pelt__lod_fur_texture_taps(long_x, short_y, tile, 1.0f, 8, &lod) == 8); /* rows: 1 texel a pixel */
+    CHECK_NEAR(lod, 0.0f, 1e-5);
+    for (unsigned m = 1; m < 8; m++) {
+        float a, b;
+        pelt__lod_fur_texture_taps(long_x, short_y, tile, k, m, &a);
+        pelt__lod_fur_texture_taps(long_x, short_y, tile, k, m + 1, &b);
+        CHECK(b <= a + 1e-6f);
+    }
+}
+
 /* A hair of radius r texels in the fur texture (the disc's coverage ramps
  * over a texel, as furtex.c splats it), read with linear filtering at m
  * pixels a texel and seen through k shells that show the same cross-section
@@ -592,6 +627,7 @@ int main(void)
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);
     RUN(lod_fin_rows_follow_the_strands_bow);
     RUN(lod_fur_texture_keeps_the_short_side_sharp);
+    RUN(lod_fur_texture_taps_split_a_long_footprint);
     RUN(lod_fur_edge_keeps_a_hair_its_width);
     RUN(lod_shell_overcount_counts_a_hair_once);
     RUN(lod_coverage_powers_compose);

@@ -856,6 +856,52 @@ static void fur_texture_lod_glsl_matches_c(void)
     CHECK(worst < 1e-4);
 }
 
+/* The fetches along the footprint (fur_texture_taps in shell_lod.glsl)
+ * against pelt__lod_fur_texture_taps: footprints from magnified to 64
+ * texels, 1.3 to 21 to 1, at max_aniso 1 and 2 and at most 1 to 8
+ * fetches. A footprint whose ratio lies within 1e-4 of a fetch count's
+ * edge may round either way in float: counted, not compared. */
+static void fur_texture_taps_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy), dx, dy;\n"
+        "  footprint(c, -2.0, 8.0, dx, dy);\n"
+        "  dy *= 0.77;\n"
+        "  float aniso = 1.0 + mod(c.x, 2.0), most = 1.0 + mod(c.y, 8.0), lod;\n"
+        "  float n = fur_texture_taps(dx, dy, 256.0, aniso, most, lod);\n"
+        "  o = vec4(n, lod, 0.0, 1.0);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, footprint_glsl, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int split = 0, edge = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float dx[2], dy[2], lod;
+            footprint(x, y, -2.0f, 8.0f, dx, dy);
+            dy[0] *= 0.77f, dy[1] *= 0.77f; /* ratios off the counts' edges */
+            float aniso = 1.0f + (float)(x % 2);
+            unsigned most = 1u + (unsigned)(y % 8);
+            unsigned n = pelt__lod_fur_texture_taps(dx, dy, 256.0f, aniso, most, &lod);
+            float a = (dx[0] * dx[0] + dx[1] * dx[1]), b = (dy[0] * dy[0] + dy[1] * dy[1]);
+            float ratio = sqrtf(fmaxf(a, b) / fmaxf(fminf(a, b), 1e-30f)) / aniso;
+            if (fabsf(ratio - roundf(ratio)) < 1e-4f) {
+                edge++;
+                continue;
+            }
+            worst = fmax(worst, fabs(out[4 * (y * W + x)] - (float)n));
+            worst = fmax(worst, fabs(out[4 * (y * W + x) + 1] - lod));
+            split += n > 1 && n < most;
+        }
+    printf("  fur_texture_taps: worst |GLSL - C| = %.3g, %d split short of the most, %d on an edge\n", worst, split,
+           edge);
+    CHECK(split > 50);
+    CHECK(edge < W * H / 20);
+    CHECK(worst < 1e-4);
+}
+
 /* The hair's edge seen close (fur_edge_gain and fur_edge in shell_lod.glsl)
  * against pelt__lod_fur_edge_gain and pelt__lod_fur_edge: footprints from
  * 16 pixels a texel to 4 texels a pixel, round to 16 to 1, and coverages
@@ -1064,6 +1110,7 @@ int main(void)
     RUN(shell_lod_glsl_matches_c);
     RUN(shell_view_blend_glsl_matches_c);
     RUN(fur_texture_lod_glsl_matches_c);
+    RUN(fur_texture_taps_glsl_matches_c);
     RUN(fur_edge_glsl_matches_c);
     RUN(shell_overcount_glsl_matches_c);
     RUN(coverage_share_glsl_matches_c);
