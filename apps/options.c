@@ -100,9 +100,9 @@ static const flag flags[] = {
     {"--fin-density", NULL, "TEXELS", FLAG_KEY, "fins.density",
      "width of the slab of hair in the fin texture: denser fins (default texture size / 16)"},
     {"--high-quality", NULL, NULL, FLAG_SWITCH,
-     "fur.layers=128 fur.texture_size=512 fur.lod_shell_pixels=0.01 fur.lod_mesh_error=0.1 fur.texture_taps=4",
+     "fur.layers=128 fur.texture_size=512 fur.lod_shell_pixels=0.01 fur.lod_mesh_error=0.1 fur.texture_taps=4 fur.edge_depth=16",
      "shells as close to the hairs as the look measures them (docs/reference.md): 128 layers, a 512 texture, "
-     "every shell drawn, the full mesh, 4 fetches along a grazing footprint; about 6x the frame and 4x the memory"},
+     "every shell drawn, the full mesh, 4 fetches along a grazing footprint, edge-on shells as deep as the hairs; about 6x the frame and 4x the memory"},
     {"--inter-shadow", NULL, NULL, FLAG_SWITCH, "fur.inter_shadow=true",
      "Kenwright's inter-fur shadows: each hair shades the hair behind it from the light"},
     {"--shadows", NULL, NULL, FLAG_SWITCH, "shadows.enabled=true",

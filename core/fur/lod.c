@@ -447,12 +447,24 @@ float pelt__lod_shell_overcount_cap(float layers)
     return fmaxf(PELT__SHELL_OVERCOUNT_MAX, layers * PELT__SHELL_OVERCOUNT_REACH);
 }
 
-float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float cap)
+float pelt__lod_shell_overcount_from(float width_over_spacing, float cos_view, float drift, float least, float cap)
 {
     float c = fminf(fmaxf(fabsf(cos_view), 1e-3f), 1.0f);
     float tan_view = sqrtf(fmaxf(1.0f - c * c, 0.0f)) / c;
     float k = width_over_spacing / fmaxf(sqrtf(tan_view * tan_view + drift * drift), 1e-3f);
-    return fminf(fmaxf(k, 1.0f), cap);
+    return fminf(fmaxf(k, least), cap);
+}
+
+float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float cap)
+{
+    return pelt__lod_shell_overcount_from(width_over_spacing, cos_view, drift, 1.0f, cap);
+}
+
+float pelt__lod_shell_edge_least(float n_dot_v, float depth)
+{
+    float t = fminf(fabsf(n_dot_v) / PELT__SHELL_EDGE_REACH, 1.0f);
+    float s = t * t * (3.0f - 2.0f * t);
+    return 1.0f - (1.0f - 1.0f / fmaxf(depth, 1.0f)) * (1.0f - s); /* exactly 1 at depth 1 */
 }
 
 float pelt__lod_shell_overcount_alpha(float a, float k)

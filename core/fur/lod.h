@@ -225,6 +225,23 @@ void pelt__lod_fur_edge(float rgba[4], float gain);
  * shell_overcount() in gl/shaders/shell_lod.glsl. */
 float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float cap);
 
+/* pelt__lod_shell_overcount with `least` in place of 1 as its lower bound:
+ * a count below 1 raises the shell's coverage to stand for 1/k crossings
+ * of the hair. Mirrors shell_overcount_from(). */
+float pelt__lod_shell_overcount_from(float width_over_spacing, float cos_view, float drift, float least, float cap);
+
+/* The least count at a vertex whose surface the eye sees at n_dot_v
+ * (lod.edge_depth): 1 / depth edge-on, rising smoothly (smoothstep) to 1
+ * at |n_dot_v| = PELT__SHELL_EDGE_REACH. Seen edge-on, a ray crosses each
+ * hair between two shells, in less than one spacing, and the hairs, seen
+ * from the side, cover it over their length where a shell holds their
+ * cross-sections once: the outer shells above the outline of a lip drew a
+ * pale, see-through band where the hairs show a line of tips
+ * (docs/reference.md, The near lip). 1 leaves every count at least 1.
+ * Mirrors shell_edge_least() in gl/shaders/shell_lod.glsl. */
+#define PELT__SHELL_EDGE_REACH 0.7f
+float pelt__lod_shell_edge_least(float n_dot_v, float depth);
+
 /* The cap on k for `layers` layers: at least PELT__SHELL_OVERCOUNT_MAX
  * shells, and as many as lie within PELT__SHELL_OVERCOUNT_REACH of the
  * fur's length. The ray leaves the hair after a height of the fur, not a

@@ -280,7 +280,7 @@ void main()
 #elif defined(PELT_RINGLETS)
     shell_ringlet_light(sharp_id(fur_uv, hair.b), rho, base, spec);
 #endif
-    float alpha = coverage_share(clear_log, tuft_e / max(v_overcount, 1.0) * layer_share_exponent());
+    float alpha = coverage_share(clear_log, tuft_e / max(v_overcount, 1e-3) * layer_share_exponent());
     o_color = vec4(display_color(base + spec * (u_specular * u_light_color), u_exposure, u_tone), alpha);
 #endif
 }

@@ -133,12 +133,27 @@ float shell_overcount_cap(float layers)
 // pelt__lod_shell_overcount (core/fur/lod.c): how many consecutive shells
 // a ray of sight crosses inside one hair, from the hair's width over the
 // layer spacing, |T.V| and the hair's own drift per spacing; 1 .. cap.
-float shell_overcount(float width_over_spacing, float cos_view, float drift, float cap)
+float shell_overcount_from(float width_over_spacing, float cos_view, float drift, float least, float cap)
 {
     float c = clamp(abs(cos_view), 1e-3, 1.0);
     float tan_view = sqrt(max(1.0 - c * c, 0.0)) / c;
     float k = width_over_spacing / max(sqrt(tan_view * tan_view + drift * drift), 1e-3);
-    return clamp(k, 1.0, cap);
+    return clamp(k, least, cap);
+}
+float shell_overcount(float width_over_spacing, float cos_view, float drift, float cap)
+{
+    return shell_overcount_from(width_over_spacing, cos_view, drift, 1.0, cap);
+}
+
+// pelt__lod_shell_edge_least (core/fur/lod.c): the least count a shell may
+// take where the eye sees the surface at n_dot_v, so that seen edge-on it
+// stands for up to `depth` crossings of the hair: 1 / depth edge-on, 1
+// from SHELL_EDGE_REACH.
+const float SHELL_EDGE_REACH = 0.7; // PELT__SHELL_EDGE_REACH
+float shell_edge_least(float n_dot_v, float depth)
+{
+    // 1 - (1 - 1/depth)(1 - s), not mix(): exactly 1 at depth 1.
+    return 1.0 - (1.0 - 1.0 / max(depth, 1.0)) * (1.0 - smoothstep(0.0, SHELL_EDGE_REACH, abs(n_dot_v)));
 }
 
 // pelt__lod_shell_overcount_alpha: a shell's share when k show the hair.

@@ -70,6 +70,7 @@ out float v_view;       // the view's budget: how far an even shell stands for t
 out float v_aniso;      // fur_texture_aniso: texels of the footprint's long side to a pixel
 out float v_overcount;  // shell_overcount: shells a ray of sight crosses inside one hair
 uniform int u_no_overcount; // pelt_draw_desc.debug.no_overcount: each shell whole
+uniform float u_edge_depth; // lod.edge_depth: a shell seen edge-on stands for up to this many
 #ifdef PELT_LIGHT_PASS
 out float v_light_depth; // the light pass (gl/shadow_pass.c): depth from the light
 #endif
@@ -139,9 +140,18 @@ void main()
         v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip, n_dot_v);
     }
 #endif
+    // Seen edge-on, a ray crosses a hair in less than one shell spacing and
+    // the hairs cover it over their length: the shell may count for more
+    // than one crossing (lod.edge_depth; docs/reference.md, The near lip).
+#ifdef PELT_LIGHT_PASS
+    float least = 1.0;
+#else
+    float least = shell_edge_least(n_dot_v, u_edge_depth);
+#endif
     v_overcount = u_no_overcount != 0 ? 1.0
-                : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
-                                  dot(world_t, normalize(u_eye - world.xyz)), drift, shell_overcount_cap(u_layers));
+                : shell_overcount_from(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
+                                       dot(world_t, normalize(u_eye - world.xyz)), drift, least,
+                                       shell_overcount_cap(u_layers));
     vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS
     // Drawn from the light into its opacity slices: no lighting.

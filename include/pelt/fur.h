@@ -205,6 +205,11 @@ typedef struct pelt_fur_lod {
                                 grazing angle one fetch blurs its hairs
                                 across the view, n fetches n times less
                                 (docs/shading.md). Default 1 */
+    float edge_depth;        /* where the surface is seen edge-on, a shell may
+                                stand for up to this many crossings of a
+                                hair (1..64): the outer shells above a lip's
+                                outline cover the ray as the hairs' sides do
+                                (docs/reference.md). Default 1 (off) */
 } pelt_fur_lod;
 
 /* Fur parameters, one home each. A zero field means its documented

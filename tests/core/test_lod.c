@@ -347,6 +347,37 @@ static void lod_shell_overcount_counts_a_hair_once(void)
     CHECK_NEAR(pelt__lod_shell_overcount_alpha(0.6f, 1.0f), 0.6f, 1e-6);
 }
 
+/* Seen edge-on, a shell may stand for more than one crossing of a hair
+ * (lod.edge_depth): the least count is 1/depth where N.V is 0, rises
+ * smoothly and reaches 1 at PELT__SHELL_EDGE_REACH, the same either side;
+ * at depth 1 it is exactly 1 everywhere (the default draws as before). A
+ * hair seen side-on then counts 1/depth: its share of coverage is the
+ * coverage of depth crossings. */
+static void lod_shell_edge_least_thickens_the_edge_on_shells(void)
+{
+    CHECK(PELT__SHELL_EDGE_REACH > 0.0f && PELT__SHELL_EDGE_REACH < 1.0f);
+    for (int i = 0; i <= 20; i++) CHECK(pelt__lod_shell_edge_least(-1.0f + 0.1f * (float)i, 1.0f) == 1.0f);
+    CHECK_NEAR(pelt__lod_shell_edge_least(0.0f, 16.0f), 1.0f / 16.0f, 1e-6);
+    CHECK(pelt__lod_shell_edge_least(PELT__SHELL_EDGE_REACH, 16.0f) == 1.0f);
+    CHECK(pelt__lod_shell_edge_least(0.95f, 16.0f) == 1.0f);
+    CHECK_NEAR(pelt__lod_shell_edge_least(-0.3f, 16.0f), pelt__lod_shell_edge_least(0.3f, 16.0f), 1e-7);
+    float prev = 0.0f;
+    for (int i = 0; i <= 14; i++) {
+        float least = pelt__lod_shell_edge_least(0.05f * (float)i, 16.0f);
+        CHECK(least >= prev && least >= 1.0f / 16.0f && least <= 1.0f);
+        prev = least;
+    }
+    const float cap = pelt__lod_shell_overcount_cap(32.0f);
+    CHECK_NEAR(pelt__lod_shell_overcount_from(1.6f, 0.0f, 0.0f, 1.0f / 16.0f, cap), 1.0f / 16.0f, 1e-6); /* side-on */
+    CHECK(pelt__lod_shell_overcount_from(1.6f, 0.0f, 0.0f, 1.0f, cap) == pelt__lod_shell_overcount(1.6f, 0.0f, 0.0f, cap));
+    CHECK_NEAR(pelt__lod_shell_overcount_from(1.6f, 1.0f, 0.0f, 0.25f, cap), cap, 1e-6); /* along it: as before */
+    /* The fragment's share, exponent 1/k (pelt__lod_coverage_share): a
+     * count of 1/16 composites 16 crossings of a hair of coverage 0.1. */
+    const float a = 0.1f, k = pelt__lod_shell_overcount_from(1.6f, 0.0f, 0.0f, 1.0f / 16.0f, cap);
+    CHECK_NEAR(pelt__lod_coverage_share(pelt__lod_coverage_log(a), 1.0f / k), 1.0f - powf(1.0f - a, 16.0f), 1e-4);
+    CHECK(pelt__lod_coverage_share(pelt__lod_coverage_log(a), 1.0f / k) > 0.8f);
+}
+
 /* A shell fragment's coverage composed in one power: the log of the
  * complement times the three exponents gives what the tuft's squeeze, the
  * overcount's share and the sub shells' share give one after the other
@@ -630,6 +661,7 @@ int main(void)
     RUN(lod_fur_texture_taps_split_a_long_footprint);
     RUN(lod_fur_edge_keeps_a_hair_its_width);
     RUN(lod_shell_overcount_counts_a_hair_once);
+    RUN(lod_shell_edge_least_thickens_the_edge_on_shells);
     RUN(lod_coverage_powers_compose);
     return check_summary();
 }

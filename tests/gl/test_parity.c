@@ -792,6 +792,45 @@ static void shell_overcount_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+/* The least count a shell seen edge-on may take (shell_edge_least in
+ * shell_lod.glsl) against pelt__lod_shell_edge_least over view angles and
+ * depths 1 to 16, and shell_overcount_from under it against
+ * pelt__lod_shell_overcount_from: widths and angles that put the count
+ * below 1, at it and above. */
+static void shell_edge_least_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy);\n"
+        "  float ndv = -1.0 + 2.0 * c.x / 63.0, depth = 1.0 + 15.0 * c.y / 47.0;\n"
+        "  float least = shell_edge_least(ndv, depth);\n"
+        "  float span = 0.2 + 0.1 * mod(c.y, 9.0), cosv = -1.0 + 2.0 * mod(c.x * 7.0, 64.0) / 63.0;\n"
+        "  o = vec4(least, shell_overcount_from(span, cosv, 0.0, least, 3.0), 0.0, 1.0);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int under = 0, exact = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float ndv = -1.0f + 2.0f * (float)x / 63.0f, depth = 1.0f + 15.0f * (float)y / 47.0f;
+            float least = pelt__lod_shell_edge_least(ndv, depth);
+            float span = 0.2f + 0.1f * fmodf((float)y, 9.0f), cosv = -1.0f + 2.0f * fmodf((float)x * 7.0f, 64.0f) / 63.0f;
+            float k = pelt__lod_shell_overcount_from(span, cosv, 0.0f, least, 3.0f);
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fabs(g[0] - least));
+            worst = fmax(worst, fabs(g[1] - k) / fmax(1.0, fabs(k)));
+            under += k < 0.99f;
+            exact += y == 0 && g[0] == 1.0f; /* depth 1: every count at least 1, exactly */
+        }
+    printf("  shell_edge_least, shell_overcount_from: worst |GLSL - C| = %.3g, %d counts below 1, %d of 64 exact at "
+           "depth 1\n", worst, under, exact);
+    CHECK(under > 100);
+    CHECK(exact == W);
+    CHECK(worst < 2e-4);
+}
+
 /* Footprints of a fur-uv read (tiles per pixel along x and along y) for
  * the pixel (x, y) of a parity picture: 2^(lo + span x / 63) texels of a
  * 256-texel tile along a direction turning with y, and 1 to 1/16 of that
@@ -1111,6 +1150,7 @@ int main(void)
     RUN(shell_view_blend_glsl_matches_c);
     RUN(fur_texture_lod_glsl_matches_c);
     RUN(fur_texture_taps_glsl_matches_c);
+    RUN(shell_edge_least_glsl_matches_c);
     RUN(fur_edge_glsl_matches_c);
     RUN(shell_overcount_glsl_matches_c);
     RUN(coverage_share_glsl_matches_c);
