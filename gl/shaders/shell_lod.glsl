@@ -132,7 +132,8 @@ float shell_overcount_cap(float layers)
 
 // pelt__lod_shell_overcount (core/fur/lod.c): how many consecutive shells
 // a ray of sight crosses inside one hair, from the hair's width over the
-// layer spacing, |T.V| and the hair's own drift per spacing; 1 .. cap.
+// layer spacing, |T.V| and the hair's own drift per spacing; least .. cap
+// (pelt__lod_shell_overcount_from), and 1 .. cap (shell_overcount).
 float shell_overcount_from(float width_over_spacing, float cos_view, float drift, float least, float cap)
 {
     float c = clamp(abs(cos_view), 1e-3, 1.0);
