@@ -414,10 +414,10 @@ unsigned pelt__lod_fur_texture_taps(const float dx[2], const float dy[2], float 
     float longer, shorter;
     footprint_sides(dx, dy, texels, &longer, &shorter);
     float n = fminf(fmaxf(ceilf(sqrtf(longer / fmaxf(shorter, 1e-12f)) / max_aniso), 1.0f), (float)max_taps);
-    if (n > 1.0f)
-        *lod = 0.5f * log2f(fmaxf(fmaxf(longer / (max_aniso * max_aniso * n * n), shorter), 1e-12f));
-    else
-        *lod = pelt__lod_shell_fur_texture(dx, dy, texels, max_aniso);
+    /* Each of n fetches covers 1/n of the long side: the one-fetch level
+     * with n times the long side allowed to a pixel. */
+    *lod = n > 1.0f ? pelt__lod_fur_texture(dx, dy, texels, max_aniso * n)
+                    : pelt__lod_shell_fur_texture(dx, dy, texels, max_aniso);
     return n > 1.0f ? (unsigned)n : 1u;
 }
 
@@ -447,17 +447,12 @@ float pelt__lod_shell_overcount_cap(float layers)
     return fmaxf(PELT__SHELL_OVERCOUNT_MAX, layers * PELT__SHELL_OVERCOUNT_REACH);
 }
 
-float pelt__lod_shell_overcount_from(float width_over_spacing, float cos_view, float drift, float least, float cap)
+float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float least, float cap)
 {
     float c = fminf(fmaxf(fabsf(cos_view), 1e-3f), 1.0f);
     float tan_view = sqrtf(fmaxf(1.0f - c * c, 0.0f)) / c;
     float k = width_over_spacing / fmaxf(sqrtf(tan_view * tan_view + drift * drift), 1e-3f);
     return fminf(fmaxf(k, least), cap);
-}
-
-float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float cap)
-{
-    return pelt__lod_shell_overcount_from(width_over_spacing, cos_view, drift, 1.0f, cap);
 }
 
 float pelt__lod_shell_edge_least(float n_dot_v, float depth)

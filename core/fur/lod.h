@@ -218,17 +218,14 @@ void pelt__lod_fur_edge(float rgba[4], float gain);
  * to the next: the layer spacing times tan of the angle between the ray
  * and the hair (cos_view = |T.V|), plus the hair's own drift per spacing
  * (its curl in the fur texture, its ringlet), in quadrature. width_over_
- * spacing is the hair's width over the layer spacing. Between 1 and
- * `cap` (pelt__lod_shell_overcount_cap): past a few shells the texture's
- * hairs lean and bend off the ray, which then meets other hairs
- * (docs/reference.md, The shells count a hair's edge once). Mirrors
- * shell_overcount() in gl/shaders/shell_lod.glsl. */
-float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float cap);
-
-/* pelt__lod_shell_overcount with `least` in place of 1 as its lower bound:
- * a count below 1 raises the shell's coverage to stand for 1/k crossings
- * of the hair. Mirrors shell_overcount_from(). */
-float pelt__lod_shell_overcount_from(float width_over_spacing, float cos_view, float drift, float least, float cap);
+ * spacing is the hair's width over the layer spacing. Between `least`
+ * and `cap` (pelt__lod_shell_overcount_cap): past a few shells the
+ * texture's hairs lean and bend off the ray, which then meets other hairs
+ * (docs/reference.md, The shells count a hair's edge once). `least` is 1
+ * but where the surface is seen edge-on (pelt__lod_shell_edge_least): a
+ * count below 1 raises the shell's coverage to stand for 1/k crossings of
+ * the hair. Mirrors shell_overcount() in gl/shaders/shell_lod.glsl. */
+float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float least, float cap);
 
 /* The least count at a vertex whose surface the eye sees at n_dot_v
  * (lod.edge_depth): 1 / depth edge-on, rising smoothly (smoothstep) to 1

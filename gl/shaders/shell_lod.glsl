@@ -86,8 +86,7 @@ float fur_texture_taps(vec2 dx, vec2 dy, float texels, float max_aniso, float ma
 {
     vec2 sides = footprint_sides(dx, dy, texels);
     float n = clamp(ceil(sqrt(sides.x / max(sides.y, 1e-12)) / max_aniso), 1.0, max_taps);
-    lod = n > 1.0 ? 0.5 * log2(max(max(sides.x / (max_aniso * max_aniso * n * n), sides.y), 1e-12))
-                  : shell_fur_texture_lod(dx, dy, texels, max_aniso);
+    lod = n > 1.0 ? fur_texture_lod(dx, dy, texels, max_aniso * n) : shell_fur_texture_lod(dx, dy, texels, max_aniso);
     return n;
 }
 
@@ -133,17 +132,13 @@ float shell_overcount_cap(float layers)
 // pelt__lod_shell_overcount (core/fur/lod.c): how many consecutive shells
 // a ray of sight crosses inside one hair, from the hair's width over the
 // layer spacing, |T.V| and the hair's own drift per spacing; least .. cap
-// (pelt__lod_shell_overcount_from), and 1 .. cap (shell_overcount).
-float shell_overcount_from(float width_over_spacing, float cos_view, float drift, float least, float cap)
+// (least 1 but where the surface is seen edge-on: shell_edge_least).
+float shell_overcount(float width_over_spacing, float cos_view, float drift, float least, float cap)
 {
     float c = clamp(abs(cos_view), 1e-3, 1.0);
     float tan_view = sqrt(max(1.0 - c * c, 0.0)) / c;
     float k = width_over_spacing / max(sqrt(tan_view * tan_view + drift * drift), 1e-3);
     return clamp(k, least, cap);
-}
-float shell_overcount(float width_over_spacing, float cos_view, float drift, float cap)
-{
-    return shell_overcount_from(width_over_spacing, cos_view, drift, 1.0, cap);
 }
 
 // pelt__lod_shell_edge_least (core/fur/lod.c): the least count a shell may

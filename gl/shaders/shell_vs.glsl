@@ -149,9 +149,9 @@ void main()
     float least = shell_edge_least(n_dot_v, u_edge_depth);
 #endif
     v_overcount = u_no_overcount != 0 ? 1.0
-                : shell_overcount_from(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
-                                       dot(world_t, normalize(u_eye - world.xyz)), drift, least,
-                                       shell_overcount_cap(u_layers));
+                : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
+                                  dot(world_t, normalize(u_eye - world.xyz)), drift, least,
+                                  shell_overcount_cap(u_layers));
     vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS
     // Drawn from the light into its opacity slices: no lighting.

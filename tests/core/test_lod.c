@@ -320,21 +320,21 @@ static void lod_shell_overcount_counts_a_hair_once(void)
     CHECK(cap == PELT__SHELL_OVERCOUNT_MAX && pelt__lod_shell_overcount_cap(16.0f) == PELT__SHELL_OVERCOUNT_MAX);
     CHECK_NEAR(pelt__lod_shell_overcount_cap(128.0f), 4.0f * PELT__SHELL_OVERCOUNT_MAX, 1e-5);
     /* Along a hair at 128 layers its width spans 4x the shells: 4x the count. */
-    CHECK_NEAR(pelt__lod_shell_overcount(4.0f * span, 1.0f, 0.0f, pelt__lod_shell_overcount_cap(128.0f)),
-               4.0f * pelt__lod_shell_overcount(span, 1.0f, 0.0f, cap), 1e-5);
-    CHECK(pelt__lod_shell_overcount(span, 0.0f, 0.0f, cap) == 1.0f);  /* side-on */
-    CHECK_NEAR(pelt__lod_shell_overcount(span, 1.0f, 0.0f, cap), cap, 1e-6); /* along it: capped */
+    CHECK_NEAR(pelt__lod_shell_overcount(4.0f * span, 1.0f, 0.0f, 1.0f, pelt__lod_shell_overcount_cap(128.0f)),
+               4.0f * pelt__lod_shell_overcount(span, 1.0f, 0.0f, 1.0f, cap), 1e-5);
+    CHECK(pelt__lod_shell_overcount(span, 0.0f, 0.0f, 1.0f, cap) == 1.0f);  /* side-on */
+    CHECK_NEAR(pelt__lod_shell_overcount(span, 1.0f, 0.0f, 1.0f, cap), cap, 1e-6); /* along it: capped */
     float prev = cap + 1.0f;
     for (int i = 0; i <= 10; i++) { /* tilting off the hair: fewer */
-        float k = pelt__lod_shell_overcount(4.0f, cosf(0.15f * (float)i), 0.0f, cap);
+        float k = pelt__lod_shell_overcount(4.0f, cosf(0.15f * (float)i), 0.0f, 1.0f, cap);
         CHECK(k <= prev && k >= 1.0f && k <= cap);
         prev = k;
     }
-    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f, cap) < cap); /* between the bounds */
-    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f, cap) > 1.0f);
+    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f, 1.0f, cap) < cap); /* between the bounds */
+    CHECK(pelt__lod_shell_overcount(4.0f, cosf(1.2f), 0.0f, 1.0f, cap) > 1.0f);
     /* A curl carries the hair off the ray: many small curls leave one shell. */
     float drift = pelt__lod_shell_hair_drift(0.0f, 0.0f, 0.5f, 0.15f, 0.5f, 6.2831853f * 4.0f);
-    CHECK(pelt__lod_shell_overcount(span, 1.0f, drift, cap) == 1.0f);
+    CHECK(pelt__lod_shell_overcount(span, 1.0f, drift, 1.0f, cap) == 1.0f);
     CHECK(pelt__lod_shell_hair_drift(0.0f, 30.0f, 0.5f, 0.1f, 0.0f, 0.0f) == 0.0f); /* straight hair */
     CHECK(pelt__lod_shell_hair_drift(0.01f, 30.0f, 0.8f, 0.1f, 0.0f, 0.0f) >
           pelt__lod_shell_hair_drift(0.01f, 30.0f, 0.2f, 0.1f, 0.0f, 0.0f)); /* the helix widens */
@@ -368,12 +368,12 @@ static void lod_shell_edge_least_thickens_the_edge_on_shells(void)
         prev = least;
     }
     const float cap = pelt__lod_shell_overcount_cap(32.0f);
-    CHECK_NEAR(pelt__lod_shell_overcount_from(1.6f, 0.0f, 0.0f, 1.0f / 16.0f, cap), 1.0f / 16.0f, 1e-6); /* side-on */
-    CHECK(pelt__lod_shell_overcount_from(1.6f, 0.0f, 0.0f, 1.0f, cap) == pelt__lod_shell_overcount(1.6f, 0.0f, 0.0f, cap));
-    CHECK_NEAR(pelt__lod_shell_overcount_from(1.6f, 1.0f, 0.0f, 0.25f, cap), cap, 1e-6); /* along it: as before */
+    CHECK_NEAR(pelt__lod_shell_overcount(1.6f, 0.0f, 0.0f, 1.0f / 16.0f, cap), 1.0f / 16.0f, 1e-6); /* side-on */
+    CHECK(pelt__lod_shell_overcount(1.6f, 0.0f, 0.0f, 1.0f, cap) == 1.0f); /* least 1: as it was */
+    CHECK_NEAR(pelt__lod_shell_overcount(1.6f, 1.0f, 0.0f, 0.25f, cap), cap, 1e-6); /* along it: as before */
     /* The fragment's share, exponent 1/k (pelt__lod_coverage_share): a
      * count of 1/16 composites 16 crossings of a hair of coverage 0.1. */
-    const float a = 0.1f, k = pelt__lod_shell_overcount_from(1.6f, 0.0f, 0.0f, 1.0f / 16.0f, cap);
+    const float a = 0.1f, k = pelt__lod_shell_overcount(1.6f, 0.0f, 0.0f, 1.0f / 16.0f, cap);
     CHECK_NEAR(pelt__lod_coverage_share(pelt__lod_coverage_log(a), 1.0f / k), 1.0f - powf(1.0f - a, 16.0f), 1e-4);
     CHECK(pelt__lod_coverage_share(pelt__lod_coverage_log(a), 1.0f / k) > 0.8f);
 }

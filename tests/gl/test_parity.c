@@ -762,7 +762,7 @@ static void shell_overcount_glsl_matches_c(void)
         "  float h = c.x / 63.0, cosv = -1.0 + 2.0 * c.y / 47.0;\n"
         "  float span = shell_hair_span(0.01 + 0.001 * mod(c.y, 7.0), 0.8, h, 32.0, 0.05 + 0.01 * mod(c.x, 5.0));\n"
         "  float drift = shell_hair_drift(0.02 * mod(c.x, 3.0), 30.0, h, 0.1, 0.01 * mod(c.y, 4.0), 12.0);\n"
-        "  float k = shell_overcount(span, cosv, drift, shell_overcount_cap(c.y < 24.0 ? 32.0 : 96.0));\n"
+        "  float k = shell_overcount(span, cosv, drift, 1.0, shell_overcount_cap(c.y < 24.0 ? 32.0 : 96.0));\n"
         "  o = vec4(span, drift, k, shell_overcount_alpha(fract(0.37 * c.x + 0.11 * c.y), k));\n"
         "}\n";
     const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
@@ -777,7 +777,7 @@ static void shell_overcount_glsl_matches_c(void)
             float drift = pelt__lod_shell_hair_drift(0.02f * fmodf((float)x, 3.0f), 30.0f, h, 0.1f,
                                                      0.01f * fmodf((float)y, 4.0f), 12.0f);
             float cap = pelt__lod_shell_overcount_cap(y < 24 ? 32.0f : 96.0f);
-            float k = pelt__lod_shell_overcount(span, cosv, drift, cap);
+            float k = pelt__lod_shell_overcount(span, cosv, drift, 1.0f, cap);
             float a = 0.37f * (float)x + 0.11f * (float)y;
             a -= floorf(a);
             float r[4] = {span, drift, k, pelt__lod_shell_overcount_alpha(a, k)};
@@ -794,8 +794,8 @@ static void shell_overcount_glsl_matches_c(void)
 
 /* The least count a shell seen edge-on may take (shell_edge_least in
  * shell_lod.glsl) against pelt__lod_shell_edge_least over view angles and
- * depths 1 to 16, and shell_overcount_from under it against
- * pelt__lod_shell_overcount_from: widths and angles that put the count
+ * depths 1 to 16, and shell_overcount under it against
+ * pelt__lod_shell_overcount: widths and angles that put the count
  * below 1, at it and above. */
 static void shell_edge_least_glsl_matches_c(void)
 {
@@ -806,7 +806,7 @@ static void shell_edge_least_glsl_matches_c(void)
         "  float ndv = -1.0 + 2.0 * c.x / 63.0, depth = 1.0 + 15.0 * c.y / 47.0;\n"
         "  float least = shell_edge_least(ndv, depth);\n"
         "  float span = 0.2 + 0.1 * mod(c.y, 9.0), cosv = -1.0 + 2.0 * mod(c.x * 7.0, 64.0) / 63.0;\n"
-        "  o = vec4(least, shell_overcount_from(span, cosv, 0.0, least, 3.0), 0.0, 1.0);\n"
+        "  o = vec4(least, shell_overcount(span, cosv, 0.0, least, 3.0), 0.0, 1.0);\n"
         "}\n";
     const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
     CHECK(gl_test_eval(gl, fs, W, H, out));
@@ -817,14 +817,14 @@ static void shell_edge_least_glsl_matches_c(void)
             float ndv = -1.0f + 2.0f * (float)x / 63.0f, depth = 1.0f + 15.0f * (float)y / 47.0f;
             float least = pelt__lod_shell_edge_least(ndv, depth);
             float span = 0.2f + 0.1f * fmodf((float)y, 9.0f), cosv = -1.0f + 2.0f * fmodf((float)x * 7.0f, 64.0f) / 63.0f;
-            float k = pelt__lod_shell_overcount_from(span, cosv, 0.0f, least, 3.0f);
+            float k = pelt__lod_shell_overcount(span, cosv, 0.0f, least, 3.0f);
             const float *g = out + 4 * (y * W + x);
             worst = fmax(worst, fabs(g[0] - least));
             worst = fmax(worst, fabs(g[1] - k) / fmax(1.0, fabs(k)));
             under += k < 0.99f;
             exact += y == 0 && g[0] == 1.0f; /* depth 1: every count at least 1, exactly */
         }
-    printf("  shell_edge_least, shell_overcount_from: worst |GLSL - C| = %.3g, %d counts below 1, %d of 64 exact at "
+    printf("  shell_edge_least, shell_overcount: worst |GLSL - C| = %.3g, %d counts below 1, %d of 64 exact at "
            "depth 1\n", worst, under, exact);
     CHECK(under > 100);
     CHECK(exact == W);
