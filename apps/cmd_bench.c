@@ -309,12 +309,12 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
  * back-facing shells in their place, with and
  * without the inter-fur shadows, every shell everywhere (no view budget),
  * the floor shader, the plain shell renderer, the frame as fur.lod = off
- * draws it, and with the light's shadows on: without them and the light
- * pass alone. */
+ * draws it, the shells blended without writing their depth, and with the
+ * light's shadows on: without them and the light pass alone. */
 static int bench_variants(cli_session *s, unsigned frames, const cli_options *o, bool wet, double step_ms)
 {
     enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, PLAIN, WET_WHOLE, NO_LIGHT, LIGHT_ONLY,
-           SKIN_ONLY, LOD_OFF, VARIANTS };
+           SKIN_ONLY, LOD_OFF, NO_DEPTH, VARIANTS };
     const bool with_floor = o->bench_floor, with_plain = o->bench_plain, with_lod_off = o->bench_lod_off;
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
@@ -349,10 +349,13 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     v[SKIN_ONLY].no_fins = v[SKIN_ONLY].debug.no_shells = true;
     /* What level of detail saves: the same frame as fur.lod = off draws it. */
     v[LOD_OFF].debug.lod_off = true;
+    /* The shells blended without writing their depth: what hiding the fur
+     * behind the fur costs. */
+    v[NO_DEPTH].debug.no_shell_depth = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
     bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, with_plain, wet, light, light, true,
-                           with_lod_off};
+                           with_lod_off, true};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -374,11 +377,15 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
         print_stats("light pass", st[LIGHT_ONLY]);
     }
     print_stats("skin alone", st[SKIN_ONLY]);
+    print_stats("no depth", st[NO_DEPTH]);
     if (with_lod_off) print_stats("lod off", st[LOD_OFF]);
     print_fragments(s, &v[FULL], &v[NO_FINS], &v[SKIN_ONLY], st[FULL].median, st[NO_FINS].median,
                     st[SKIN_ONLY].median, with_floor ? st[FLOOR].median : 0.0);
     if (fins)
         printf("  fins: %.1f%% of the frame's draw\n", 100.0 * (1.0 - st[NO_FINS].median / st[FULL].median));
+    printf("  the shells' depth (fur in front hides fur behind): the frame takes %.2fx as long as blended "
+           "without it\n",
+           st[FULL].median / st[NO_DEPTH].median);
     printf("  the view's shell budget: the frame takes %.2fx as long as with every shell everywhere\n",
            st[FULL].median / st[FLAT].median);
     if (with_floor)

@@ -199,6 +199,15 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
         count = f->draw->layer_count;
     if (count == 0) return;
     pelt__gl_blended_hair_state();
+    /* The shells are drawn a layer at a time, inside out: along a ray into
+     * one surface that is back to front, but where one furry surface lies
+     * behind another on screen (the far wall of a torus's hole seen over
+     * its near lip) the far fur's outer layers came after the near fur's
+     * inner ones and were laid over them. Each hair fragment drawn writes
+     * its depth, so fur behind it that comes later is hidden; fur of the
+     * same surface that comes later is an outer layer, in front, and
+     * still blends over (docs/reference.md, The near lip). */
+    if (!f->draw->debug.no_shell_depth) glDepthMask(GL_TRUE);
 #if !PELT_GL_ES
     glEnable(GL_CLIP_DISTANCE0); /* faded shells clipped (shell_vs.glsl) */
 #endif

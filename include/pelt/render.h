@@ -95,6 +95,11 @@ typedef struct pelt_draw_debug {
     /* Drawn as fur.lod = "off" draws it: every shell over the full mesh,
        nothing culled, no view budget (pelt bench --lod-off). */
     bool lod_off;
+    /* Shell fragments blended without writing depth, as before the shells
+       wrote it: fur seen through the hole of a torus laid its outer shells
+       over the fur in front of it (docs/reference.md, The near lip: fur
+       in front hides fur behind), for measuring what the depth costs. */
+    bool no_shell_depth;
 } pelt_draw_debug;
 
 typedef struct pelt_draw_desc {

@@ -20,6 +20,9 @@
  *   png_region --red A.png X0 Y0 X1 Y1
  *       Prints red=N: pixels in the box that are clearly red (R > 180,
  *       G and B < 110): the HUD's error colour.
+ *   png_region --luma A.png X0 Y0 X1 Y1
+ *       Prints luma=L: the mean luminance (BT.601, 0..255) of the pixels
+ *       in the box X0 <= x < X1, Y0 <= y < Y1.
  *   png_region --chroma A.png X0 Y0 X1 Y1
  *       Prints chroma_noise=N: colour noise in the box, the mean over its
  *       pixels whose 3 x 3 neighbourhood is lit (R + G + B above 60 in
@@ -130,6 +133,24 @@ static int chroma(const char *path, int x0, int y0, int x1, int y1)
     return 0;
 }
 
+/* --luma: the box's mean luminance (see the top of this file). */
+static int luma(const char *path, int x0, int y0, int x1, int y1)
+{
+    int w, h;
+    unsigned char *a = load(path, &w, &h);
+    if (!a) return 2;
+    double sum = 0.0;
+    long n = 0;
+    for (int y = y0 < 0 ? 0 : y0; y < y1 && y < h; y++)
+        for (int x = x0 < 0 ? 0 : x0; x < x1 && x < w; x++, n++) {
+            const unsigned char *p = a + 4 * ((size_t)y * w + x);
+            sum += 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
+        }
+    printf("luma=%.3f\n", n ? sum / (double)n : 0.0);
+    stbi_image_free(a);
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     if (argc == 7 && !strcmp(argv[1], "--red")) {
@@ -147,6 +168,8 @@ int main(int argc, char **argv)
         stbi_image_free(a);
         return 0;
     }
+    if (argc == 7 && !strcmp(argv[1], "--luma"))
+        return luma(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
     if (argc == 7 && !strcmp(argv[1], "--chroma"))
         return chroma(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
     if (argc == 6 && !strcmp(argv[1], "--axis")) {
@@ -177,6 +200,7 @@ int main(int argc, char **argv)
     if (argc != 6) {
         fprintf(stderr, "usage: png_region A.png B.png CX CY R | png_region --red A.png X0 Y0 X1 Y1 | "
                         "png_region --axis A.png CX CY R | png_region --chroma A.png X0 Y0 X1 Y1 | "
+                        "png_region --luma A.png X0 Y0 X1 Y1 | "
                         "png_region --outline A.png X0 X1 R\n");
         return 2;
     }
