@@ -209,7 +209,8 @@ typedef struct pelt_fur_lod {
                                 stand for up to this many crossings of a
                                 hair (1..64): the outer shells above a lip's
                                 outline cover the ray as the hairs' sides do
-                                (docs/reference.md). Default 1 (off) */
+                                (docs/reference.md). Default 16; 1 is
+                                off (each shell one crossing) */
 } pelt_fur_lod;
 
 /* Fur parameters, one home each. A zero field means its documented

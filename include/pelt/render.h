@@ -166,7 +166,9 @@ typedef struct pelt_render_stats {
  * pelt_renderer_draw (tests/gl/test_render.c checks it).
  *
  * Needs: for draw, the target framebuffer bound to GL_DRAW_FRAMEBUFFER
- * (with a depth buffer: the skin writes depth, the shells test against it)
+ * (with a depth buffer: the skin writes depth, the shells test against it
+ * and write the depth of every hair fragment they draw, so after draw the
+ * depth buffer holds the skin's and the fur's nearest hair)
  * and glViewport set to the part of it to draw into. Draw does not clear.
  * Used as found, never changed: framebuffer bindings, viewport, scissor,
  * stencil, clear values, colour write mask, polygon mode and offset,
