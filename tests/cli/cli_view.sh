@@ -41,7 +41,7 @@ echo "Xvfb on $DISPLAY"
 
 size=320x240
 # Single-sampled: MSAA resolves the window's framebuffer and render's a little
-# differently (0.7 levels), more than the key tests' 0.3 below.
+# differently (0.7 levels), more than the key tests' 0.4 below.
 # LeakSanitizer's own thread-stopping tracer crashes at exit now and then
 # ("Tracer caught signal 11 ... LeakSanitizer has encountered a fatal
 # error": a sanitizer flake, not a leak, which reads "detected memory
@@ -183,26 +183,30 @@ grep -q "level of detail off" <<<"$err"; check lod_switches_off $? "$err"
 # F and S switch the fins and Kenwright's inter-fur shadows: the window
 # then equals render with --no-fins, and with --no-fins --inter-shadow.
 # The shadows change the picture by a mean of about 0.9 levels, within
-# png_diff's default tolerance: these compare at a mean of 0.3.
+# png_diff's default tolerance: these compare at a mean of 0.4. The window
+# and render draw the same settings 0.27-0.32 levels apart single-sampled
+# (0.27 with fur.edge_depth 1, 0.30-0.32 since its default is 16: the
+# edge-on shells are more opaque there); the switches change the picture
+# by 0.9 (fins), 1.2 (inter-fur shadows) and 4.0 levels (the light's).
 printf '0.1 key f\n0.1 screenshot %s\n0.2 key s\n0.2 screenshot %s\n0.2 exit\n' \
   "$d/no_fins.png" "$d/shadows.png" >"$d/passes.txt"
 view --no-hud --script "$d/passes.txt" 2>/dev/null; check passes_run $? ""
 "$pelt" render -q --size $size --msaa 0 --no-fins -o "$d/render_no_fins.png"
 "$pelt" render -q --size $size --msaa 0 --no-fins --inter-shadow -o "$d/render_shadows.png"
-! "$png_diff" "$d/render.png" "$d/render_no_fins.png" --max-mean 0.3 >/dev/null &&
-  ! "$png_diff" "$d/render_no_fins.png" "$d/render_shadows.png" --max-mean 0.3 >/dev/null
+! "$png_diff" "$d/render.png" "$d/render_no_fins.png" --max-mean 0.4 >/dev/null &&
+  ! "$png_diff" "$d/render_no_fins.png" "$d/render_shadows.png" --max-mean 0.4 >/dev/null
 check fins_and_shadows_change_the_picture $? "render's pictures with and without them are alike"
-res=$("$png_diff" "$d/render_no_fins.png" "$d/no_fins.png" --max-mean 0.3); check key_f_is_no_fins $? "$res"
-res=$("$png_diff" "$d/render_shadows.png" "$d/shadows.png" --max-mean 0.3); check key_s_is_inter_shadow $? "$res"
+res=$("$png_diff" "$d/render_no_fins.png" "$d/no_fins.png" --max-mean 0.4); check key_f_is_no_fins $? "$res"
+res=$("$png_diff" "$d/render_shadows.png" "$d/shadows.png" --max-mean 0.4); check key_s_is_inter_shadow $? "$res"
 
 # O switches the light's shadows on (off in the default scene): the window
 # then equals render with --shadows.
 printf '0.1 key o\n0.1 screenshot %s\n0.1 exit\n' "$d/light.png" >"$d/light.txt"
 view --no-hud --script "$d/light.txt" 2>/dev/null; check light_key_runs $? ""
 "$pelt" render -q --size $size --msaa 0 --shadows -o "$d/render_light.png"
-! "$png_diff" "$d/render.png" "$d/render_light.png" --max-mean 0.3 >/dev/null
+! "$png_diff" "$d/render.png" "$d/render_light.png" --max-mean 0.4 >/dev/null
 check light_shadows_change_the_picture $? "render's pictures with and without them are alike"
-res=$("$png_diff" "$d/render_light.png" "$d/light.png" --max-mean 0.3); check key_o_is_shadows $? "$res"
+res=$("$png_diff" "$d/render_light.png" "$d/light.png" --max-mean 0.4); check key_o_is_shadows $? "$res"
 
 # The scene file changes on disk while the window is open: it reloads
 # (polled once a second) and the new background shows.
