@@ -230,7 +230,7 @@ check fetches_along_the_footprint $? "SSIM against the strands $s4 with 4 fetche
 
 # Shells seen edge-on as deep as the hairs (fur.edge_depth): above the
 # hole's near lip the outer shells are seen edge-on, a ray crosses each hair
-# in less than one shell spacing and a shell held its cross-section once,
+# in less than one shell spacing and a shell held its cross-section once:
 # see-through where the hairs' sides cover the ray. Standing for up to 16
 # crossings there (the default), long hair comes closer to its hairs
 # (0.8657 at depth 1 -> 0.8876) and nearer their brightness (-7.9% ->

@@ -133,43 +133,33 @@ static int chroma(const char *path, int x0, int y0, int x1, int y1)
     return 0;
 }
 
-/* --luma: the box's mean luminance (see the top of this file). */
-static int luma(const char *path, int x0, int y0, int x1, int y1)
+/* --red and --luma: one pass over the box (see the top of this file),
+ * printing its clearly red pixels or its mean luminance. */
+static int box(const char *path, int x0, int y0, int x1, int y1, bool red)
 {
     int w, h;
     unsigned char *a = load(path, &w, &h);
     if (!a) return 2;
     double sum = 0.0;
-    long n = 0;
+    long reds = 0, n = 0;
     for (int y = y0 < 0 ? 0 : y0; y < y1 && y < h; y++)
         for (int x = x0 < 0 ? 0 : x0; x < x1 && x < w; x++, n++) {
             const unsigned char *p = a + 4 * ((size_t)y * w + x);
+            reds += p[0] > 180 && p[1] < 110 && p[2] < 110;
             sum += 0.299 * p[0] + 0.587 * p[1] + 0.114 * p[2];
         }
-    printf("luma=%.3f\n", n ? sum / (double)n : 0.0);
+    if (red)
+        printf("red=%ld\n", reds);
+    else
+        printf("luma=%.3f\n", n ? sum / (double)n : 0.0);
     stbi_image_free(a);
     return 0;
 }
 
 int main(int argc, char **argv)
 {
-    if (argc == 7 && !strcmp(argv[1], "--red")) {
-        int w, h;
-        unsigned char *a = load(argv[2], &w, &h);
-        if (!a) return 2;
-        int x0 = atoi(argv[3]), y0 = atoi(argv[4]), x1 = atoi(argv[5]), y1 = atoi(argv[6]);
-        long red = 0;
-        for (int y = y0 < 0 ? 0 : y0; y < y1 && y < h; y++)
-            for (int x = x0 < 0 ? 0 : x0; x < x1 && x < w; x++) {
-                const unsigned char *p = a + 4 * ((size_t)y * w + x);
-                red += p[0] > 180 && p[1] < 110 && p[2] < 110;
-            }
-        printf("red=%ld\n", red);
-        stbi_image_free(a);
-        return 0;
-    }
-    if (argc == 7 && !strcmp(argv[1], "--luma"))
-        return luma(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
+    if (argc == 7 && (!strcmp(argv[1], "--red") || !strcmp(argv[1], "--luma")))
+        return box(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]), atoi(argv[6]), !strcmp(argv[1], "--red"));
     if (argc == 7 && !strcmp(argv[1], "--chroma"))
         return chroma(argv[2], atoi(argv[3]), atoi(argv[4]), atoi(argv[5]), atoi(argv[6]));
     if (argc == 6 && !strcmp(argv[1], "--axis")) {
