@@ -51,6 +51,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     sp->sub_shells = glGetUniformLocation(sp->program, "u_sub_shells");
     sp->no_overcount = glGetUniformLocation(sp->program, "u_no_overcount");
     sp->fur_taps = glGetUniformLocation(sp->program, "u_fur_taps");
+    sp->fur_aniso = glGetUniformLocation(sp->program, "u_fur_aniso");
     sp->edge_depth = glGetUniformLocation(sp->program, "u_edge_depth");
     return PELT_OK;
 }
@@ -117,6 +118,7 @@ static void use_program(const pelt__shell_program *sp, const pelt__pass_frame *f
     glUniform1f(sp->sub_shells, 1.0f);
     glUniform1i(sp->no_overcount, f->draw->debug.no_overcount ? 1 : 0);
     glUniform1f(sp->fur_taps, (float)f->lod.texture_taps);
+    glUniform1f(sp->fur_aniso, f->lod.texture_aniso);
     glUniform1f(sp->edge_depth, f->lod.edge_depth);
 }
 

@@ -85,6 +85,7 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("fur.lod_mesh_edge", "lod.mesh_edge_pixels"),
     PARAM("fur.lod_back_reach", "lod.back_reach"),
     PARAM("fur.texture_taps", "lod.texture_taps"),
+    PARAM("fur.texture_aniso", "lod.texture_aniso"),
     PARAM("fur.edge_depth", "lod.edge_depth"),
     PARAM("fins.length", "fins.length"),
     PARAM("fins.density", "fins.density"),

@@ -65,6 +65,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     l.back_reach = -1.0f;
     const pelt_fur_lod fl = fd->lod;
     l.texture_taps = fl.texture_taps > 1 ? fl.texture_taps : 1;
+    l.texture_aniso = fl.texture_aniso > 1.0f ? fl.texture_aniso : 1.0f;
     l.edge_depth = fl.edge_depth > 1.0f ? fl.edge_depth : 1.0f;
     pelt__fur_snapshot fs;
     pelt__fur_gpu_snapshot(fur, &fs);

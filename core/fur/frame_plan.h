@@ -40,6 +40,7 @@ typedef struct pelt__frame_lod {
     bool front_cw;        /* the mesh winds its outside faces clockwise */
     unsigned texture_taps; /* the most fur-texture fetches a shell fragment
                               takes (lod.texture_taps, at least 1) */
+    float texture_aniso;   /* lod.texture_aniso, at least 1 */
     float edge_depth;      /* lod.edge_depth, at least 1 */
 } pelt__frame_lod;
 

@@ -374,11 +374,11 @@ float pelt__lod_view_blend(float side_px, float n_dot_v, float target_px, float 
 
 bool pelt__lod_back_hidden(float n_dot_v, float reach) { return reach >= 0.0f && n_dot_v < -reach; }
 
-float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v)
+float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v, float max_aniso)
 {
     float spacing = view_spacing(side_px, n_dot_v);
     float s = fminf(fmaxf(2.0f - spacing / PELT__FUR_TEXTURE_ROW_PX, 0.0f), 1.0f);
-    return 1.0f + (PELT__FUR_TEXTURE_ANISO - 1.0f) * s;
+    return 1.0f + (max_aniso - 1.0f) * s;
 }
 
 /* A texture read's footprint from its uv derivatives dx, dy (uv per pixel)

@@ -140,7 +140,7 @@ bool pelt__lod_back_hidden(float n_dot_v, float reach);
  * it, blurs along both; this keeps its hairs sharp across the view with
  * one fetch (up to PELT__FUR_TEXTURE_ANISO texels along the long side to
  * a pixel). Mirrors fur_texture_lod() in gl/shaders/shell_lod.glsl. */
-#define PELT__FUR_TEXTURE_ANISO 2.0f
+#define PELT__FUR_TEXTURE_ANISO 4.0f
 float pelt__lod_fur_texture(const float dx[2], const float dy[2], float texels, float max_aniso);
 
 /* The level the shells read at: pelt__lod_fur_texture's, half a level
@@ -185,14 +185,15 @@ unsigned pelt__lod_fur_texture_taps(const float dx[2], const float dy[2], float 
 #define PELT__FIN_TEXTURE_ANISO 4.0f
 float pelt__lod_fin_texture_aniso(const float dx[2], const float dy[2]);
 
-/* The max_aniso of pelt__lod_fur_texture at a vertex: PELT__FUR_TEXTURE_ANISO
- * where the shells lie at most PELT__FUR_TEXTURE_ROW_PX apart on screen,
+/* The max_aniso of pelt__lod_fur_texture at a vertex: max_aniso
+ * (lod.texture_aniso, default PELT__FUR_TEXTURE_ANISO) where the shells lie
+ * at most PELT__FUR_TEXTURE_ROW_PX apart on screen,
  * 1 (a texture read's own level) from twice that, linear between: where
  * the shells stand far enough apart to show as rows, a sharper texture
  * makes the rows stripes. side_px and n_dot_v as pelt__lod_view_blend's.
  * Mirrors fur_texture_aniso() in gl/shaders/shell_lod.glsl. */
-#define PELT__FUR_TEXTURE_ROW_PX 0.35f
-float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v);
+#define PELT__FUR_TEXTURE_ROW_PX 0.7f
+float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v, float max_aniso);
 
 /* The hair's edge seen close: a hair's coverage in the fur texture ramps
  * from 0 to 1 over about a texel, and coverage 0.5 is the hair's edge. Where

@@ -28,7 +28,7 @@ bool shell_back_hidden(float n_dot_v, float reach)
     return reach >= 0.0 && n_dot_v < -reach;
 }
 
-const float FUR_TEXTURE_ANISO = 2.0;   // PELT__FUR_TEXTURE_ANISO
+const float FUR_TEXTURE_ANISO = 4.0;   // PELT__FUR_TEXTURE_ANISO (lod.texture_aniso's default)
 const float FIN_TEXTURE_ANISO = 4.0;   // PELT__FIN_TEXTURE_ANISO
 const float FUR_TEXTURE_SHARPEN = 0.5; // PELT__FUR_TEXTURE_SHARPEN
 
@@ -49,15 +49,15 @@ float fin_texture_aniso(vec2 dx, vec2 dy)
     return 1.0 + (FIN_TEXTURE_ANISO - 1.0) * clamp(2.0 - shorter, 0.0, 1.0);
 }
 
-const float FUR_TEXTURE_ROW_PX = 0.35; // PELT__FUR_TEXTURE_ROW_PX
+const float FUR_TEXTURE_ROW_PX = 0.7; // PELT__FUR_TEXTURE_ROW_PX
 
 // pelt__lod_fur_texture_aniso (core/fur/lod.c): how many texels of the
-// footprint's long side may fall to a pixel, from the shells' spacing on
-// screen (side_px side-on, foreshortened by n_dot_v).
-float fur_texture_aniso(float side_px, float n_dot_v)
+// footprint's long side may fall to a pixel, at most max_aniso, from the
+// shells' spacing on screen (side_px side-on, foreshortened by n_dot_v).
+float fur_texture_aniso(float side_px, float n_dot_v, float max_aniso)
 {
     float spacing = shell_view_spacing(side_px, n_dot_v);
-    return 1.0 + (FUR_TEXTURE_ANISO - 1.0) * clamp(2.0 - spacing / FUR_TEXTURE_ROW_PX, 0.0, 1.0);
+    return 1.0 + (max_aniso - 1.0) * clamp(2.0 - spacing / FUR_TEXTURE_ROW_PX, 0.0, 1.0);
 }
 
 // pelt__lod_fur_texture (core/fur/lod.c): the fur texture's mip level

@@ -70,6 +70,7 @@ out float v_view;       // the view's budget: how far an even shell stands for t
 out float v_aniso;      // fur_texture_aniso: texels of the footprint's long side to a pixel
 out float v_overcount;  // shell_overcount: shells a ray of sight crosses inside one hair
 uniform int u_no_overcount; // pelt_draw_desc.debug.no_overcount: each shell whole
+uniform float u_fur_aniso;  // lod.texture_aniso: the most texels of a footprint's long side to a pixel
 uniform float u_edge_depth; // lod.edge_depth: a shell seen edge-on stands for up to this many
 #ifdef PELT_LIGHT_PASS
 out float v_light_depth; // the light pass (gl/shadow_pass.c): depth from the light
@@ -137,7 +138,7 @@ void main()
         v_view = odd ? 0.0 : w;
         // Sharp across a grazing view, unless the shells stand far enough
         // apart on screen to show as rows (docs/shading.md).
-        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip, n_dot_v);
+        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_fur_aniso);
     }
 #endif
     // Seen edge-on, a ray crosses a hair in less than one shell spacing and

@@ -205,6 +205,13 @@ typedef struct pelt_fur_lod {
                                 grazing angle one fetch blurs its hairs
                                 across the view, n fetches n times less
                                 (docs/shading.md). Default 1 */
+    float texture_aniso;     /* how many texels of the footprint's longer
+                                side one fetch may take to a pixel where
+                                the shells lie within 0.7 px of each other
+                                on screen, 1..16: fur seen at a grazing
+                                angle stays sharp across the view, at the
+                                price of aliasing along it (docs/shading.md).
+                                Default 4; 1 reads at the long side's level */
     float edge_depth;        /* where the surface is seen edge-on, a shell may
                                 stand for up to this many crossings of a
                                 hair (1..64): the outer shells above a lip's

@@ -148,13 +148,14 @@ static void lod_shell_levels_halve_to_one_shell(void)
  * as a texture read would; a grazing one, 8 texels across the view and 1
  * along it, the level of its long side over 2 (a texture read: 8 texels,
  * level 3, the hairs blurred along the short side too); past 2 to 1 the
- * short side sets the level. How far it sharpens follows the shells'
- * spacing on screen: fully where they lie within 0.35 px of each other,
- * not at all from 0.7 px apart, where they begin to show as rows. */
+ * short side sets the level (max_aniso 2 here; the shells' default is
+ * PELT__FUR_TEXTURE_ANISO, lod.texture_aniso). How far it sharpens follows
+ * the shells' spacing on screen: fully where they lie within 0.7 px of
+ * each other, not at all from 1.4 px apart, where they show as rows. */
 static void lod_fur_texture_keeps_the_short_side_sharp(void)
 {
-    const float tile = 256.0f, texel = 1.0f / tile, k = PELT__FUR_TEXTURE_ANISO;
-    CHECK(k == 2.0f);
+    const float tile = 256.0f, texel = 1.0f / tile, k = 2.0f;
+    CHECK(PELT__FUR_TEXTURE_ANISO == 4.0f); /* lod.texture_aniso's default */
     const float round_x[2] = {2.0f * texel, 0.0f}, round_y[2] = {0.0f, 2.0f * texel};
     CHECK_NEAR(pelt__lod_fur_texture(round_x, round_y, tile, k), 1.0f, 1e-5);
     const float long_x[2] = {8.0f * texel * 0.6f, 8.0f * texel * 0.8f}, short_y[2] = {-texel * 0.8f, texel * 0.6f};
@@ -183,10 +184,13 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
         was = lod;
     }
 
-    CHECK(pelt__lod_fur_texture_aniso(0.3f, 0.0f) == k);          /* edge-on, 0.3 px apart */
-    CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.0f) == 1.0f);       /* 2 px apart: rows */
-    CHECK_NEAR(pelt__lod_fur_texture_aniso(0.525f, 0.0f), 1.5f, 1e-6);
-    CHECK(pelt__lod_fur_texture_aniso(2.0f, 0.99f) == k);         /* face-on: 0.28 px */
+    const float most = PELT__FUR_TEXTURE_ANISO;
+    CHECK(pelt__lod_fur_texture_aniso(0.6f, 0.0f, most) == most);       /* edge-on, 0.6 px apart */
+    CHECK(pelt__lod_fur_texture_aniso(1.4f, 0.0f, most) == 1.0f);       /* 1.4 px apart: rows */
+    CHECK_NEAR(pelt__lod_fur_texture_aniso(1.05f, 0.0f, most), 1.0f + 0.5f * (most - 1.0f), 1e-5);
+    CHECK(pelt__lod_fur_texture_aniso(3.0f, 0.99f, most) == most);      /* face-on: 0.42 px */
+    CHECK(pelt__lod_fur_texture_aniso(0.5f, 0.0f, 1.0f) == 1.0f);       /* 1: the long side's level */
+    CHECK(pelt__lod_fur_texture_aniso(0.5f, 0.0f, 16.0f) == 16.0f);
     /* The fins: the long side's texels to a pixel where the short side is a
      * texel or less, a texture read's own level from 2 texels. */
     const float fin_long[2] = {0.0f, 6.0f}, fin_close[2] = {0.5f, 0.0f}, fin_mid[2] = {1.5f, 0.0f},
@@ -197,10 +201,10 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
     CHECK(pelt__lod_fin_texture_aniso(fin_far, fin_long) == 1.0f);
     CHECK_NEAR(pelt__lod_fur_texture(fin_close, fin_long, 1.0f, PELT__FIN_TEXTURE_ANISO), log2f(6.0f / 4.0f), 1e-5);
 
-    float last = k + 1.0f;
-    for (int i = 0; i <= 40; i++) {
-        float a = pelt__lod_fur_texture_aniso(0.05f * (float)i, 0.0f);
-        CHECK(a <= last && a >= 1.0f && a <= k);
+    float last = most + 1.0f;
+    for (int i = 0; i <= 60; i++) {
+        float a = pelt__lod_fur_texture_aniso(0.05f * (float)i, 0.0f, most);
+        CHECK(a <= last && a >= 1.0f && a <= most);
         last = a;
     }
 }
@@ -213,7 +217,7 @@ static void lod_fur_texture_keeps_the_short_side_sharp(void)
  * never read coarser. */
 static void lod_fur_texture_taps_split_a_long_footprint(void)
 {
-    const float tile = 256.0f, texel = 1.0f / tile, k = PELT__FUR_TEXTURE_ANISO;
+    const float tile = 256.0f, texel = 1.0f / tile, k = 2.0f;
     const float round_x[2] = {2.0f * texel, 0.0f}, round_y[2] = {0.0f, 2.0f * texel};
     const float long_x[2] = {8.0f * texel * 0.6f, 8.0f * texel * 0.8f}, short_y[2] = {-texel * 0.8f, texel * 0.6f};
     const float near_x[2] = {1.9f * texel, 0.0f}, near_y[2] = {0.0f, texel};

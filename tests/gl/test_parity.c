@@ -866,7 +866,7 @@ static void fur_texture_lod_glsl_matches_c(void)
         "  vec2 c = floor(gl_FragCoord.xy), dx, dy;\n"
         "  footprint(c, -2.0, 8.0, dx, dy);\n"
         "  float side = 0.05 * c.x, ndv = -1.0 + 2.0 * c.y / 47.0;\n"
-        "  o = vec4(shell_fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO), fur_texture_aniso(side, ndv),\n"
+        "  o = vec4(shell_fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO), fur_texture_aniso(side, ndv, 3.0),\n"
         "           FIN_TEXTURE_ANISO, fin_texture_aniso(dx * 256.0, dy * 256.0));\n"
         "}\n";
     const char *fs[] = {pelt__shader_shell_lod, footprint_glsl, main_glsl, NULL};
@@ -879,9 +879,9 @@ static void fur_texture_lod_glsl_matches_c(void)
             footprint(x, y, -2.0f, 8.0f, dx, dy);
             float r = pelt__lod_shell_fur_texture(dx, dy, 256.0f, PELT__FUR_TEXTURE_ANISO);
             worst = fmax(worst, fabs(out[4 * (y * W + x)] - r));
-            float q = pelt__lod_fur_texture_aniso(0.05f * (float)x, -1.0f + 2.0f * (float)y / 47.0f);
+            float q = pelt__lod_fur_texture_aniso(0.05f * (float)x, -1.0f + 2.0f * (float)y / 47.0f, 3.0f);
             worst = fmax(worst, fabs(out[4 * (y * W + x) + 1] - q));
-            between += q > 1.01f && q < PELT__FUR_TEXTURE_ANISO - 0.01f;
+            between += q > 1.01f && q < 3.0f - 0.01f;
             worst = fmax(worst, fabs(out[4 * (y * W + x) + 2] - PELT__FIN_TEXTURE_ANISO)); /* the fins' */
             float tx[2] = {dx[0] * 256.0f, dx[1] * 256.0f}, ty[2] = {dy[0] * 256.0f, dy[1] * 256.0f};
             float fa = pelt__lod_fin_texture_aniso(tx, ty);
