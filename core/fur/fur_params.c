@@ -3,6 +3,7 @@
  * checks every field against them; the scene's keys and the command line
  * point here instead of repeating a default or a range. */
 #include "core/fur/fur_params.h"
+#include "core/fur/lod.h"
 
 #include <float.h>
 #include <stddef.h>
@@ -78,7 +79,7 @@ static const pelt_param fur_params[] = {
     UINT_("lod.shell_level", lod.shell_level, 0, 8, 0),
     UINT_("lod.mesh_level", lod.mesh_level, 0, 11, 0),
     UINT_("lod.texture_taps", lod.texture_taps, 1, 8, 1),
-    FLT("lod.texture_aniso", lod.texture_aniso, 1, 16, 0, 4),
+    FLT("lod.texture_aniso", lod.texture_aniso, 1, 16, 0, PELT__FUR_TEXTURE_ANISO),
     FLT("lod.edge_depth", lod.edge_depth, 1, 64, 0, 16),
     FLT("lod.shell_pixels", lod.shell_pixels, 0, 64, OPEN, 0.5),
     FLT("lod.mesh_error_pixels", lod.mesh_error_pixels, 0, 64, OPEN, 0.5),

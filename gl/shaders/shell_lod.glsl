@@ -28,7 +28,6 @@ bool shell_back_hidden(float n_dot_v, float reach)
     return reach >= 0.0 && n_dot_v < -reach;
 }
 
-const float FUR_TEXTURE_ANISO = 4.0;   // PELT__FUR_TEXTURE_ANISO (lod.texture_aniso's default)
 const float FIN_TEXTURE_ANISO = 4.0;   // PELT__FIN_TEXTURE_ANISO
 const float FUR_TEXTURE_SHARPEN = 0.5; // PELT__FUR_TEXTURE_SHARPEN
 

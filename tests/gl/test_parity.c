@@ -854,9 +854,9 @@ static void footprint(int x, int y, float lo, float span, float dx[2], float dy[
  * fur_texture_lod half a level finer where the footprint is round, in
  * shell_lod.glsl) against
  * pelt__lod_shell_fur_texture over footprints from magnified to 64 texels, round
- * to 16 to 1 in every direction, at the shaders' FUR_TEXTURE_ANISO; and
- * fur_texture_aniso against pelt__lod_fur_texture_aniso over spacings and
- * view angles; the fins' FIN_TEXTURE_ANISO and fin_texture_aniso against
+ * to 16 to 1 in every direction, at the shells' default max_aniso
+ * (lod.texture_aniso); and fur_texture_aniso against
+ * pelt__lod_fur_texture_aniso over spacings and view angles, at most 3; the fins' FIN_TEXTURE_ANISO and fin_texture_aniso against
  * PELT__FIN_TEXTURE_ANISO and pelt__lod_fin_texture_aniso. */
 static void fur_texture_lod_glsl_matches_c(void)
 {
@@ -866,7 +866,7 @@ static void fur_texture_lod_glsl_matches_c(void)
         "  vec2 c = floor(gl_FragCoord.xy), dx, dy;\n"
         "  footprint(c, -2.0, 8.0, dx, dy);\n"
         "  float side = 0.05 * c.x, ndv = -1.0 + 2.0 * c.y / 47.0;\n"
-        "  o = vec4(shell_fur_texture_lod(dx, dy, 256.0, FUR_TEXTURE_ANISO), fur_texture_aniso(side, ndv, 3.0),\n"
+        "  o = vec4(shell_fur_texture_lod(dx, dy, 256.0, 4.0), fur_texture_aniso(side, ndv, 3.0),\n"
         "           FIN_TEXTURE_ANISO, fin_texture_aniso(dx * 256.0, dy * 256.0));\n"
         "}\n";
     const char *fs[] = {pelt__shader_shell_lod, footprint_glsl, main_glsl, NULL};
@@ -877,7 +877,7 @@ static void fur_texture_lod_glsl_matches_c(void)
         for (int x = 0; x < W; x++) {
             float dx[2], dy[2];
             footprint(x, y, -2.0f, 8.0f, dx, dy);
-            float r = pelt__lod_shell_fur_texture(dx, dy, 256.0f, PELT__FUR_TEXTURE_ANISO);
+            float r = pelt__lod_shell_fur_texture(dx, dy, 256.0f, PELT__FUR_TEXTURE_ANISO); /* 4, as above */
             worst = fmax(worst, fabs(out[4 * (y * W + x)] - r));
             float q = pelt__lod_fur_texture_aniso(0.05f * (float)x, -1.0f + 2.0f * (float)y / 47.0f, 3.0f);
             worst = fmax(worst, fabs(out[4 * (y * W + x) + 1] - q));
