@@ -506,8 +506,9 @@ int cmd_bench(int argc, char **argv)
     measure(&s, sc, o.warmup, frames, t, plain);
     report(o.bench_clumps ? "as given (dry unless the scene wets it):" : "frame:", plain);
     pelt_render_stats rs = pelt_renderer_get_stats(s.renderer);
-    printf("shell draw calls per frame: %u (%u layers, %u wet sub shells), %zu triangles submitted\n",
-           rs.shell_draw_calls, rs.shell_instances, rs.sub_shells, rs.triangles);
+    printf("shell draw calls per frame: %u (%u layers, %u shells a layer close up, %u more wet sub shells), "
+           "%zu triangles submitted\n",
+           rs.shell_draw_calls, rs.shell_instances, rs.layer_shells, rs.sub_shells, rs.triangles);
     printf("level of detail: mesh level %u (%zu of %zu triangles), %zu fins drawn (%u rows) from level %u, "
            "shell level %u (blend %.2f), back faces %s\n",
            rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.fin_rows, rs.fin_level, rs.shell_level,

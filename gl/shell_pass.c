@@ -128,7 +128,11 @@ static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, 
 {
     if (triangles == 0) return;
     use_program(sp, f, shells, next);
-    draw_instanced(f, offset, triangles, count);
+    /* Close up, each layer's k shells are instances k i .. k i + k - 1. */
+    const unsigned k = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
+    glUniform1f(sp->sub_shells, (float)k);
+    draw_instanced(f, offset, triangles, count * k);
+    glUniform1f(sp->sub_shells, 1.0f);
 }
 
 /* The sub shells the wet shells of draw instance i are drawn in
@@ -136,17 +140,22 @@ static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, 
  * layer and the one below. */
 static unsigned layer_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned i)
 {
-    if (!(f->lod.tuft_pull[1] > 0.0f)) return 1;
+    const unsigned close = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1; /* every layer's, close up */
+    if (!(f->lod.tuft_pull[1] > 0.0f)) return close;
     float slices[3], alpha, n = (float)f->layers;
     float layer = pelt__lod_shell_instance(shells, next, n, (float)i, slices, &alpha);
-    return pelt__clump_sub_shells((1.0f + layer - shells[1]) / n, (1.0f + layer) / n, f->lod.tuft_pull[0], n,
-                                  f->lod.tuft_pull[1]);
+    unsigned tuft = pelt__clump_sub_shells((1.0f + layer - shells[1]) / n, (1.0f + layer) / n, f->lod.tuft_pull[0],
+                                           n, f->lod.tuft_pull[1]);
+    return tuft > close ? tuft : close;
 }
 
+/* Whether a wet layer takes more sub shells than the others (drawn a
+ * layer at a time, draw_split). */
 static bool any_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned count)
 {
+    const unsigned close = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
     for (unsigned i = 0; i < count; i++)
-        if (layer_sub_shells(f, shells, next, i) > 1) return true;
+        if (layer_sub_shells(f, shells, next, i) > close) return true;
     return false;
 }
 
@@ -165,24 +174,27 @@ static void draw_split(const pelt__shell_program *dry_sp, const pelt__shell_prog
     const size_t wet_offset = offset + dry * 3 * sizeof(uint32_t);
     use_program(wet_sp, f, shells, next);
     if (dry) use_program(dry_sp, f, shells, next);
+    const unsigned close = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
+    if (dry) glUniform1f(dry_sp->sub_shells, (float)close);
     for (unsigned i = 0; i < count; i++) {
         if (dry) {
             glUseProgram(dry_sp->program);
             glUniform1f(dry_sp->instance_base, (float)i);
-            draw_instanced(f, offset, dry, 1);
+            draw_instanced(f, offset, dry, close);
         }
         unsigned sub = layer_sub_shells(f, shells, next, i);
         glUseProgram(wet_sp->program);
         glUniform1f(wet_sp->instance_base, (float)i);
         glUniform1f(wet_sp->sub_shells, (float)sub);
         draw_instanced(f, wet_offset, wet, sub);
-        f->stats->sub_shells += sub - 1;
+        f->stats->sub_shells += sub - close;
     }
     glUniform1f(wet_sp->instance_base, 0.0f);
     glUniform1f(wet_sp->sub_shells, 1.0f);
     if (dry) {
         glUseProgram(dry_sp->program);
         glUniform1f(dry_sp->instance_base, 0.0f);
+        glUniform1f(dry_sp->sub_shells, 1.0f);
     }
 }
 
@@ -242,6 +254,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
         draw_part(sp, f, shells, next, offset, triangles, count);
     }
     f->stats->shell_instances += count; /* the shells each triangle drew */
+    f->stats->layer_shells = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
     glFrontFace(GL_CCW);
 #if !PELT_GL_ES
     glDisable(GL_CLIP_DISTANCE0);

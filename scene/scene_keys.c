@@ -87,6 +87,7 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("fur.texture_taps", "lod.texture_taps"),
     PARAM("fur.texture_aniso", "lod.texture_aniso"),
     PARAM("fur.edge_depth", "lod.edge_depth"),
+    PARAM("fur.sub_shells", "lod.sub_shells"),
     PARAM("fins.length", "fins.length"),
     PARAM("fins.density", "fins.density"),
     PARAM("fins.curl", "fins.curl"),

@@ -24,13 +24,12 @@ static void transform_point(const float *m, const float p[3], float out[3])
     for (int k = 0; k < 3; k++) out[k] = m[k] * p[0] + m[4 + k] * p[1] + m[8 + k] * p[2] + m[12 + k];
 }
 
-/* The sub shells' measure (pelt__frame_lod.tuft_pull): how far, in pixels
- * where the fur is seen largest, the tufts' pull moves a hair at the rim
- * of a tuft of the mean width (wet.clump_size) over the whole profile.
- * "Largest" is the vertex in view nearest the eye (clip w), found by a
- * pass over the vertices on wet frames only: the bounding sphere's nearest
- * point says nothing once the eye is inside it (a close-up). */
-static float tuft_sweep_pixels(const pelt_fur *fur, const pelt_fur_desc *fd, const pelt_view *v)
+/* The clip w of the vertex in view nearest the eye (a margin of a tenth
+ * round the view: the fur reaches past), or infinity where none is: the
+ * fur is seen largest there. A pass over the vertices: the bounding
+ * sphere's nearest point says nothing once the eye is inside it (a
+ * close-up). */
+static float nearest_view_w(const pelt_fur *fur, const pelt_view *v)
 {
     pelt__fur_snapshot fs;
     pelt__fur_gpu_snapshot(fur, &fs);
@@ -43,14 +42,27 @@ static float tuft_sweep_pixels(const pelt_fur *fur, const pelt_fur_desc *fd, con
         const float *p = fs.pose ? fs.pose + 10 * i : md.positions + 3 * i;
         float c[4];
         for (int r = 0; r < 4; r++) c[r] = mvp[r] * p[0] + mvp[4 + r] * p[1] + mvp[8 + r] * p[2] + mvp[12 + r];
-        /* In view, a margin of a tenth round it (the fur reaches past). */
         if (!(c[3] > 0.0f) || fabsf(c[0]) > 1.1f * c[3] || fabsf(c[1]) > 1.1f * c[3] || c[2] < -c[3]) continue;
         nearest = fminf(nearest, c[3]);
     }
+    return nearest;
+}
+
+/* Pixels per world unit at clip w `nearest` (orthographic: any w). */
+static float pixels_per_unit_at(const pelt_view *v, float nearest)
+{
+    return v->proj[5] * 0.5f * (float)v->height * model_scale(v->model) /
+           (v->proj[11] == 0.0f ? 1.0f : fmaxf(nearest, 1e-6f));
+}
+
+/* The wet sub shells' measure (pelt__frame_lod.tuft_pull): how far, in
+ * pixels where the fur is seen largest, the tufts' pull moves a hair at
+ * the rim of a tuft of the mean width (wet.clump_size) over the whole
+ * profile. */
+static float tuft_sweep_pixels(const pelt_fur_desc *fd, const pelt_view *v, float nearest)
+{
     if (!isfinite(nearest) || v->height == 0) return 0.0f;
-    float scale = model_scale(v->model);
-    float ppu = v->proj[5] * 0.5f * (float)v->height * scale / (v->proj[11] == 0.0f ? 1.0f : fmaxf(nearest, 1e-6f));
-    float sweep = fd->wet.clump_tightness * 0.5f * fd->wet.clump_size * ppu;
+    float sweep = fd->wet.clump_tightness * 0.5f * fd->wet.clump_size * pixels_per_unit_at(v, nearest);
     return isfinite(sweep) ? fminf(sweep, 4.0f * (float)v->height) : 0.0f;
 }
 
@@ -234,10 +246,17 @@ void pelt__frame_plan_make(const pelt_fur *fur, const pelt_view *view, const pel
     out->light_maps = shadow_frame(fur, &fd, view, sw, setup, &out->shadow, &out->light_pass);
     out->lod = choose_lod(fur, &fd, view, sw);
     out->shell_features = shell_features(fur, &fd, &out->lod, sw, out->light_maps);
-    if ((out->shell_features & PELT__SHELL_WET) && sw->sub_shells && !sw->one_height) {
+    const bool wet_sub = (out->shell_features & PELT__SHELL_WET) && sw->sub_shells && !sw->one_height;
+    const bool view_sub = fd.lod.sub_shells > 1 && sw->sub_shells && !sw->one_height && out->lod.shell_view[0] > 0.0f;
+    const float nearest = wet_sub || view_sub ? nearest_view_w(fur, view) : INFINITY;
+    if (wet_sub) {
         out->lod.tuft_pull[0] = fd.wet.clump_blend;
-        out->lod.tuft_pull[1] = tuft_sweep_pixels(fur, &fd, view);
+        out->lod.tuft_pull[1] = tuft_sweep_pixels(&fd, view, nearest);
     }
+    /* Close up, the layers' rows show edge-on: each layer in sub shells. */
+    out->lod.sub_shells = 1;
+    if (view_sub && isfinite(nearest))
+        out->lod.sub_shells = pelt__lod_sub_shells(out->lod.shell_view[0] / fmaxf(nearest, 1e-6f), fd.lod.sub_shells);
     if (out->light_maps) out->light_pass.features = out->shell_features & (PELT__SHELL_WET | PELT__SHELL_RINGLETS);
     out->ground = setup->ground.enabled;
     if (out->ground) ground_disc(fur, view, setup->ground.size, cache, out->disc);

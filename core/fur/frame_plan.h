@@ -35,6 +35,10 @@ typedef struct pelt__frame_lod {
        profile, pixels at the vertex in view nearest the eye (0: dry, no
        sub shells). */
     float tuft_pull[2];
+    /* Close up, every layer drawn as this many shells, evenly down to the
+       one below (pelt__lod_sub_shells; 1: one a layer). The wet shells
+       take the larger of this and their own. */
+    unsigned sub_shells;
     bool cull;            /* back-facing shells culled (closed meshes) */
     bool cull_skin;       /* back-facing skin culled: a closed mesh hides it */
     bool front_cw;        /* the mesh winds its outside faces clockwise */

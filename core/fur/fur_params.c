@@ -81,6 +81,7 @@ static const pelt_param fur_params[] = {
     UINT_("lod.texture_taps", lod.texture_taps, 1, 8, 1),
     FLT("lod.texture_aniso", lod.texture_aniso, 1, 16, 0, PELT__FUR_TEXTURE_ANISO),
     FLT("lod.edge_depth", lod.edge_depth, 1, 64, 0, 16),
+    UINT_("lod.sub_shells", lod.sub_shells, 1, 8, 4),
     FLT("lod.shell_pixels", lod.shell_pixels, 0, 64, OPEN, 0.5),
     FLT("lod.mesh_error_pixels", lod.mesh_error_pixels, 0, 64, OPEN, 0.5),
     FLT("lod.mesh_edge_pixels", lod.mesh_edge_pixels, 0, 1024, OPEN, 8),

@@ -381,6 +381,13 @@ float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v, float max_aniso)
     return 1.0f + (max_aniso - 1.0f) * s;
 }
 
+unsigned pelt__lod_sub_shells(float side_px, unsigned max_sub)
+{
+    if (!(side_px > PELT__SUB_SHELL_PIXELS) || max_sub <= 1) return 1; /* also NaN */
+    float k = ceilf(side_px / PELT__SUB_SHELL_PIXELS);
+    return k >= (float)max_sub ? max_sub : (unsigned)k;
+}
+
 /* A texture read's footprint from its uv derivatives dx, dy (uv per pixel)
  * and the texture's size: the squared lengths of its longer and shorter
  * side, in texels. Mirrors footprint_sides() in shell_lod.glsl. */

@@ -195,6 +195,16 @@ float pelt__lod_fin_texture_aniso(const float dx[2], const float dy[2]);
 #define PELT__FUR_TEXTURE_ROW_PX 0.7f
 float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v, float max_aniso);
 
+/* Close up, the sub shells a layer is drawn as (lod.sub_shells, docs/lod.md):
+ * where the shells stand more than PELT__SUB_SHELL_PIXELS apart on screen
+ * seen side-on (side_px, at the fur nearest the eye), edge-on they show as
+ * rows and the fur texture may not be read sharp across them
+ * (pelt__lod_fur_texture_aniso); k shells a layer, evenly down to the one
+ * below, stand side_px / k apart. ceil(side_px / PELT__SUB_SHELL_PIXELS),
+ * 1 .. max_sub. */
+#define PELT__SUB_SHELL_PIXELS 1.4f
+unsigned pelt__lod_sub_shells(float side_px, unsigned max_sub);
+
 /* The hair's edge seen close: a hair's coverage in the fur texture ramps
  * from 0 to 1 over about a texel, and coverage 0.5 is the hair's edge. Where
  * a texel spans several pixels on screen, so does the ramp, and the shells

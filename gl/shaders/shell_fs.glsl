@@ -39,7 +39,7 @@ uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
 uniform sampler2D u_mask;          // PELT_UNIT_MASK
 uniform int u_no_inter_shadow;     // the shell pass's own: 1 skips inter-fur shadows
-uniform float u_sub_shells;        // wet: sub shells drawn for this layer (shell_vs.glsl)
+uniform float u_sub_shells;        // sub shells drawn for this layer (shell_vs.glsl)
 #ifdef PELT_FUR_TAPS
 uniform float u_fur_taps;          // lod.texture_taps: the most fetches of a hair
 #endif
@@ -47,21 +47,13 @@ uniform float u_fur_taps;          // lod.texture_taps: the most fetches of a ha
 // A layer's coverage a, shared among the sub shells drawn for it.
 float layer_share(float a)
 {
-#ifdef PELT_WET
     return sub_shell_alpha(a, u_sub_shells);
-#else
-    return a;
-#endif
 }
 
 // layer_share's exponent (coverage_share): 1 / the sub shells.
 float layer_share_exponent()
 {
-#ifdef PELT_WET
     return 1.0 / max(u_sub_shells, 1.0);
-#else
-    return 1.0;
-#endif
 }
 
 #ifdef PELT_LIGHT_PASS

@@ -23,7 +23,7 @@ uniform vec2 u_shell_view;  // the view's budget (shell_view_blend): x: the leve
                             // side-on in pixels times clip w, per unit of groom length
                             // (0: off), y: the spacing it aims at, pixels
 uniform float u_instance_base; // the instance of this draw's first shell (0 but in the wet split)
-uniform float u_sub_shells;  // wet: sub shells drawn for each layer (pelt__clump_sub_shells; 0, 1: none)
+uniform float u_sub_shells;  // sub shells drawn for each layer (lod.sub_shells, pelt__clump_sub_shells; 0, 1: none)
 uniform float u_back_reach; // back-facing shells drawn only within the fur's reach of the
                             // silhouette: where N.V >= -u_back_reach (negative: everywhere)
 uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
@@ -85,17 +85,14 @@ void main()
 #endif
     vec3 n = normalize(normal);
     float instance = float(gl_InstanceID) + u_instance_base;
-#ifdef PELT_WET
-    // Where a tuft gathers its hairs, a layer's wet shells are k sub shells
-    // below it (docs/wetness.md, Sub shells), instances k i .. k i + k - 1.
+    // A layer's shells are k sub shells below it, instances k i .. k i + k - 1:
+    // close up, where the layers stand far apart on screen (docs/lod.md), and
+    // where a tuft gathers its hairs (docs/wetness.md, Sub shells).
     float sub = max(u_sub_shells, 1.0);
     float part = mod(float(gl_InstanceID), sub);
     instance = floor((float(gl_InstanceID) + 0.5) / sub) + u_instance_base;
-#endif
     float layer = shell_instance(instance, u_shells, u_shells_next, u_layers, v_slices, v_alpha);
-#ifdef PELT_WET
     layer = sub_shell_layer(layer, part, sub, u_shells.y);
-#endif
     v_view = 0.0;
     v_aniso = 1.0;
 #ifndef PELT_LIGHT_PASS
@@ -137,8 +134,9 @@ void main()
         v_alpha *= odd ? 1.0 - w : 1.0;
         v_view = odd ? 0.0 : w;
         // Sharp across a grazing view, unless the shells stand far enough
-        // apart on screen to show as rows (docs/shading.md).
-        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_fur_aniso);
+        // apart on screen to show as rows (docs/shading.md): the sub
+        // shells stand closer.
+        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip / sub, n_dot_v, u_fur_aniso);
     }
 #endif
     // Seen edge-on, a ray crosses a hair in less than one shell spacing and

@@ -218,6 +218,15 @@ typedef struct pelt_fur_lod {
                                 outline cover the ray as the hairs' sides do
                                 (docs/reference.md). Default 16; 1 is
                                 off (each shell one crossing) */
+    unsigned sub_shells;     /* close up, where the shells stand further apart
+                                on screen than 1.4 pixels (seen side-on,
+                                at the fur nearest the eye), each layer is
+                                drawn as up to this many sub shells down to
+                                the one below (1..8), so that the rows an
+                                edge-on view shows close and the fur
+                                texture is read as sharp as the nearer
+                                spacing allows (docs/lod.md). Default 4;
+                                1 is off (one shell a layer) */
 } pelt_fur_lod;
 
 /* Fur parameters, one home each. A zero field means its documented

@@ -73,8 +73,9 @@ typedef struct pelt_draw_debug {
     /* Draw every triangle's shells with the wet shader while any fur is
      * wet, as before wet and dry were drawn apart (for measuring it). */
     bool no_wet_split;
-    /* Draw each wet layer once, even where tufts gather their hairs (no
-       sub shells, docs/wetness.md), for measuring what they buy. */
+    /* Draw each layer once, even where tufts gather their hairs (no wet
+       sub shells, docs/wetness.md) or the shells stand far apart close up
+       (lod.sub_shells, docs/lod.md), for measuring what they buy. */
     bool no_sub_shells;
     /* Composite every shell's coverage whole, as if each held other hairs,
        where a ray of sight that runs along a hair crosses it in several
@@ -128,6 +129,8 @@ typedef struct pelt_render_stats {
     unsigned sub_shells;       /* wet shells drawn beyond one a layer, where
                                   tufts gather their hairs (docs/wetness.md,
                                   Sub shells) */
+    unsigned layer_shells;     /* close up, the shells every layer was drawn
+                                  as (lod.sub_shells, docs/lod.md); 1: one */
     unsigned fin_draw_calls;   /* instanced fin draws: 1, or 2 where wet and dry fins are drawn apart */
     unsigned shadow_draw_calls; /* the light's maps: 2 (skin depth, all shells'
                                    opacity in one instanced draw), else 0 */

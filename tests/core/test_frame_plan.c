@@ -328,6 +328,48 @@ static void tufts_sweep_follows_the_view(pelt_fur *fur, const pelt_mesh *m)
     CHECK(p.lod.tuft_pull[1] == 0.0f);
 }
 
+/* Close up, every layer in sub shells (lod.sub_shells, docs/lod.md): one
+ * a layer at the default framing's distance, more as the eye comes close
+ * (the fur's nearest vertex in view sets the spacing, also from inside the
+ * bounding sphere), never more than the cap; one with the cap at 1, the
+ * switch off, or a band of layers inspected. Dry or wet alike. */
+static void close_up_layers_in_sub_shells(pelt_fur *fur, const pelt_mesh *m)
+{
+    const pelt__frame_setup setup = setup_with(false, false);
+    pelt__ground_cache cache = {0};
+    pelt__frame_plan p;
+    pelt_view v;
+    unsigned was = 0;
+    const float distances[] = {12.0f, 6.0f, 3.0f, 1.5f}; /* outside the bounding sphere, coming closer */
+    for (size_t i = 0; i < sizeof distances / sizeof distances[0]; i++) {
+        v = view_at(distances[i]);
+        pelt__frame_plan_make(fur, &v, &everything, &setup, &cache, &p);
+        printf("  distance %4.1f: %u shells a layer\n", (double)distances[i], p.lod.sub_shells);
+        CHECK(p.lod.sub_shells >= 1 && p.lod.sub_shells >= was && p.lod.sub_shells <= 4);
+        if (i < 2) CHECK(p.lod.sub_shells == 1); /* the whole torus in view: one a layer */
+        was = p.lod.sub_shells;
+    }
+    CHECK(was > 1);
+    pelt_view inside = view_at(0.5f);
+    pelt__frame_plan_make(fur, &inside, &everything, &setup, &cache, &p);
+    printf("  from inside its bounding sphere: %u\n", p.lod.sub_shells);
+    CHECK(p.lod.sub_shells > 1 && p.lod.sub_shells <= 4);
+    pelt__frame_switches sw = everything;
+    sw.sub_shells = false;
+    pelt__frame_plan_make(fur, &v, &sw, &setup, &cache, &p);
+    CHECK(p.lod.sub_shells == 1);
+    sw = everything;
+    sw.one_height = true;
+    pelt__frame_plan_make(fur, &v, &sw, &setup, &cache, &p);
+    CHECK(p.lod.sub_shells == 1);
+    pelt_fur *one = NULL;
+    CHECK(pelt_fur_create(m, &(pelt_fur_desc){.look.texture_size = 32, .lod.sub_shells = 1}, &one, NULL) == PELT_OK);
+    if (one) pelt__frame_plan_make(one, &v, &everything, &setup, &cache, &p);
+    CHECK(one && p.lod.sub_shells == 1);
+    pelt_fur_destroy(one);
+}
+
+static void run_close_up_layers_in_sub_shells(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, close_up_layers_in_sub_shells); }
 static void run_tufts_sweep_follows_the_view(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, tufts_sweep_follows_the_view); }
 static void run_back_shells_carry_the_silhouette_without_fins(void) { on_torus((pelt_fur_desc){.look.texture_size = 32}, back_shells_carry_the_silhouette_without_fins); }
 static void run_the_view_budget_follows_the_view(void) { on_torus((pelt_fur_desc){.layers = 32, .look.texture_size = 32}, the_view_budget_follows_the_view); }
@@ -379,5 +421,6 @@ int main(void)
     RUN(run_the_ground_lies_under_the_mesh);
     RUN(run_features_and_passes_follow_the_switches);
     RUN(run_tufts_sweep_follows_the_view);
+    RUN(run_close_up_layers_in_sub_shells);
     return check_summary();
 }

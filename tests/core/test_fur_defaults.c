@@ -164,6 +164,7 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK(d.lod.texture_taps == 1); /* one fetch a shell fragment */
     CHECK(d.lod.texture_aniso == 4.0f); /* one fetch reads up to 4 texels of a grazing footprint */
     CHECK(d.lod.edge_depth == 16.0f); /* edge-on shells as deep as the hairs */
+    CHECK(d.lod.sub_shells == 4); /* close up, up to 4 shells a layer */
     CHECK_REL(d.look.density, 3000.0f);
     CHECK_REL(d.look.strand_radius, 1.6f * (float)d.look.texture_size / 256.0f);
     CHECK_REL(d.look.taper, 0.8f);

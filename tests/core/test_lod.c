@@ -648,6 +648,34 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
     pelt_mesh_destroy(m);
 }
 
+/* Close up, a layer in sub shells (lod.sub_shells): none while the
+ * shells stand within PELT__SUB_SHELL_PIXELS of each other, then as many
+ * as bring them within it, at most the cap; 1 with the cap at 1 or a
+ * spacing that is no number. Each sub shell's spacing stays within the
+ * bound wherever the cap allows, and the count never falls as the
+ * spacing grows. */
+static void lod_sub_shells_close_the_rows(void)
+{
+    CHECK(pelt__lod_sub_shells(0.0f, 4) == 1);
+    CHECK(pelt__lod_sub_shells(PELT__SUB_SHELL_PIXELS, 4) == 1);
+    CHECK(pelt__lod_sub_shells(1.5f * PELT__SUB_SHELL_PIXELS, 4) == 2);
+    CHECK(pelt__lod_sub_shells(2.5f * PELT__SUB_SHELL_PIXELS, 4) == 3);
+    CHECK(pelt__lod_sub_shells(100.0f, 4) == 4);
+    CHECK(pelt__lod_sub_shells(100.0f, 8) == 8);
+    CHECK(pelt__lod_sub_shells(100.0f, 1) == 1);
+    CHECK(pelt__lod_sub_shells(NAN, 4) == 1);
+    CHECK(pelt__lod_sub_shells(INFINITY, 4) == 4);
+    unsigned was = 1;
+    for (int i = 0; i <= 200; i++) {
+        float side = 0.05f * (float)i;
+        unsigned k = pelt__lod_sub_shells(side, 8);
+        CHECK(k >= was && k >= 1 && k <= 8);
+        if (k < 8) CHECK(side / (float)k <= PELT__SUB_SHELL_PIXELS * (1.0f + 1e-5f));
+        if (k > 1) CHECK(side / (float)(k - 1) > PELT__SUB_SHELL_PIXELS - 1e-5f); /* no more than it takes */
+        was = k;
+    }
+}
+
 int main(void)
 {
     RUN(lod_levels_shrink_and_their_error_grows);
@@ -667,5 +695,6 @@ int main(void)
     RUN(lod_shell_overcount_counts_a_hair_once);
     RUN(lod_shell_edge_least_thickens_the_edge_on_shells);
     RUN(lod_coverage_powers_compose);
+    RUN(lod_sub_shells_close_the_rows);
     return check_summary();
 }
