@@ -247,7 +247,12 @@ void pelt__frame_plan_make(const pelt_fur *fur, const pelt_view *view, const pel
     out->lod = choose_lod(fur, &fd, view, sw);
     out->shell_features = shell_features(fur, &fd, &out->lod, sw, out->light_maps);
     const bool wet_sub = (out->shell_features & PELT__SHELL_WET) && sw->sub_shells && !sw->one_height;
-    const bool view_sub = fd.lod.sub_shells > 1 && sw->sub_shells && !sw->one_height && out->lod.shell_view[0] > 0.0f;
+    /* The level's spacing seen side-on, pixels x clip w per unit of groom
+     * length (as the view budget's, whether or not it is on). */
+    const float side_w = fd.length * view->proj[5] * 0.5f * (float)view->height * model_scale(view->model) *
+                         (float)(1u << out->lod.shell_level) / (float)(fd.layers ? fd.layers : 1);
+    const bool view_sub = fd.lod.sub_shells > 1 && sw->sub_shells && !sw->one_height && !out->lod.full_mesh &&
+                          side_w > 0.0f;
     const float nearest = wet_sub || view_sub ? nearest_view_w(fur, view) : INFINITY;
     if (wet_sub) {
         out->lod.tuft_pull[0] = fd.wet.clump_blend;
@@ -256,7 +261,7 @@ void pelt__frame_plan_make(const pelt_fur *fur, const pelt_view *view, const pel
     /* Close up, the layers' rows show edge-on: each layer in sub shells. */
     out->lod.sub_shells = 1;
     if (view_sub && isfinite(nearest))
-        out->lod.sub_shells = pelt__lod_sub_shells(out->lod.shell_view[0] / fmaxf(nearest, 1e-6f), fd.lod.sub_shells);
+        out->lod.sub_shells = pelt__lod_sub_shells(side_w / fmaxf(nearest, 1e-6f), fd.lod.sub_shells);
     if (out->light_maps) out->light_pass.features = out->shell_features & (PELT__SHELL_WET | PELT__SHELL_RINGLETS);
     out->ground = setup->ground.enabled;
     if (out->ground) ground_disc(fur, view, setup->ground.size, cache, out->disc);
