@@ -174,7 +174,8 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     bool split = (f->shell_features & wet_bits) && level == 0 && mesh->split_ok && !f->draw->debug.no_wet_split;
     pelt__fin_frame_desc fd = {level, PELT_FIN_ROWS, f->lod.fin_row_error, {local.x, local.y, local.z},
                                f->draw->fins_unfaded, f->lod.cull && !f->draw->no_skin,
-                               split ? mesh->split.vertex_wet : NULL};
+                               split ? mesh->split.vertex_wet : NULL,
+                               f->lod.sub_shells > 1 ? 1.0f / (float)f->lod.sub_shells : 1.0f};
     unsigned rows;
     size_t dry = 0;
     size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices, &rows, &dry);

@@ -104,6 +104,7 @@ size_t pelt__fur_gpu_fin_frame(const pelt_fur *f, const pelt__fin_frame_desc *d,
             pelt_vec3 pa = v3_load(pose ? pose + 10 * a : m.positions + 3 * a);
             pelt_vec3 pb = v3_load(pose ? pose + 10 * b : m.positions + 3 * b);
             fade *= pelt__fin_spacing_opacity(v3_len(v3_sub(pb, pa)) * f->desc.look.tiling, slab);
+            if (d->opacity > 0.0f) fade *= d->opacity;
         }
         bool wet_ends = vertex_wet && (vertex_wet[l->fins[i].a] || vertex_wet[l->fins[i].b]);
         uint32_t *t = wet_ends ? fins + 4 * (l->fin_count - ++wet_kept) : fins + 4 * kept++;

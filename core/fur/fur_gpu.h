@@ -117,6 +117,11 @@ typedef struct pelt__fin_frame_desc {
        holds water (pelt__wet_split's vertex_wet), or NULL. The fins with
        both ends dry come first in the table, then the others. */
     const uint8_t *vertex_wet;
+    /* Every fin's opacity times this, where the view fades them (0: 1).
+       Close up the shells stand in sub shells k to a layer and hold the
+       hair across the outline the fins stood for: 1 / k (gl/fin_pass.c,
+       docs/lod.md). */
+    float opacity;
 } pelt__fin_frame_desc;
 
 /* How far past the silhouette a fin's ends may face away and still be

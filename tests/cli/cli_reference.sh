@@ -258,19 +258,22 @@ check edge_on_shells_as_deep_as_the_hairs $? "SSIM $s16 at depth 16, $s1 at 1 (b
 # the grazing close-up of the torus's rim the shells stand about 2 px
 # apart seen side-on, and a texture read sharp across them showed as
 # rows, so the hairs along the horizon blurred into a pale band. Drawn
-# 2 shells a layer they stand within 1.4 px and read sharp: SSIM against
-# the hairs 0.8995 -> 0.9115 (bound +0.006), brightness within 10%, no
-# stripes (stripe ratio at most 1.5). Silva Fig. 7's square of long
-# curly fur seen from 12 deg above likewise (many small curls, lit by the
-# default light: 0.7066 -> 0.7594, bound +0.02).
+# 2 shells a layer they stand within 1.4 px and read sharp, and the fins,
+# whose hair across the outline the denser shells now hold, are drawn at
+# half their opacity: SSIM against the hairs 0.8995 -> 0.9167 (bound
+# +0.006, and at least 0.9156: 1 - SSIM within 60% of the baseline's
+# 0.1406, as the look asks), brightness within 10%, no stripes (stripe
+# ratio at most 1.5). Silva Fig. 7's square of long curly fur seen from
+# 12 deg above likewise (many small curls, lit by the default light:
+# 0.7066 -> 0.7689, bound +0.02).
 rim="$(cd "$(dirname "$0")/../.." && pwd)/scenes/reference/torus-rim.json"
 r1=$("$pelt" compare "$rim" --set fur.sub_shells=1 -q 2>&1)
 rk=$("$pelt" compare "$rim" -q 2>&1)
 s1=$(field ssim "$r1") sk=$(field ssim "$rk") st=$(field stripe_energy_ratio "$rk")
 lk=$(field luminance_shells "$rk") lh=$(field luminance_strands "$rk")
 awk -v a="${s1:-1}" -v b="${sk:-0}" -v l="${lk:-0}" -v h="${lh:-0}" -v st="${st:-9}" \
-  'BEGIN { exit !(b >= a + 0.006 && h > 0 && (l - h) ^ 2 < (0.1 * h) ^ 2 && st <= 1.5) }'
-check close_up_layers_in_sub_shells $? "rim SSIM $sk with sub shells, $s1 with one a layer (bound +0.006); luminance $lk against $lh; stripes $st"
+  'BEGIN { exit !(b >= a + 0.006 && b >= 0.9156 && h > 0 && (l - h) ^ 2 < (0.1 * h) ^ 2 && st <= 1.5) }'
+check close_up_layers_in_sub_shells $? "rim SSIM $sk with sub shells, $s1 with one a layer (bounds +0.006 and 0.9156); luminance $lk against $lh; stripes $st"
 square=(--mesh square --set fur.preset=many-small-curls --set fur.density=500 --set fur.strand_radius=2.5
         --set fur.length=0.3 --set fur.layers=48 --set fur.taper=0.3 --gravity 0,0,0 --yaw 0 --pitch 12
         --distance 2.2 --light 0.3,0.8,1 --size 480x360)

@@ -622,6 +622,24 @@ static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
     }
     CHECK(bad_root == 0 && bad_tip == 0);
 
+    /* Close up, with the shells in 2 sub shells a layer, the same fins at
+     * half their opacity (the cut is the view's fade's alone). */
+    uint32_t *half = malloc(l->fin_count * 4 * sizeof *half);
+    if (half && kept) {
+        pelt__fin_frame_desc hd = fd;
+        hd.opacity = 0.5f;
+        size_t hdry = 0, hkept = pelt__fur_gpu_fin_frame(fur, &hd, half, verts, &rows, &hdry);
+        size_t bad_half = 0;
+        for (size_t k = 0; k < hkept && hkept == kept; k++) {
+            float a, b;
+            memcpy(&a, &fins[4 * k + 3], sizeof a);
+            memcpy(&b, &half[4 * k + 3], sizeof b);
+            bad_half += fabsf(b - 0.5f * a) > 1e-6f || half[4 * k] != fins[4 * k] || half[4 * k + 1] != fins[4 * k + 1];
+        }
+        CHECK(hkept == kept && bad_half == 0);
+    }
+    free(half);
+
     /* Wet fins drawn apart: with the vertices of one side marked wet, the
      * same fins come out, those with both ends dry first, each part in
      * the order above. */
