@@ -121,7 +121,7 @@ void pelt__strands_pass_destroy(pelt__strands_pass *p);
 typedef struct pelt__shell_program {
     GLuint program;
     GLint shells, shells_next, shell_view, back_reach, instance_base; /* uniform locations (shell_vs.glsl) */
-    GLint no_inter_shadow, sub_shells, no_overcount, fur_taps, fur_aniso, edge_depth;
+    GLint no_inter_shadow, sub_shells, sub_view, no_overcount, fur_taps, fur_aniso, edge_depth;
     bool failed;               /* did not build: the generic one stands in */
 } pelt__shell_program;
 

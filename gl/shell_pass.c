@@ -49,6 +49,7 @@ static pelt_status build(pelt__shell_program *sp, unsigned features, bool floor,
     sp->instance_base = glGetUniformLocation(sp->program, "u_instance_base");
     sp->no_inter_shadow = glGetUniformLocation(sp->program, "u_no_inter_shadow");
     sp->sub_shells = glGetUniformLocation(sp->program, "u_sub_shells");
+    sp->sub_view = glGetUniformLocation(sp->program, "u_sub_view");
     sp->no_overcount = glGetUniformLocation(sp->program, "u_no_overcount");
     sp->fur_taps = glGetUniformLocation(sp->program, "u_fur_taps");
     sp->fur_aniso = glGetUniformLocation(sp->program, "u_fur_aniso");
@@ -116,6 +117,7 @@ static void use_program(const pelt__shell_program *sp, const pelt__pass_frame *f
     glUniform1f(sp->instance_base, 0.0f);
     glUniform1i(sp->no_inter_shadow, f->draw->debug.no_inter_shadow ? 1 : 0);
     glUniform1f(sp->sub_shells, 1.0f);
+    glUniform2f(sp->sub_view, f->lod.sub_side, 1.0f);
     glUniform1i(sp->no_overcount, f->draw->debug.no_overcount ? 1 : 0);
     glUniform1f(sp->fur_taps, (float)f->lod.texture_taps);
     glUniform1f(sp->fur_aniso, f->lod.texture_aniso);
@@ -138,24 +140,28 @@ static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, 
 /* The sub shells the wet shells of draw instance i are drawn in
  * (pelt__clump_sub_shells): where a tuft gathers its hairs, between this
  * layer and the one below. */
-static unsigned layer_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned i)
+static unsigned layer_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned i,
+                                 bool *tufts)
 {
     const unsigned close = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1; /* every layer's, close up */
+    *tufts = false;
     if (!(f->lod.tuft_pull[1] > 0.0f)) return close;
     float slices[3], alpha, n = (float)f->layers;
     float layer = pelt__lod_shell_instance(shells, next, n, (float)i, slices, &alpha);
     unsigned tuft = pelt__clump_sub_shells((1.0f + layer - shells[1]) / n, (1.0f + layer) / n, f->lod.tuft_pull[0],
                                            n, f->lod.tuft_pull[1]);
+    *tufts = tuft > 1; /* the tufts need them wherever the layer is drawn */
     return tuft > close ? tuft : close;
 }
 
-/* Whether a wet layer takes more sub shells than the others (drawn a
- * layer at a time, draw_split). */
+/* Whether a wet layer takes sub shells for its tufts (drawn a layer at a
+ * time, draw_split: their count and that they are needed everywhere). */
 static bool any_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned count)
 {
     const unsigned close = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
+    bool tufts;
     for (unsigned i = 0; i < count; i++)
-        if (layer_sub_shells(f, shells, next, i) > close) return true;
+        if (layer_sub_shells(f, shells, next, i, &tufts) > close || tufts) return true;
     return false;
 }
 
@@ -182,15 +188,18 @@ static void draw_split(const pelt__shell_program *dry_sp, const pelt__shell_prog
             glUniform1f(dry_sp->instance_base, (float)i);
             draw_instanced(f, offset, dry, close);
         }
-        unsigned sub = layer_sub_shells(f, shells, next, i);
+        bool tufts;
+        unsigned sub = layer_sub_shells(f, shells, next, i, &tufts);
         glUseProgram(wet_sp->program);
         glUniform1f(wet_sp->instance_base, (float)i);
         glUniform1f(wet_sp->sub_shells, (float)sub);
+        glUniform2f(wet_sp->sub_view, f->lod.sub_side, tufts ? 0.0f : 1.0f); /* the tufts': everywhere */
         draw_instanced(f, wet_offset, wet, sub);
         f->stats->sub_shells += sub - close;
     }
     glUniform1f(wet_sp->instance_base, 0.0f);
     glUniform1f(wet_sp->sub_shells, 1.0f);
+    glUniform2f(wet_sp->sub_view, f->lod.sub_side, 1.0f);
     if (dry) {
         glUseProgram(dry_sp->program);
         glUniform1f(dry_sp->instance_base, 0.0f);

@@ -262,6 +262,8 @@ void pelt__frame_plan_make(const pelt_fur *fur, const pelt_view *view, const pel
     out->lod.sub_shells = 1;
     if (view_sub && isfinite(nearest))
         out->lod.sub_shells = pelt__lod_sub_shells(side_w / fmaxf(nearest, 1e-6f), fd.lod.sub_shells);
+    /* Per vertex, as the view's budget weighs the spacing (none with it off). */
+    if (out->lod.sub_shells > 1 && !sw->flat_shells) out->lod.sub_side = side_w;
     if (out->light_maps) out->light_pass.features = out->shell_features & (PELT__SHELL_WET | PELT__SHELL_RINGLETS);
     out->ground = setup->ground.enabled;
     if (out->ground) ground_disc(fur, view, setup->ground.size, cache, out->disc);

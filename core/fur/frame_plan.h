@@ -39,6 +39,10 @@ typedef struct pelt__frame_lod {
        one below (pelt__lod_sub_shells; 1: one a layer). The wet shells
        take the larger of this and their own. */
     unsigned sub_shells;
+    /* ... and how far each vertex needs them (pelt__lod_sub_shell_need):
+       the level's spacing seen side-on, pixels x clip w per unit of groom
+       length (0: every vertex needs them all). */
+    float sub_side;
     bool cull;            /* back-facing shells culled (closed meshes) */
     bool cull_skin;       /* back-facing skin culled: a closed mesh hides it */
     bool front_cw;        /* the mesh winds its outside faces clockwise */

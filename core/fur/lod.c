@@ -381,6 +381,20 @@ float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v, float max_aniso)
     return 1.0f + (max_aniso - 1.0f) * s;
 }
 
+float pelt__lod_sub_shell_need(float side_px, float n_dot_v, float drift)
+{
+    float fore = view_spacing(side_px, n_dot_v), across = side_px * drift;
+    float spacing = sqrtf(fore * fore + across * across);
+    float need = (spacing / PELT__SUB_SHELL_PIXELS - 0.7f) / 0.3f;
+    return need > 0.0f ? (need < 1.0f ? need : 1.0f) : 0.0f; /* NaN: 0 */
+}
+
+float pelt__lod_sub_shell_exponent(float part, float k, float need)
+{
+    if (!(k > 1.0f)) return 1.0f;
+    return part < k - 1.5f ? need / k : 1.0f - (k - 1.0f) * need / k;
+}
+
 unsigned pelt__lod_sub_shells(float side_px, unsigned max_sub)
 {
     if (!(side_px > PELT__SUB_SHELL_PIXELS) || max_sub <= 1) return 1; /* also NaN */

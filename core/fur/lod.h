@@ -205,6 +205,22 @@ float pelt__lod_fur_texture_aniso(float side_px, float n_dot_v, float max_aniso)
 #define PELT__SUB_SHELL_PIXELS 1.4f
 unsigned pelt__lod_sub_shells(float side_px, unsigned max_sub);
 
+/* How far a vertex needs the frame's sub shells, 0..1: its layers' spacing
+ * on screen, side_px foreshortened as the view's budget weighs it
+ * (pelt__lod_view_blend: side_px sqrt(sin^2(theta) + drift^2)), from 0.7
+ * of PELT__SUB_SHELL_PIXELS (0) to PELT__SUB_SHELL_PIXELS (1): close up,
+ * the fur seen face-on stands its layers close and draws one a layer.
+ * Mirrors sub_shell_need() in gl/shaders/shell_lod.glsl. */
+float pelt__lod_sub_shell_need(float side_px, float n_dot_v, float drift);
+
+/* The exponent of sub shell `part` (0 the innermost) of k in its layer's
+ * coverage, 1 - (1 - a)^e, where the vertex needs them `need`: the k - 1
+ * below the layer take need / k each and the layer's own the rest, so the
+ * k together cover what the layer did (at need 1 each 1/k, at 0 the
+ * layer's own alone; the others, at 0, are clipped). Mirrors
+ * sub_shell_exponent(). */
+float pelt__lod_sub_shell_exponent(float part, float k, float need);
+
 /* The hair's edge seen close: a hair's coverage in the fur texture ramps
  * from 0 to 1 over about a texel, and coverage 0.5 is the hair's edge. Where
  * a texel spans several pixels on screen, so does the ramp, and the shells

@@ -10,6 +10,7 @@ in float v_spec;
 in vec2 v_shadow_step;
 flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
+in float v_sub_e; // the sub shell's exponent in its layer's coverage (shell_vs.glsl)
 in float v_alpha;
 in float v_view;
 in float v_aniso;
@@ -39,7 +40,6 @@ uniform highp sampler2DArray u_fur; // PELT_UNIT_FUR
 uniform sampler2D u_color_tex;     // PELT_UNIT_COLOR
 uniform sampler2D u_mask;          // PELT_UNIT_MASK
 uniform int u_no_inter_shadow;     // the shell pass's own: 1 skips inter-fur shadows
-uniform float u_sub_shells;        // sub shells drawn for this layer (shell_vs.glsl)
 #ifdef PELT_FUR_TAPS
 uniform float u_fur_taps;          // lod.texture_taps: the most fetches of a hair
 #endif
@@ -47,13 +47,13 @@ uniform float u_fur_taps;          // lod.texture_taps: the most fetches of a ha
 // A layer's coverage a, shared among the sub shells drawn for it.
 float layer_share(float a)
 {
-    return sub_shell_alpha(a, u_sub_shells);
+    return coverage_share(coverage_log(a), v_sub_e);
 }
 
-// layer_share's exponent (coverage_share): 1 / the sub shells.
+// layer_share's exponent (coverage_share): this sub shell's share.
 float layer_share_exponent()
 {
-    return 1.0 / max(u_sub_shells, 1.0);
+    return v_sub_e;
 }
 
 #ifdef PELT_LIGHT_PASS
@@ -181,7 +181,8 @@ void main()
     // and a pixel-wide edge (docs/shading.md, The hair's edge seen close).
     fur_gain = fur_edge_gain(fur_dx, fur_dy, texels);
     // A shell the view's budget leaves out here (face-on): no fetch.
-    if (v_alpha < 1.0 / 255.0) discard;
+    // ... nor a sub shell it does not need (clipped but in WebGL2).
+    if (v_alpha < 1.0 / 255.0 || v_sub_e < 1.0 / 255.0) discard;
     vec2 d = vec2(0.0);
     float rho = 0.0;
 #ifdef PELT_WET

@@ -22,6 +22,24 @@ float shell_view_blend(float side_px, float n_dot_v, float target_px, float drif
     return clamp(log2(target_px / spacing), 0.0, 1.0);
 }
 
+// pelt__lod_sub_shell_need (core/fur/lod.c): how far a vertex needs the
+// frame's close-up sub shells, from its layers' spacing on screen.
+const float SUB_SHELL_PIXELS = 1.4; // PELT__SUB_SHELL_PIXELS
+float sub_shell_need(float side_px, float n_dot_v, float drift)
+{
+    float fore = shell_view_spacing(side_px, n_dot_v), across = side_px * drift;
+    float spacing = sqrt(fore * fore + across * across);
+    return clamp((spacing / SUB_SHELL_PIXELS - 0.7) / 0.3, 0.0, 1.0);
+}
+
+// pelt__lod_sub_shell_exponent: sub shell `part` of k's exponent in its
+// layer's coverage where the vertex needs them `need`.
+float sub_shell_exponent(float part, float k, float need)
+{
+    if (!(k > 1.0)) return 1.0;
+    return part < k - 1.5 ? need / k : 1.0 - (k - 1.0) * need / k;
+}
+
 // pelt__lod_back_hidden (core/fur/lod.c).
 bool shell_back_hidden(float n_dot_v, float reach)
 {

@@ -24,6 +24,9 @@ uniform vec2 u_shell_view;  // the view's budget (shell_view_blend): x: the leve
                             // (0: off), y: the spacing it aims at, pixels
 uniform float u_instance_base; // the instance of this draw's first shell (0 but in the wet split)
 uniform float u_sub_shells;  // sub shells drawn for each layer (lod.sub_shells, pelt__clump_sub_shells; 0, 1: none)
+uniform vec2 u_sub_view;     // close-up sub shells per vertex (sub_shell_need): x: the level's spacing
+                             // side-on as u_shell_view.x (0: needed everywhere), y: 1 where the
+                             // draw's count is the close-up one (a wet tuft's own: needed everywhere)
 uniform float u_back_reach; // back-facing shells drawn only within the fur's reach of the
                             // silhouette: where N.V >= -u_back_reach (negative: everywhere)
 uniform sampler2D u_mask;               // PELT_UNIT_MASK: wetness, rho in alpha
@@ -40,6 +43,7 @@ out float v_spec;       // fur_light_terms' specular weight
 out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
 flat out float v_clump_profile; // the tuft's profile f(h) (Eq. 5 above its base), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
+out float v_sub_e;      // the sub shell's exponent in its layer's coverage (sub_shell_exponent)
 #if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
 // A tuft's or a ringlet's own light (docs/wetness.md, Tuft light;
 // docs/method.md, Ringlets): what the fragment stage needs to light the
@@ -123,6 +127,16 @@ void main()
     // Water takes the ringlet out.
     float drift = shell_hair_drift((1.0 - rho) * u_ringlet_radius, u_curl_frequency, h, L, u_strand_curl_radius,
                                    u_strand_curl_omega);
+    // Close up, the sub shells a vertex needs: where its fur is seen face-on
+    // the layers stand close and the ones below the layer fade (docs/lod.md).
+    float need = 1.0;
+#ifndef PELT_LIGHT_PASS
+    if (sub > 1.0 && u_sub_view.x > 0.0 && u_sub_view.y > 0.5) {
+        float w_sub = max((u_view_proj * vec4(root, 1.0)).w, 1e-6);
+        need = sub_shell_need(u_sub_view.x * a_groom.z / w_sub, n_dot_v, drift);
+    }
+#endif
+    v_sub_e = sub_shell_exponent(part, sub, need);
 #ifndef PELT_LIGHT_PASS
     if (u_shell_view.x > 0.0) {
         // Face-on, the shells' spacing is foreshortened: the odd shells
@@ -136,7 +150,8 @@ void main()
         // Sharp across a grazing view, unless the shells stand far enough
         // apart on screen to show as rows (docs/shading.md): the sub
         // shells stand closer.
-        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip / sub, n_dot_v, u_fur_aniso);
+        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip / (1.0 + (sub - 1.0) * need), n_dot_v,
+                                    u_fur_aniso);
     }
 #endif
     // Seen edge-on, a ray crosses a hair in less than one shell spacing and
@@ -195,7 +210,8 @@ void main()
     // opacity the fragment stage discards below, interpolated as it is, so
     // the same fragments go, but they cost no shading. (WebGL2 has no
     // gl_ClipDistance: there they are discarded.)
-    gl_ClipDistance[0] = v_alpha - 1.0 / 255.0;
+    // A sub shell below its layer that the vertex does not need goes too.
+    gl_ClipDistance[0] = min(v_alpha, part < sub - 1.5 ? need : 1.0) - 1.0 / 255.0;
 #endif
     v_root = groom_root_color(u_color, a_hair_color) * light_mul;
     v_tip = groom_tip_color(u_color, u_tip_color, a_hair_color) * light_mul;

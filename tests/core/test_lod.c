@@ -692,6 +692,39 @@ static void lod_sub_shells_close_the_rows(void)
         if (k > 1) CHECK(side / (float)(k - 1) > PELT__SUB_SHELL_PIXELS - 1e-5f); /* no more than it takes */
         was = k;
     }
+
+    /* Per vertex: every sub shell where the layers stand 1.4 px apart or
+     * more on screen, none from 0.7 of that down, smooth between; face-on
+     * the spacing is foreshortened, a curl's drift counts whole. */
+    const float px = PELT__SUB_SHELL_PIXELS;
+    CHECK(pelt__lod_sub_shell_need(2.0f * px, 0.0f, 0.0f) == 1.0f); /* edge-on, twice apart */
+    CHECK(pelt__lod_sub_shell_need(px, 0.0f, 0.0f) == 1.0f);
+    CHECK(pelt__lod_sub_shell_need(0.7f * px, 0.0f, 0.0f) == 0.0f);
+    CHECK_NEAR(pelt__lod_sub_shell_need(0.85f * px, 0.0f, 0.0f), 0.5f, 1e-5f);
+    CHECK(pelt__lod_sub_shell_need(2.0f * px, 1.0f, 0.0f) == 0.0f);   /* face-on */
+    CHECK(pelt__lod_sub_shell_need(2.0f * px, 1.0f, 0.5f) == 1.0f);   /* face-on, a curl drifting half a spacing */
+    CHECK(pelt__lod_sub_shell_need(NAN, 0.0f, 0.0f) == 0.0f);
+    float last = 0.0f;
+    for (int i = 0; i <= 100; i++) { /* from face-on to edge-on: never fewer */
+        float need = pelt__lod_sub_shell_need(2.0f * px, 1.0f - 0.01f * (float)i, 0.0f);
+        CHECK(need >= last - 1e-6f);
+        last = need;
+    }
+    /* The exponents of a layer's k sub shells add up to 1 at any need:
+     * together they cover what the layer did. */
+    for (int k = 1; k <= 6; k++)
+        for (int j = 0; j <= 10; j++) {
+            float need = 0.1f * (float)j, sum = 0.0f;
+            for (int part = 0; part < k; part++) {
+                float e = pelt__lod_sub_shell_exponent((float)part, (float)k, need);
+                CHECK(e >= 0.0f && e <= 1.0f);
+                sum += e;
+            }
+            CHECK_NEAR(sum, 1.0f, 1e-5f);
+        }
+    CHECK(pelt__lod_sub_shell_exponent(0.0f, 3.0f, 0.0f) == 0.0f); /* not needed: clipped */
+    CHECK(pelt__lod_sub_shell_exponent(2.0f, 3.0f, 0.0f) == 1.0f); /* the layer's own takes it all */
+    CHECK_NEAR(pelt__lod_sub_shell_exponent(1.0f, 3.0f, 1.0f), 1.0f / 3.0f, 1e-6f);
 }
 
 int main(void)

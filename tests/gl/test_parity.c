@@ -473,6 +473,41 @@ static void sub_shell_glsl_matches_c(void)
     CHECK(worst < 2e-5);
 }
 
+/* Close-up sub shells per vertex: sub_shell_need over spacings from a
+ * tenth of a pixel to 4 px, view angles and curls, and sub_shell_exponent
+ * for every part of 1 to 6 at that need, GLSL vs C. */
+static const char sub_shell_need_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec2 c = floor(gl_FragCoord.xy);\n"
+    "  float side = 0.1 + 3.9 * c.x / 63.0, ndv = -1.0 + 2.0 * c.y / 47.0, drift = 0.1 * mod(c.x, 3.0);\n"
+    "  float need = sub_shell_need(side, ndv, drift);\n"
+    "  float k = 1.0 + mod(c.y, 6.0), part = mod(c.x, k);\n"
+    "  o = vec4(need, sub_shell_exponent(part, k, need), 0.0, 1.0);\n"
+    "}\n";
+
+static void sub_shell_need_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_shell_lod, sub_shell_need_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int none = 0, all = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float side = 0.1f + 3.9f * (float)x / 63.0f, ndv = -1.0f + 2.0f * (float)y / 47.0f;
+            float drift = 0.1f * fmodf((float)x, 3.0f);
+            float need = pelt__lod_sub_shell_need(side, ndv, drift);
+            float k = 1.0f + fmodf((float)y, 6.0f), part = fmodf((float)x, k);
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fabs(g[0] - need));
+            worst = fmax(worst, fabs(g[1] - pelt__lod_sub_shell_exponent(part, k, need)));
+            none += need == 0.0f, all += need == 1.0f;
+        }
+    printf("  sub_shell_need, sub_shell_exponent: worst |GLSL - C| = %.3g (%d none, %d all)\n", worst, none, all);
+    CHECK(none > 100 && all > 100);
+    CHECK(worst < 2e-5);
+}
+
 static const char skin_sheen_main[] =
     "out vec4 o;\n"
     "void main() {\n"
@@ -1139,6 +1174,7 @@ int main(void)
     RUN(clump_coverage_glsl_matches_c);
     RUN(clump_bundle_squeeze_glsl_matches_c);
     RUN(sub_shell_glsl_matches_c);
+    RUN(sub_shell_need_glsl_matches_c);
     RUN(clump_fin_shift_glsl_matches_c);
     RUN(wet_skin_sheen_glsl_matches_c);
     RUN(ringlet_levels_glsl_matches_c);
