@@ -385,7 +385,7 @@ float pelt__lod_sub_shell_need(float side_px, float n_dot_v, float drift)
 {
     float fore = view_spacing(side_px, n_dot_v), across = side_px * drift;
     float spacing = sqrtf(fore * fore + across * across);
-    float need = (spacing / PELT__SUB_SHELL_PIXELS - 0.7f) / 0.3f;
+    float need = (spacing / PELT__SUB_SHELL_PIXELS - 0.35f) / 0.65f;
     return need > 0.0f ? (need < 1.0f ? need : 1.0f) : 0.0f; /* NaN: 0 */
 }
 

@@ -207,9 +207,12 @@ unsigned pelt__lod_sub_shells(float side_px, unsigned max_sub);
 
 /* How far a vertex needs the frame's sub shells, 0..1: its layers' spacing
  * on screen, side_px foreshortened as the view's budget weighs it
- * (pelt__lod_view_blend: side_px sqrt(sin^2(theta) + drift^2)), from 0.7
+ * (pelt__lod_view_blend: side_px sqrt(sin^2(theta) + drift^2)), from 0.35
  * of PELT__SUB_SHELL_PIXELS (0) to PELT__SUB_SHELL_PIXELS (1): close up,
  * the fur seen face-on stands its layers close and draws one a layer.
+ * Not from 1.4 px down only: a hair drawn by shells less than a pixel
+ * apart shows as a chain of beads where the read is sharp, and k shells
+ * a layer join them (docs/lod.md).
  * Mirrors sub_shell_need() in gl/shaders/shell_lod.glsl. */
 float pelt__lod_sub_shell_need(float side_px, float n_dot_v, float drift);
 

@@ -29,7 +29,7 @@ float sub_shell_need(float side_px, float n_dot_v, float drift)
 {
     float fore = shell_view_spacing(side_px, n_dot_v), across = side_px * drift;
     float spacing = sqrt(fore * fore + across * across);
-    return clamp((spacing / SUB_SHELL_PIXELS - 0.7) / 0.3, 0.0, 1.0);
+    return clamp((spacing / SUB_SHELL_PIXELS - 0.35) / 0.65, 0.0, 1.0);
 }
 
 // pelt__lod_sub_shell_exponent: sub shell `part` of k's exponent in its

@@ -694,13 +694,14 @@ static void lod_sub_shells_close_the_rows(void)
     }
 
     /* Per vertex: every sub shell where the layers stand 1.4 px apart or
-     * more on screen, none from 0.7 of that down, smooth between; face-on
+     * more on screen, none from 0.35 of that down, smooth between; face-on
      * the spacing is foreshortened, a curl's drift counts whole. */
     const float px = PELT__SUB_SHELL_PIXELS;
     CHECK(pelt__lod_sub_shell_need(2.0f * px, 0.0f, 0.0f) == 1.0f); /* edge-on, twice apart */
     CHECK(pelt__lod_sub_shell_need(px, 0.0f, 0.0f) == 1.0f);
-    CHECK(pelt__lod_sub_shell_need(0.7f * px, 0.0f, 0.0f) == 0.0f);
-    CHECK_NEAR(pelt__lod_sub_shell_need(0.85f * px, 0.0f, 0.0f), 0.5f, 1e-5f);
+    CHECK(pelt__lod_sub_shell_need(0.35f * px, 0.0f, 0.0f) == 0.0f);
+    CHECK(pelt__lod_sub_shell_need(0.3f * px, 0.0f, 0.0f) == 0.0f);
+    CHECK_NEAR(pelt__lod_sub_shell_need(0.675f * px, 0.0f, 0.0f), 0.5f, 1e-5f);
     CHECK(pelt__lod_sub_shell_need(2.0f * px, 1.0f, 0.0f) == 0.0f);   /* face-on */
     CHECK(pelt__lod_sub_shell_need(2.0f * px, 1.0f, 0.5f) == 1.0f);   /* face-on, a curl drifting half a spacing */
     CHECK(pelt__lod_sub_shell_need(NAN, 0.0f, 0.0f) == 0.0f);
