@@ -75,6 +75,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     pelt__frame_lod l;
     memset(&l, 0, sizeof l);
     l.back_reach = -1.0f;
+    l.fur_px = INFINITY;
     const pelt_fur_lod fl = fd->lod;
     l.texture_taps = fl.texture_taps > 1 ? fl.texture_taps : 1;
     l.texture_aniso = fl.texture_aniso > 1.0f ? fl.texture_aniso : 1.0f;
@@ -121,6 +122,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     const float slab = fd->look.tiling > 0.0f ? fd->fins.density / ((float)fd->look.texture_size * fd->look.tiling) : 0.0f;
     l.fin_level = pelt__lod_pick_fins(c, l.mesh_level, ppu, fl.mesh_error_pixels, slab);
     float fur_px = fd->length * ppu;
+    l.fur_px = isfinite(fur_px) ? fur_px : INFINITY;
     if (!sw->one_height) pelt__lod_shell_choice(fd->layers, fur_px, fl.shell_pixels, &l.shell_level, &l.shell_blend);
     /* Where the fur is seen face-on a vertex needs fewer shells: it blends
      * towards the next level as far as its foreshortened spacing allows. */
@@ -251,8 +253,18 @@ void pelt__frame_plan_make(const pelt_fur *fur, const pelt_view *view, const pel
      * length (as the view budget's, whether or not it is on). */
     const float side_w = fd.length * view->proj[5] * 0.5f * (float)view->height * model_scale(view->model) *
                          (float)(1u << out->lod.shell_level) / (float)(fd.layers ? fd.layers : 1);
+    /* No vertex's layers stand further apart than at the bounding sphere's
+     * nearest point, but for its depth (clip w) being less than its
+     * distance off the view's axis: by at most the cosine of the view's
+     * corner, with the margin of a tenth the pass allows round the view.
+     * Where they stand close even so, no pass over the vertices. */
+    const float corner = view->proj[11] == 0.0f ? 1.0f
+                                                : 1.1f * sqrtf(1.0f + 1.0f / (view->proj[0] * view->proj[0]) +
+                                                               1.0f / (view->proj[5] * view->proj[5]));
+    const float side_bound = out->lod.fur_px * corner * (float)(1u << out->lod.shell_level) /
+                             (float)(fd.layers ? fd.layers : 1);
     const bool view_sub = fd.lod.sub_shells > 1 && sw->sub_shells && !sw->one_height && !out->lod.full_mesh &&
-                          side_w > 0.0f;
+                          side_w > 0.0f && !(side_bound <= PELT__SUB_SHELL_PIXELS);
     const float nearest = wet_sub || view_sub ? nearest_view_w(fur, view) : INFINITY;
     if (wet_sub) {
         out->lod.tuft_pull[0] = fd.wet.clump_blend;

@@ -43,6 +43,10 @@ typedef struct pelt__frame_lod {
        the level's spacing seen side-on, pixels x clip w per unit of groom
        length (0: every vertex needs them all). */
     float sub_side;
+    /* The fur's length on screen at the bounding sphere's point nearest the
+       eye, pixels (infinity from inside it, or where levels are not
+       picked by the view): no vertex shows it longer. */
+    float fur_px;
     bool cull;            /* back-facing shells culled (closed meshes) */
     bool cull_skin;       /* back-facing skin culled: a closed mesh hides it */
     bool front_cw;        /* the mesh winds its outside faces clockwise */
