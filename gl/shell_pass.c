@@ -124,6 +124,12 @@ static void use_program(const pelt__shell_program *sp, const pelt__pass_frame *f
     glUniform1f(sp->edge_depth, f->lod.edge_depth);
 }
 
+/* Close up, the shells every layer is drawn as (the frame plan's, 1: one). */
+static unsigned close_up_shells(const pelt__pass_frame *f)
+{
+    return f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
+}
+
 /* draw_instanced with sp and the shell pass's uniforms. */
 static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, const float shells[4],
                       const float next[2], size_t offset, size_t triangles, unsigned count)
@@ -131,7 +137,7 @@ static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, 
     if (triangles == 0) return;
     use_program(sp, f, shells, next);
     /* Close up, each layer's k shells are instances k i .. k i + k - 1. */
-    const unsigned k = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
+    const unsigned k = close_up_shells(f);
     glUniform1f(sp->sub_shells, (float)k);
     draw_instanced(f, offset, triangles, count * k);
     glUniform1f(sp->sub_shells, 1.0f);
@@ -143,7 +149,7 @@ static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, 
 static unsigned layer_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned i,
                                  bool *tufts)
 {
-    const unsigned close = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1; /* every layer's, close up */
+    const unsigned close = close_up_shells(f); /* every layer's */
     *tufts = false;
     if (!(f->lod.tuft_pull[1] > 0.0f)) return close;
     float slices[3], alpha, n = (float)f->layers;
@@ -158,7 +164,7 @@ static unsigned layer_sub_shells(const pelt__pass_frame *f, const float shells[4
  * time, draw_split: their count and that they are needed everywhere). */
 static bool any_sub_shells(const pelt__pass_frame *f, const float shells[4], const float next[2], unsigned count)
 {
-    const unsigned close = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
+    const unsigned close = close_up_shells(f);
     bool tufts;
     for (unsigned i = 0; i < count; i++)
         if (layer_sub_shells(f, shells, next, i, &tufts) > close || tufts) return true;
@@ -180,7 +186,7 @@ static void draw_split(const pelt__shell_program *dry_sp, const pelt__shell_prog
     const size_t wet_offset = offset + dry * 3 * sizeof(uint32_t);
     use_program(wet_sp, f, shells, next);
     if (dry) use_program(dry_sp, f, shells, next);
-    const unsigned close = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
+    const unsigned close = close_up_shells(f);
     if (dry) glUniform1f(dry_sp->sub_shells, (float)close);
     for (unsigned i = 0; i < count; i++) {
         if (dry) {
@@ -263,7 +269,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
         draw_part(sp, f, shells, next, offset, triangles, count);
     }
     f->stats->shell_instances += count; /* the shells each triangle drew */
-    f->stats->layer_shells = f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
+    f->stats->layer_shells = close_up_shells(f);
     glFrontFace(GL_CCW);
 #if !PELT_GL_ES
     glDisable(GL_CLIP_DISTANCE0);

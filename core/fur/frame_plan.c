@@ -127,8 +127,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
     /* Where the fur is seen face-on a vertex needs fewer shells: it blends
      * towards the next level as far as its foreshortened spacing allows. */
     if (!sw->one_height && !sw->flat_shells && l.shell_level + 1 < shell_levels && fd->length > 0.0f) {
-        float px_per_unit_at_w1 = v->proj[5] * 0.5f * (float)v->height * scale;
-        l.shell_view[0] = fd->length * px_per_unit_at_w1 * (float)(1u << l.shell_level) / (float)fd->layers;
+        l.shell_view[0] = fd->length * pixels_per_unit_at(v, 1.0f) * (float)(1u << l.shell_level) / (float)fd->layers;
         l.shell_view[1] = fl.shell_pixels;
     }
     /* A fin's strip follows the bent and curled strand to within a pixel:
@@ -251,8 +250,8 @@ void pelt__frame_plan_make(const pelt_fur *fur, const pelt_view *view, const pel
     const bool wet_sub = (out->shell_features & PELT__SHELL_WET) && sw->sub_shells && !sw->one_height;
     /* The level's spacing seen side-on, pixels x clip w per unit of groom
      * length (as the view budget's, whether or not it is on). */
-    const float side_w = fd.length * view->proj[5] * 0.5f * (float)view->height * model_scale(view->model) *
-                         (float)(1u << out->lod.shell_level) / (float)(fd.layers ? fd.layers : 1);
+    const float step = (float)(1u << out->lod.shell_level) / (float)(fd.layers ? fd.layers : 1);
+    const float side_w = fd.length * pixels_per_unit_at(view, 1.0f) * step;
     /* No vertex's layers stand further apart than at the bounding sphere's
      * nearest point, but for its depth (clip w) being less than its
      * distance off the view's axis: by at most the cosine of the view's
@@ -261,8 +260,7 @@ void pelt__frame_plan_make(const pelt_fur *fur, const pelt_view *view, const pel
     const float corner = view->proj[11] == 0.0f ? 1.0f
                                                 : 1.1f * sqrtf(1.0f + 1.0f / (view->proj[0] * view->proj[0]) +
                                                                1.0f / (view->proj[5] * view->proj[5]));
-    const float side_bound = out->lod.fur_px * corner * (float)(1u << out->lod.shell_level) /
-                             (float)(fd.layers ? fd.layers : 1);
+    const float side_bound = out->lod.fur_px * corner * step;
     const bool view_sub = fd.lod.sub_shells > 1 && sw->sub_shells && !sw->one_height && !out->lod.full_mesh &&
                           side_w > 0.0f && !(side_bound <= PELT__SUB_SHELL_PIXELS);
     const float nearest = wet_sub || view_sub ? nearest_view_w(fur, view) : INFINITY;

@@ -131,10 +131,9 @@ void main()
     // the layers stand close and the ones below the layer fade (docs/lod.md).
     float need = 1.0;
 #ifndef PELT_LIGHT_PASS
-    if (sub > 1.0 && u_sub_view.x > 0.0 && u_sub_view.y > 0.5) {
-        float w_sub = max((u_view_proj * vec4(root, 1.0)).w, 1e-6);
-        need = sub_shell_need(u_sub_view.x * a_groom.z / w_sub, n_dot_v, drift);
-    }
+    float w_clip = max((u_view_proj * vec4(root, 1.0)).w, 1e-6); // the root's: spacings on screen
+    if (sub > 1.0 && u_sub_view.x > 0.0 && u_sub_view.y > 0.5)
+        need = sub_shell_need(u_sub_view.x * a_groom.z / w_clip, n_dot_v, drift);
 #endif
     v_sub_e = sub_shell_exponent(part, sub, need);
 #ifndef PELT_LIGHT_PASS
@@ -142,7 +141,6 @@ void main()
         // Face-on, the shells' spacing is foreshortened: the odd shells
         // (from the outside) fade and the even ones stand for them, unless
         // the hair curls, moving sideways from one shell to the next.
-        float w_clip = max((u_view_proj * vec4(root, 1.0)).w, 1e-6);
         float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_shell_view.y, drift);
         bool odd = mod(u_shells.x - 1.0 - instance, 2.0) > 0.5;
         v_alpha *= odd ? 1.0 - w : 1.0;
