@@ -54,6 +54,11 @@ typedef struct pelt__gpu_mesh {
     size_t level_offset[PELT__LOD_MAX_LEVELS];    /* bytes into ebo */
     size_t level_triangles[PELT__LOD_MAX_LEVELS];
     unsigned level_count;
+    /* PELT_ATTR_FIT_NORMAL: a slice of vertex_count vec3 for each level,
+     * zeros for the full mesh and the levels whose normals are not fitted
+     * (slice 0), then levels 1 .. fit_levels (lod.h's fit_normals). */
+    GLuint vbo_fit;
+    unsigned fit_levels;
     /* The mesh's triangles again, dry ones first (core/wet/wet_split.h),
      * after the levels in ebo: the shells draw the dry part with the dry
      * shader. split_ok false: out of memory, every triangle draws wet. */
@@ -88,6 +93,9 @@ size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur);
  * between the split's parts; returns bytes sent. */
 size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *fs, const unsigned rect[4]);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
+/* Points the bound VAO's PELT_ATTR_FIT_NORMAL at the slice of the level
+ * the shells are drawn on (the full mesh: zeros). */
+void pelt__gpu_mesh_point_fit(const pelt__gpu_mesh *g, bool full_mesh, unsigned level);
 
 /* ---- fur textures (gl/gpu_fur.c) --------------------------------------- */
 

@@ -83,6 +83,37 @@ static void point_shared(const pelt__gpu_mesh *g, const attribute *attrs, int co
     glVertexAttribPointer(PELT_ATTR_HAIR_COLOR, 4, GL_UNSIGNED_BYTE, GL_TRUE, (GLsizei)groom_stride,
                           (const void *)(4 * sizeof(float)));
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
+    pelt__gpu_mesh_point_fit(g, true, 0);
+}
+
+void pelt__gpu_mesh_point_fit(const pelt__gpu_mesh *g, bool full_mesh, unsigned level)
+{
+    size_t slice = full_mesh || level > g->fit_levels ? 0 : level;
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_fit);
+    glEnableVertexAttribArray(PELT_ATTR_FIT_NORMAL);
+    glVertexAttribPointer(PELT_ATTR_FIT_NORMAL, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float),
+                          (const void *)(slice * g->vertex_count * 3 * sizeof(float)));
+}
+
+/* The levels' fitted normals, one slice each after the zeros of slice 0. */
+static void upload_fit(pelt__gpu_mesh *g, const pelt__lod_chain *lod)
+{
+    unsigned levels = 0;
+    while (levels + 1 < lod->count && lod->levels[levels + 1].fit_normals) levels++;
+    size_t slice = g->vertex_count * 3 * sizeof(float);
+    glGenBuffers(1, &g->vbo_fit);
+    glBindBuffer(GL_ARRAY_BUFFER, g->vbo_fit);
+    glBufferData(GL_ARRAY_BUFFER, (GLsizeiptr)((levels + 1) * (slice ? slice : 1)), NULL, GL_STATIC_DRAW);
+    /* Slice 0 from the first level's zeros would need a copy: clear it. */
+    for (size_t at = 0; at < slice;) {
+        static const float zeros[3 * 256];
+        size_t n = slice - at < sizeof zeros ? slice - at : sizeof zeros;
+        glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)at, (GLsizeiptr)n, zeros);
+        at += n;
+    }
+    for (unsigned k = 1; k <= levels; k++)
+        glBufferSubData(GL_ARRAY_BUFFER, (GLintptr)(k * slice), (GLsizeiptr)slice, lod->levels[k].fit_normals);
+    g->fit_levels = levels;
 }
 
 /* The second VAO of a skinned mesh (see the top of this file). */
@@ -194,6 +225,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
         glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)at,
                         (GLsizeiptr)(m.triangle_count * 3 * sizeof(uint32_t)), g->split.indices);
     }
+    upload_fit(g, lod);
     point(g->vbo_pose, pose_attrs, 3);
     point_shared(g, attrs, ATTRS, stride);
 
@@ -268,8 +300,9 @@ size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)
 {
     pelt__wet_split_free(&g->split);
-    GLuint buffers[7] = {g->vbo_static, g->vbo_pose, g->vbo_tips, g->vbo_groom, g->ebo, g->vbo_bind, g->vbo_bones};
-    glDeleteBuffers(7, buffers);
+    GLuint buffers[8] = {g->vbo_static, g->vbo_pose, g->vbo_tips, g->vbo_groom,
+                         g->ebo,        g->vbo_bind, g->vbo_bones, g->vbo_fit};
+    glDeleteBuffers(8, buffers);
     if (g->vao) glDeleteVertexArrays(1, &g->vao);
     if (g->vao_skin) glDeleteVertexArrays(1, &g->vao_skin);
     if (g->bone_texture) glDeleteTextures(1, &g->bone_texture);

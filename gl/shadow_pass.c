@@ -159,6 +159,7 @@ void pelt__shadow_pass_draw(const pelt__shadow_pass *p, pelt__shell_pass *shells
         const pelt__gpu_mesh *m = f->mesh;
         size_t triangles = sf->full_mesh ? m->triangle_count : m->level_triangles[sf->mesh_level];
         const void *offset = (const void *)(sf->full_mesh ? 0 : m->level_offset[sf->mesh_level]);
+        pelt__gpu_mesh_point_fit(m, sf->full_mesh, sf->mesh_level);
         float span[4], next[2];
         unsigned count;
         pelt__lod_shell_uniforms(f->layers, sf->shell_level, 0.0f, 0, span, next, &count);

@@ -248,6 +248,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
     const pelt__gpu_mesh *m = f->mesh;
     size_t triangles = lod->full_mesh ? m->triangle_count : m->level_triangles[lod->mesh_level];
     size_t offset = lod->full_mesh ? 0 : m->level_offset[lod->mesh_level];
+    pelt__gpu_mesh_point_fit(m, lod->full_mesh, lod->mesh_level);
     const pelt__shell_program *sp = f->draw->debug.floor_shader ? &p->floor : pelt__shell_pass_program(p, f->shell_features);
     /* Wet and dry drawn apart: the mesh's dry triangles (no water anywhere
      * they reach in the mask) with the dry shader, the others wet. Only

@@ -141,8 +141,8 @@ static pelt_status fin_vertices(pelt__lod_level *l, const pelt_allocator *alloc,
 }
 
 static pelt_status add_level(pelt__lod_chain *c, uint32_t *indices, size_t triangles, float error,
-                             const pelt_mesh_data *m, uint32_t seed, const pelt_allocator *alloc,
-                             pelt_error *err)
+                             const pelt_mesh_data *m, const float *tangents, uint32_t seed,
+                             const pelt_allocator *alloc, pelt_error *err)
 {
     size_t vertex_count = m->vertex_count;
     pelt__lod_level *l = &c->levels[c->count++];
@@ -165,7 +165,11 @@ static pelt_status add_level(pelt__lod_chain *c, uint32_t *indices, size_t trian
     if (!l->fin_normals) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fin normals", l->fin_count);
     if (m->normals) pelt__fin_normals(l->fins, l->fin_count, m->positions, m->normals, l->fin_normals);
     else memset(l->fin_normals, 0, l->fin_count * 3 * sizeof(float));
-    return fin_vertices(l, alloc, err);
+    st = fin_vertices(l, alloc, err);
+    if (st != PELT_OK || c->count == 1 || c->count > PELT__LOD_FIT_LEVELS + 1) return st;
+    l->fit_normals = pelt__alloc(alloc, (vertex_count ? vertex_count : 1) * 3 * sizeof(float));
+    if (!l->fit_normals) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for a level's normals");
+    return pelt__lod_fit_normals(m, tangents, indices, triangles, l->edge, alloc, l->fit_normals, err);
 }
 
 pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned max_levels,
@@ -173,6 +177,7 @@ pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned
 {
     memset(out, 0, sizeof *out);
     const pelt_mesh_data m = pelt_mesh_get_data(mesh);
+    const float *tangents = pelt_mesh_tangents(mesh);
     bounding_sphere(&m, out->center, &out->radius);
     out->closed = is_closed(&m, alloc);
     out->winding = winding(&m);
@@ -181,7 +186,7 @@ pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned
     uint32_t *full = pelt__alloc(alloc, (n ? n : 3) * sizeof *full);
     if (!full) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the level-of-detail indices");
     memcpy(full, m.indices, n * sizeof *full);
-    pelt_status st = add_level(out, full, m.triangle_count, 0.0f, &m, seed, alloc, err);
+    pelt_status st = add_level(out, full, m.triangle_count, 0.0f, &m, tangents, seed, alloc, err);
     /* Simplify the full mesh each time, not the previous level, so each
      * level's error is measured against the surface the skin draws. */
     float scale = m.vertex_count ? meshopt_simplifyScale(m.positions, m.vertex_count, 3 * sizeof(float)) : 0.0f;
@@ -200,7 +205,7 @@ pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned
             pelt__free(alloc, dst);
             break;
         }
-        st = add_level(out, dst, triangles, relative * scale, &m, seed, alloc, err);
+        st = add_level(out, dst, triangles, relative * scale, &m, tangents, seed, alloc, err);
         previous = triangles;
     }
     if (st != PELT_OK) pelt__lod_chain_free(out, alloc);
@@ -215,6 +220,7 @@ void pelt__lod_chain_free(pelt__lod_chain *c, const pelt_allocator *alloc)
         pelt__free(alloc, c->levels[i].fin_normals);
         pelt__free(alloc, c->levels[i].fin_vertices);
         pelt__free(alloc, c->levels[i].fin_ends);
+        pelt__free(alloc, c->levels[i].fit_normals);
     }
     memset(c, 0, sizeof *c);
 }

@@ -12,6 +12,10 @@
 #include <stdbool.h>
 
 #define PELT__LOD_MAX_LEVELS 12
+/* The levels whose normals are fitted to the full mesh's (lod_normals.c):
+ * the coarser ones are drawn where the fur is too short on screen for a
+ * hair's turn to show. */
+#define PELT__LOD_FIT_LEVELS 4
 
 typedef struct pelt__lod_level {
     uint32_t *indices;      /* 3 per triangle, in vertex-cache order */
@@ -27,6 +31,10 @@ typedef struct pelt__lod_level {
                                from the full mesh (meshoptimizer's measure) */
     float edge;             /* mesh units: the mean edge length, how far apart
                                the level samples strands, groom and light */
+    float *fit_normals;     /* 3 per vertex (the mesh's), levels 1 to
+                               PELT__LOD_FIT_LEVELS, else NULL: each kept
+                               vertex's fitted normal less its own, in its
+                               frame (pelt__lod_fit_normals) */
 } pelt__lod_level;
 
 typedef struct pelt__lod_chain {
@@ -46,6 +54,22 @@ typedef struct pelt__lod_chain {
 pelt_status pelt__lod_chain_build(const pelt_mesh *mesh, uint32_t seed, unsigned max_levels,
                                   const pelt_allocator *alloc, pelt__lod_chain *out, pelt_error *err);
 void pelt__lod_chain_free(pelt__lod_chain *c, const pelt_allocator *alloc);
+
+/* A coarse level's normals fitted to the full mesh's (lod_normals.c): the
+ * level's triangles interpolate its kept vertices' normals over the
+ * vertices it left out, so the hairs there turn; the kept normals are
+ * fitted by least squares so that their interpolation meets the full
+ * mesh's normal at every vertex. Writes, for each of the mesh's vertices,
+ * the fitted unit normal less its own in its frame (u the tangent, v =
+ * n x u times the handedness, n): 0 where the level left the vertex out.
+ * `cell`: the grid's cell, about the level's mean edge. */
+pelt_status pelt__lod_fit_normals(const pelt_mesh_data *m, const float *tangents, const uint32_t *indices,
+                                  size_t triangles, float cell, const pelt_allocator *alloc, float *out,
+                                  pelt_error *err);
+
+/* The hair's normal on a level: normalize(n + d.x u + d.y v + d.z n), d
+ * from fit_normals. Mirrors level_fit_normal (shell_vs.glsl). */
+void pelt__lod_fit_normal(const float n[3], const float u[3], const float v[3], const float d[3], float out[3]);
 
 /* The coarsest level whose error, seen from where it is largest on screen,
  * stays within `max_error_px` pixels and whose mean edge within

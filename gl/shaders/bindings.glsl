@@ -18,6 +18,7 @@
 #define PELT_ATTR_HAIR_COLOR 8 // vec4 from 4 normalised bytes: hair colour, its weight
 #define PELT_ATTR_BONES 9    // uvec4: a skinned vertex's 4 bones (skinning in the vertex stage)
 #define PELT_ATTR_WEIGHTS 10 // vec4: their weights
+#define PELT_ATTR_FIT_NORMAL 11 // vec3: the drawn level's fitted normal less the vertex's, in its frame (core/fur/lod_normals.c)
 
 // Texture units (gl/gpu_fur.c owns the textures).
 #define PELT_UNIT_FUR 0   // sampler2DArray: the fur volume, one slice a layer

@@ -10,6 +10,14 @@ vec3 fur_bend(vec3 n, float L0, vec3 tip, float h)
     return n * (2.0 * h * (1.0 - h) * (0.5 * L0)) + tip * (h * h);
 }
 
+// The hair's normal on a coarse level: the vertex's normal plus the fitted
+// difference d, given in its frame (u, v, n), made unit. Mirrors
+// pelt__lod_fit_normal (core/fur/lod_normals.c).
+vec3 level_fit_normal(vec3 n, vec3 u, vec3 v, vec3 d)
+{
+    return normalize(n + u * d.x + v * d.y + n * d.z);
+}
+
 // phi(h), Silva Eq. 4: (1 - rho) K h (cos(omega h) u + sin(omega h) v).
 vec3 fur_curl(vec3 u, vec3 v, float omega, float K, float rho, float h)
 {

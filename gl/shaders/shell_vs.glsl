@@ -13,6 +13,7 @@ layout(location = PELT_ATTR_TIP) in vec3 a_tip;     // p - p_root, mesh-local
 layout(location = PELT_ATTR_COMB) in vec3 a_comb;    // comb direction x weight (0: stands up)
 layout(location = PELT_ATTR_GROOM) in vec4 a_groom;  // lean u, lean v, length scale, density
 layout(location = PELT_ATTR_HAIR_COLOR) in vec4 a_hair_color; // rgb, weight over u_color
+layout(location = PELT_ATTR_FIT_NORMAL) in vec3 a_fit_normal; // the level's fitted normal less the vertex's, in (u, v, n)
 
 // The shell pass's own: which shells this draw covers (Lengyel §2.4 level
 // of detail, shell_lod.glsl).
@@ -114,6 +115,11 @@ void main()
     float s = a_groom.z;
     float L = u_length * s;
     vec3 tip = a_tip * s;
+    // On a coarse level the hair stands along the level's fitted normal,
+    // its tip moved with it (docs/lod.md, The coarse levels' normals).
+    vec3 fitted = level_fit_normal(n, u, v, a_fit_normal);
+    tip += (fitted - n) * L;
+    n = fitted;
     float K = u_curl_radius * s;
     vec3 shear = fur_groom_shear(a_comb, u_slant, u, v, a_groom.xy);
     vec3 offset = fur_bend(n, L, tip, h)

@@ -200,6 +200,41 @@ static void fur_shape_glsl_matches_c(void)
     }
 }
 
+static const char fit_normal_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, u, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, u, tip, h, s);\n"
+    "  vec3 v = cross(n, u), d = 0.4 * (tip - 0.4 * vec3(h, s, h * s));\n"
+    "  o = vec4(level_fit_normal(n, u, v, d), 0.0);\n"
+    "}\n";
+
+/* A coarse level's fitted hair normal (core/fur/lod_normals.c) in the
+ * shell vertex stage as in C. */
+static void level_fit_normal_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_fur_shape, inputs_glsl, fit_normal_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0, turned = 0.0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, u, tip;
+            float h, s;
+            cell_inputs((float)x, (float)y, &n, &u, &tip, &h, &s);
+            pelt_vec3 v = v3_cross(n, u);
+            pelt_vec3 d = v3_scale(v3_sub(tip, v3_scale(v3(h, s, h * s), 0.4f)), 0.4f);
+            float nf[3], uf[3], vf[3], df[3], r[3];
+            v3_store(nf, n), v3_store(uf, u), v3_store(vf, v), v3_store(df, d);
+            pelt__lod_fit_normal(nf, uf, vf, df, r);
+            const float *g = out + 4 * (y * W + x);
+            for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(g[k] - r[k]));
+            turned = fmax(turned, 1.0 - (r[0] * n.x + r[1] * n.y + r[2] * n.z));
+        }
+    printf("  worst |GLSL - C| = %.3g, largest turn 1 - cos = %.3g\n", worst, turned);
+    CHECK(turned > 0.01);
+    CHECK(worst < 2e-5);
+}
+
 static const char clump_main[] =
     "uniform sampler2D u_mask;\n"
     "out vec4 o;\n"
@@ -1170,6 +1205,7 @@ int main(void)
     RUN(wet_color_glsl_matches_c);
     RUN(tuft_tangent_glsl_matches_c);
     RUN(fur_shape_glsl_matches_c);
+    RUN(level_fit_normal_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
     RUN(clump_bundle_squeeze_glsl_matches_c);
