@@ -22,6 +22,8 @@
 #define FIT_STEPS 12
 /* The grid's hash table: slots a triangle. */
 #define GRID_SLOTS_PER_TRIANGLE 4
+/* Grid entries a triangle at most (the cells its bounding box touches). */
+#define GRID_ENTRIES_PER_TRIANGLE 64
 /* Rings of cells searched around a vertex before it is left out of the fit. */
 #define SEARCH_RINGS 4
 
@@ -43,7 +45,27 @@ typedef struct grid {
 
 static float dot3(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-static int32_t cell_of(const grid *g, float p, int k) { return (int32_t)floorf((p - g->lo[k]) / g->cell); }
+static int32_t cell_of(const grid *g, float p, int k)
+{
+    float c = floorf((p - g->lo[k]) / g->cell);
+    if (isnan(c)) return 0;
+    return (int32_t)fmaxf(-1e9f, fminf(c, 1e9f)); /* far from overflow, rings and all */
+}
+
+/* The cells a triangle's bounding box touches, per axis. */
+static void triangle_cells(const grid *g, const float *pos, const uint32_t *t, int32_t a[3], int32_t b[3])
+{
+    for (int k = 0; k < 3; k++) {
+        float mn = INFINITY, mx = -INFINITY;
+        for (int c = 0; c < 3; c++) {
+            float p = pos[3 * (size_t)t[c] + (size_t)k];
+            mn = fminf(mn, p);
+            mx = fmaxf(mx, p);
+        }
+        a[k] = cell_of(g, mn, k);
+        b[k] = cell_of(g, mx, k);
+    }
+}
 
 static size_t slot_of(const grid *g, int32_t x, int32_t y, int32_t z)
 {
@@ -58,7 +80,19 @@ static bool grid_build(grid *g, const float *pos, const uint32_t *idx, size_t tr
     for (int k = 0; k < 3; k++) g->lo[k] = INFINITY;
     for (size_t i = 0; i < 3 * triangles; i++)
         for (int k = 0; k < 3; k++) g->lo[k] = fminf(g->lo[k], pos[3 * (size_t)idx[i] + (size_t)k]);
+    /* A few long triangles must not fill the table: cells twice as wide
+     * until the entries stay within GRID_ENTRIES_PER_TRIANGLE a triangle. */
     g->cell = cell;
+    for (int widen = 0; widen < 64; widen++) {
+        double entries = 0.0;
+        for (size_t t = 0; t < triangles; t++) {
+            int32_t a[3], b[3];
+            triangle_cells(g, pos, idx + 3 * t, a, b);
+            entries += ((double)b[0] - a[0] + 1.0) * ((double)b[1] - a[1] + 1.0) * ((double)b[2] - a[2] + 1.0);
+        }
+        if (entries <= GRID_ENTRIES_PER_TRIANGLE * (double)triangles) break;
+        g->cell *= 2.0f;
+    }
     size_t slots = 1;
     while (slots < GRID_SLOTS_PER_TRIANGLE * triangles) slots *= 2;
     g->mask = slots - 1;
@@ -67,16 +101,7 @@ static bool grid_build(grid *g, const float *pos, const uint32_t *idx, size_t tr
     for (int pass = 0; pass < 2; pass++) {
         for (size_t t = 0; t < triangles; t++) {
             int32_t a[3], b[3];
-            for (int k = 0; k < 3; k++) {
-                float mn = INFINITY, mx = -INFINITY;
-                for (int c = 0; c < 3; c++) {
-                    float p = pos[3 * (size_t)idx[3 * t + (size_t)c] + (size_t)k];
-                    mn = fminf(mn, p);
-                    mx = fmaxf(mx, p);
-                }
-                a[k] = cell_of(g, mn, k);
-                b[k] = cell_of(g, mx, k);
-            }
+            triangle_cells(g, pos, idx + 3 * t, a, b);
             for (int32_t z = a[2]; z <= b[2]; z++)
                 for (int32_t y = a[1]; y <= b[1]; y++)
                     for (int32_t x = a[0]; x <= b[0]; x++) {

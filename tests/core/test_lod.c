@@ -857,6 +857,33 @@ static void lod_fitted_normals_follow_the_full_mesh(void)
     CHECK(turned > 0);
     pelt__lod_chain_free(&c, &heap);
     pelt_mesh_destroy(m);
+    /* A triangle a million cells long beside small ones: the grid widens
+     * its cells rather than fill a million cells (this returns at once). */
+    CHECK(pelt_mesh_square(1.0f, 32, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt_mesh_data sq = pelt_mesh_get_data(m);
+    size_t nv = sq.vertex_count, nt = sq.triangle_count;
+    float *p = malloc((nv + 3) * 3 * sizeof *p), *nrm = malloc((nv + 3) * 3 * sizeof *nrm);
+    uint32_t *idx = malloc((nt + 1) * 3 * sizeof *idx);
+    memcpy(p, sq.positions, nv * 3 * sizeof *p);
+    memcpy(nrm, sq.normals, nv * 3 * sizeof *nrm);
+    memcpy(idx, sq.indices, nt * 3 * sizeof *idx);
+    const float far[9] = {-1e4f, 0.0f, -1e4f, 1e4f, 0.0f, -1e4f, 0.0f, 1e-3f, 1e4f};
+    memcpy(p + 3 * nv, far, sizeof far);
+    for (size_t k = 0; k < 3; k++) {
+        memcpy(nrm + 3 * (nv + k), sq.normals, 3 * sizeof *nrm);
+        idx[3 * nt + k] = (uint32_t)(nv + k);
+    }
+    pelt_mesh_data big = {.positions = p, .normals = nrm, .vertex_count = nv + 3, .indices = idx,
+                          .triangle_count = nt + 1};
+    float *tan = calloc((nv + 3) * 4, sizeof *tan), *out = malloc((nv + 3) * 3 * sizeof *out);
+    for (size_t i = 0; i < nv + 3; i++) tan[4 * i] = tan[4 * i + 3] = 1.0f;
+    CHECK(pelt__lod_fit_normals(&big, tan, idx, nt + 1, 0.01f, &heap, out, NULL) == PELT_OK);
+    size_t finite = 0;
+    for (size_t i = 0; i < 3 * (nv + 3); i++) finite += isfinite(out[i]);
+    CHECK(finite == 3 * (nv + 3));
+    free(p), free(nrm), free(idx), free(tan), free(out);
+    pelt_mesh_destroy(m);
 }
 
 int main(void)
