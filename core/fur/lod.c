@@ -482,6 +482,19 @@ float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float 
     return fminf(fmaxf(k, least), cap);
 }
 
+void pelt__lod_shell_gap(const float n[3], const float t[3], const float V[3], const float u[3], const float v[3],
+                         float step, float uv_per_world, float gap[3])
+{
+    float vn = V[0] * n[0] + V[1] * n[1] + V[2] * n[2];
+    float x = fminf(fmaxf((fabsf(vn) - PELT__SHELL_GAP_FULL) / (PELT__SHELL_GAP_NONE - PELT__SHELL_GAP_FULL), 0.0f), 1.0f);
+    gap[2] = 1.0f - x * x * (3.0f - 2.0f * x);
+    vn = vn < 0.0f ? fminf(vn, -PELT__SHELL_GAP_MIN_COS) : fmaxf(vn, PELT__SHELL_GAP_MIN_COS);
+    float tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], d[3];
+    for (int k = 0; k < 3; k++) d[k] = V[k] * (step * tn / vn) - t[k] * step;
+    gap[0] = (d[0] * u[0] + d[1] * u[1] + d[2] * u[2]) * uv_per_world;
+    gap[1] = (d[0] * v[0] + d[1] * v[1] + d[2] * v[2]) * uv_per_world;
+}
+
 float pelt__lod_shell_edge_least(float n_dot_v, float depth)
 {
     float t = fminf(fabsf(n_dot_v) / PELT__SHELL_EDGE_REACH, 1.0f);

@@ -281,6 +281,31 @@ void pelt__lod_fur_edge(float rgba[4], float gain);
  * the hair. Mirrors shell_overcount() in gl/shaders/shell_lod.glsl. */
 float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float least, float cap);
 
+/* A hair seen from the side between two shells (docs/reference.md, Hairs
+ * seen from the side, not beads). Each shell holds the hair's
+ * cross-section; seen at a grazing angle, the section of a hair standing
+ * up is a short dash and the next shell's lies one spacing lower on
+ * screen: the hair reads as a chain of beads. The shell fragment also
+ * reads the fur texture half a gap back and takes the union of the two
+ * (shell_fs.glsl), so each shell holds the hair down to the next. The gap,
+ * in fur-texture tiles: the point of this shell's plane that lies, seen
+ * from the eye, where the hair's point one shell lower does, less the
+ * hair's point on this shell: V (step t.n / V.n) - t step, on the unit
+ * frame (u, v), times uv_per_world. n the surface's unit normal, t the
+ * hair's unit tangent, V the unit direction from the eye, `step` the
+ * hair's length between two shells (world units). Written to gap[0..1];
+ * gap[2] is the second read's weight: 1 where the surface is seen within
+ * PELT__SHELL_GAP_FULL of edge-on (|V.n|), 0 from PELT__SHELL_GAP_NONE
+ * (smoothstep between): seen closer to face-on, the shells' counting of
+ * a hair (pelt__lod_shell_overcount) already stands for it, and reading
+ * the gap there made the torus 15% brighter than its hairs. Mirrors
+ * shell_gap() in gl/shaders/shell_lod.glsl. */
+#define PELT__SHELL_GAP_FULL 0.15f
+#define PELT__SHELL_GAP_NONE 0.35f
+#define PELT__SHELL_GAP_MIN_COS 0.05f
+void pelt__lod_shell_gap(const float n[3], const float t[3], const float V[3], const float u[3], const float v[3],
+                         float step, float uv_per_world, float gap[3]);
+
 /* The least count at a vertex whose surface the eye sees at n_dot_v
  * (lod.edge_depth): 1 / depth edge-on, rising smoothly (smoothstep) to 1
  * at |n_dot_v| = PELT__SHELL_EDGE_REACH. Seen edge-on, a ray crosses each

@@ -13,6 +13,9 @@ flat in vec3 v_slices;
 in float v_sub_e; // the sub shell's exponent in its layer's coverage (shell_vs.glsl)
 in float v_alpha;
 in float v_view;
+#ifndef PELT_LIGHT_PASS
+in vec3 v_gap;
+#endif
 in float v_aniso;
 in float v_overcount; // shells a ray crosses inside one hair (shell_vs.glsl)
 #if (defined(PELT_WET) || defined(PELT_RINGLETS)) && !defined(PELT_LIGHT_PASS)
@@ -205,6 +208,16 @@ void main()
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
     vec4 hair = wet_hair(fur_uv, rho);
+#ifndef PELT_LIGHT_PASS
+    // Seen from the side, this shell holds the hair down to the next one:
+    // the union with the hair half a gap back (pelt__lod_shell_gap). Not in
+    // a tuft, whose hairs the clump moves.
+    bool gap_read = v_gap.z > 0.0;
+#ifdef PELT_WET
+    gap_read = gap_read && clump == CLUMP_KEEP;
+#endif
+    if (gap_read) hair += wet_hair(fur_uv - 0.5 * v_gap.xy, rho) * (v_gap.z * (1.0 - hair.a));
+#endif
 #ifdef PELT_WET
     if (clump != CLUMP_KEEP) {
         if (clump_stray_hair(clump, hair, wet_hair(v_fur_uv, rho), u_wet_strays)) {

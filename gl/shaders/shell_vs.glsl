@@ -72,6 +72,9 @@ flat out float v_clump_slope; // clump_tuft_slope(h): the same for the whole lay
 out float v_alpha;      // the shell's opacity: fades as its level leaves, and
                         // where the view's budget leaves it out (face-on)
 out float v_view;       // the view's budget: how far an even shell stands for two
+#ifndef PELT_LIGHT_PASS
+out vec3 v_gap;         // shell_gap: the gap to the next shell's section of the hair (fur tiles), its read's weight
+#endif
 out float v_aniso;      // fur_texture_aniso: texels of the footprint's long side to a pixel
 out float v_overcount;  // shell_overcount: shells a ray of sight crosses inside one hair
 uniform int u_no_overcount; // pelt_draw_desc.debug.no_overcount: each shell whole
@@ -170,6 +173,14 @@ void main()
                 : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
                                   dot(world_t, normalize(u_eye - world.xyz)), drift, least,
                                   shell_overcount_cap(u_layers));
+#ifndef PELT_LIGHT_PASS
+    // Seen from the side, a hair between this shell and the next one down
+    // (docs/reference.md, Hairs seen from the side, not beads).
+    float scale = length(mat3(u_model) * u); // the model's, uniform
+    v_gap = shell_gap(normalize(mat3(u_model) * n), world_t, normalize(world.xyz - u_eye),
+                      normalize(mat3(u_model) * u), normalize(mat3(u_model) * v), L * scale / (u_layers * sub),
+                      u_tiling / scale);
+#endif
     vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS
     // Drawn from the light into its opacity slices: no lighting.

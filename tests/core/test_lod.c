@@ -886,6 +886,40 @@ static void lod_fitted_normals_follow_the_full_mesh(void)
     pelt_mesh_destroy(m);
 }
 
+/* A hair seen from the side between two shells: the gap lies in the
+ * shell's plane where the eye sees the hair's point one shell lower, none
+ * face-on, and the second read is weighed only near edge-on. */
+static void lod_shell_gap_reaches_the_next_shell(void)
+{
+    const float n[3] = {0.0f, 0.0f, 1.0f}, u[3] = {1.0f, 0.0f, 0.0f}, v[3] = {0.0f, 1.0f, 0.0f};
+    const float up[3] = {0.0f, 0.0f, 1.0f}, down[3] = {0.0f, 0.0f, -1.0f};
+    float g[3];
+    pelt__lod_shell_gap(n, up, down, u, v, 0.01f, 4.0f, g);
+    CHECK_NEAR(g[0], 0.0, 1e-6);
+    CHECK_NEAR(g[1], 0.0, 1e-6);
+    CHECK_NEAR(g[2], 0.0, 1e-6);
+    /* From 6 degrees above the plane, a leaning hair. */
+    pelt_vec3 V = v3_norm_or(v3(0.3f, 0.95f, -0.105f), v3(0, 1, 0)), t = v3_norm_or(v3(0.2f, -0.1f, 1.0f), v3(0, 0, 1));
+    float Vf[3], tf[3], step = 0.01f, per = 4.0f;
+    v3_store(Vf, V), v3_store(tf, t);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, g);
+    CHECK_NEAR(g[2], 1.0, 1e-6);
+    /* d = the gap in world units; d + t step runs along V. */
+    pelt_vec3 d = v3(g[0] / per, g[1] / per, 0.0f);
+    pelt_vec3 ray = v3_mad(d, t, step);
+    CHECK(v3_len(v3_cross(ray, V)) < 1e-5f * v3_len(ray));
+    CHECK(v3_len(d) > 5.0f * step); /* about cot 6 degrees spacings */
+    /* Halfway to face-on, partly; beyond it, none. */
+    V = v3_norm_or(v3(0.0f, 0.96f, -0.25f), v3(0, 1, 0));
+    v3_store(Vf, V);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, g);
+    CHECK(g[2] > 0.0f && g[2] < 1.0f);
+    V = v3_norm_or(v3(0.0f, 0.9f, -0.44f), v3(0, 1, 0));
+    v3_store(Vf, V);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, g);
+    CHECK_NEAR(g[2], 0.0, 1e-6);
+}
+
 int main(void)
 {
     RUN(lod_levels_shrink_and_their_error_grows);
@@ -907,5 +941,6 @@ int main(void)
     RUN(lod_coverage_powers_compose);
     RUN(lod_sub_shells_close_the_rows);
     RUN(lod_fitted_normals_follow_the_full_mesh);
+    RUN(lod_shell_gap_reaches_the_next_shell);
     return check_summary();
 }

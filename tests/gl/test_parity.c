@@ -235,6 +235,46 @@ static void level_fit_normal_glsl_matches_c(void)
     CHECK(worst < 2e-5);
 }
 
+static const char shell_gap_main[] =
+    "out vec4 o;\n"
+    "void main() {\n"
+    "  vec3 n, u, tip; float h, s;\n"
+    "  cell_inputs(floor(gl_FragCoord.xy), n, u, tip, h, s);\n"
+    "  vec3 v = cross(n, u), t = normalize(tip + 0.3 * n);\n"
+    "  vec3 V = normalize(vec3(s - 0.5, h - 0.6, 0.2 - s));\n"
+    "  o = vec4(shell_gap(n, t, V, u, v, 0.01 + 0.02 * h, 3.0 + 5.0 * s), 0.0);\n"
+    "}\n";
+
+/* The gap between a shell's section of a hair and the next shell's, seen
+ * from the side (pelt__lod_shell_gap), in GLSL as in C. */
+static void shell_gap_glsl_matches_c(void)
+{
+    const char *fs[] = {pelt__shader_shell_lod, inputs_glsl, shell_gap_main, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int read = 0, partly = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            pelt_vec3 n, u, tip;
+            float h, s;
+            cell_inputs((float)x, (float)y, &n, &u, &tip, &h, &s);
+            pelt_vec3 v = v3_cross(n, u), t = v3_norm_or(v3_mad(tip, n, 0.3f), n);
+            pelt_vec3 V = v3_norm_or(v3(s - 0.5f, h - 0.6f, 0.2f - s), n);
+            float nf[3], tf[3], Vf[3], uf[3], vf[3], g[3];
+            v3_store(nf, n), v3_store(tf, t), v3_store(Vf, V), v3_store(uf, u), v3_store(vf, v);
+            pelt__lod_shell_gap(nf, tf, Vf, uf, vf, 0.01f + 0.02f * h, 3.0f + 5.0f * s, g);
+            const float *o = out + 4 * (y * W + x);
+            for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(o[k] - g[k]) / fmax(1.0, fabs(g[k])));
+            read += g[2] > 0.0f;
+            partly += g[2] > 0.0f && g[2] < 1.0f;
+        }
+    printf("  %d of %d cells read the gap (%d in part); worst relative |GLSL - C| = %.3g\n", read, W * H, partly,
+           worst);
+    CHECK(read > 0 && read < W * H);
+    CHECK(partly > 0);
+    CHECK(worst < 1e-4);
+}
+
 static const char clump_main[] =
     "uniform sampler2D u_mask;\n"
     "out vec4 o;\n"
@@ -1206,6 +1246,7 @@ int main(void)
     RUN(tuft_tangent_glsl_matches_c);
     RUN(fur_shape_glsl_matches_c);
     RUN(level_fit_normal_glsl_matches_c);
+    RUN(shell_gap_glsl_matches_c);
     RUN(clump_glsl_matches_c);
     RUN(clump_coverage_glsl_matches_c);
     RUN(clump_bundle_squeeze_glsl_matches_c);
