@@ -303,8 +303,16 @@ float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float 
 #define PELT__SHELL_GAP_FULL 0.15f
 #define PELT__SHELL_GAP_NONE 0.35f
 #define PELT__SHELL_GAP_MIN_COS 0.05f
+/* ... and only where the shells stand apart on screen: `spacing_px`, their
+ * spacing seen side-on (negative: not known, no gate), weighs it from 0 at
+ * PELT__SHELL_GAP_PX_NONE to 1 at PELT__SHELL_GAP_PX_FULL (smoothstep).
+ * Closer, their sections overlap on screen and there are no beads; read
+ * there anyway, the reference torus's silhouette widened into a pale band
+ * (an independent look) and the CGAL bunny's frame took 1.10x. */
+#define PELT__SHELL_GAP_PX_NONE 0.25f
+#define PELT__SHELL_GAP_PX_FULL 0.6f
 void pelt__lod_shell_gap(const float n[3], const float t[3], const float V[3], const float u[3], const float v[3],
-                         float step, float uv_per_world, float gap[3]);
+                         float step, float uv_per_world, float spacing_px, float gap[3]);
 
 /* The least count at a vertex whose surface the eye sees at n_dot_v
  * (lod.edge_depth): 1 / depth edge-on, rising smoothly (smoothstep) to 1

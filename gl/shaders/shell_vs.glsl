@@ -177,9 +177,10 @@ void main()
     // Seen from the side, a hair between this shell and the next one down
     // (docs/reference.md, Hairs seen from the side, not beads).
     float scale = length(mat3(u_model) * u); // the model's, uniform
+    float gap_px = u_shell_view.x > 0.0 ? u_shell_view.x * a_groom.z / w_clip / (1.0 + (sub - 1.0) * need) : -1.0;
     v_gap = shell_gap(normalize(mat3(u_model) * n), world_t, normalize(world.xyz - u_eye),
                       normalize(mat3(u_model) * u), normalize(mat3(u_model) * v), L * scale / (u_layers * sub),
-                      u_tiling / scale);
+                      u_tiling / scale, gap_px);
 #endif
     vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS

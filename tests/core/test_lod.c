@@ -894,7 +894,7 @@ static void lod_shell_gap_reaches_the_next_shell(void)
     const float n[3] = {0.0f, 0.0f, 1.0f}, u[3] = {1.0f, 0.0f, 0.0f}, v[3] = {0.0f, 1.0f, 0.0f};
     const float up[3] = {0.0f, 0.0f, 1.0f}, down[3] = {0.0f, 0.0f, -1.0f};
     float g[3];
-    pelt__lod_shell_gap(n, up, down, u, v, 0.01f, 4.0f, g);
+    pelt__lod_shell_gap(n, up, down, u, v, 0.01f, 4.0f, -1.0f, g);
     CHECK_NEAR(g[0], 0.0, 1e-6);
     CHECK_NEAR(g[1], 0.0, 1e-6);
     CHECK_NEAR(g[2], 0.0, 1e-6);
@@ -902,7 +902,7 @@ static void lod_shell_gap_reaches_the_next_shell(void)
     pelt_vec3 V = v3_norm_or(v3(0.3f, 0.95f, -0.105f), v3(0, 1, 0)), t = v3_norm_or(v3(0.2f, -0.1f, 1.0f), v3(0, 0, 1));
     float Vf[3], tf[3], step = 0.01f, per = 4.0f;
     v3_store(Vf, V), v3_store(tf, t);
-    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, g);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, -1.0f, g);
     CHECK_NEAR(g[2], 1.0, 1e-6);
     /* d = the gap in world units; d + t step runs along V. */
     pelt_vec3 d = v3(g[0] / per, g[1] / per, 0.0f);
@@ -912,12 +912,22 @@ static void lod_shell_gap_reaches_the_next_shell(void)
     /* Halfway to face-on, partly; beyond it, none. */
     V = v3_norm_or(v3(0.0f, 0.96f, -0.25f), v3(0, 1, 0));
     v3_store(Vf, V);
-    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, g);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, -1.0f, g);
     CHECK(g[2] > 0.0f && g[2] < 1.0f);
     V = v3_norm_or(v3(0.0f, 0.9f, -0.44f), v3(0, 1, 0));
     v3_store(Vf, V);
-    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, g);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, -1.0f, g);
     CHECK_NEAR(g[2], 0.0, 1e-6);
+    /* Edge-on, but the shells stand within a quarter pixel on screen: their
+     * sections overlap there, no second read; from 0.6 px, all of it. */
+    V = v3_norm_or(v3(0.3f, 0.95f, -0.105f), v3(0, 1, 0));
+    v3_store(Vf, V);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, 0.2f, g);
+    CHECK_NEAR(g[2], 0.0, 1e-6);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, 0.4f, g);
+    CHECK(g[2] > 0.0f && g[2] < 1.0f);
+    pelt__lod_shell_gap(n, tf, Vf, u, v, step, per, 0.7f, g);
+    CHECK_NEAR(g[2], 1.0, 1e-6);
 }
 
 int main(void)

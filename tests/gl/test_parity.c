@@ -242,7 +242,7 @@ static const char shell_gap_main[] =
     "  cell_inputs(floor(gl_FragCoord.xy), n, u, tip, h, s);\n"
     "  vec3 v = cross(n, u), t = normalize(tip + 0.3 * n);\n"
     "  vec3 V = normalize(vec3(s - 0.5, h - 0.6, 0.2 - s));\n"
-    "  o = vec4(shell_gap(n, t, V, u, v, 0.01 + 0.02 * h, 3.0 + 5.0 * s), 0.0);\n"
+    "  o = vec4(shell_gap(n, t, V, u, v, 0.01 + 0.02 * h, 3.0 + 5.0 * s, 1.2 * fract(7.0 * s) - 0.2), 0.0);\n"
     "}\n";
 
 /* The gap between a shell's section of a hair and the next shell's, seen
@@ -262,7 +262,8 @@ static void shell_gap_glsl_matches_c(void)
             pelt_vec3 V = v3_norm_or(v3(s - 0.5f, h - 0.6f, 0.2f - s), n);
             float nf[3], tf[3], Vf[3], uf[3], vf[3], g[3];
             v3_store(nf, n), v3_store(tf, t), v3_store(Vf, V), v3_store(uf, u), v3_store(vf, v);
-            pelt__lod_shell_gap(nf, tf, Vf, uf, vf, 0.01f + 0.02f * h, 3.0f + 5.0f * s, g);
+            float sx7 = 7.0f * s;
+            pelt__lod_shell_gap(nf, tf, Vf, uf, vf, 0.01f + 0.02f * h, 3.0f + 5.0f * s, 1.2f * (sx7 - floorf(sx7)) - 0.2f, g);
             const float *o = out + 4 * (y * W + x);
             for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(o[k] - g[k]) / fmax(1.0, fabs(g[k])));
             read += g[2] > 0.0f;
