@@ -488,6 +488,11 @@ void pelt__lod_shell_gap(const float n[3], const float t[3], const float V[3], c
     float vn = V[0] * n[0] + V[1] * n[1] + V[2] * n[2];
     float x = fminf(fmaxf((fabsf(vn) - PELT__SHELL_GAP_FULL) / (PELT__SHELL_GAP_NONE - PELT__SHELL_GAP_FULL), 0.0f), 1.0f);
     gap[2] = 1.0f - x * x * (3.0f - 2.0f * x);
+    float o = fminf(fmaxf((fabsf(vn) - PELT__SHELL_GAP_OUTLINE_NONE) /
+                              (PELT__SHELL_GAP_OUTLINE_FULL - PELT__SHELL_GAP_OUTLINE_NONE),
+                          0.0f),
+                    1.0f);
+    gap[2] *= o * o * (3.0f - 2.0f * o);
     if (spacing_px >= 0.0f) {
         float y = fminf(fmaxf((spacing_px - PELT__SHELL_GAP_PX_NONE) / (PELT__SHELL_GAP_PX_FULL - PELT__SHELL_GAP_PX_NONE),
                               0.0f),

@@ -303,6 +303,13 @@ float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float 
 #define PELT__SHELL_GAP_FULL 0.15f
 #define PELT__SHELL_GAP_NONE 0.35f
 #define PELT__SHELL_GAP_MIN_COS 0.05f
+/* ... and not at the silhouette itself: the gap is worked out on the
+ * shell's tangent plane, and where the eye grazes the surface (|V.n| below
+ * PELT__SHELL_GAP_OUTLINE_FULL, none below _NONE) the surface curves away
+ * before the ray meets the next shell: read there, the union drew hair
+ * outside the shells' outline (test_fins_render's band). */
+#define PELT__SHELL_GAP_OUTLINE_NONE 0.1f
+#define PELT__SHELL_GAP_OUTLINE_FULL 0.2f
 /* ... and only where the shells stand apart on screen: `spacing_px`, their
  * spacing seen side-on (negative: not known, no gate), weighs it from 0 at
  * PELT__SHELL_GAP_PX_NONE to 1 at PELT__SHELL_GAP_PX_FULL (smoothstep).

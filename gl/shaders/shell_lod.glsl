@@ -165,12 +165,15 @@ float shell_overcount(float width_over_spacing, float cos_view, float drift, flo
 const float SHELL_GAP_FULL = 0.15;    // PELT__SHELL_GAP_FULL
 const float SHELL_GAP_NONE = 0.35;    // PELT__SHELL_GAP_NONE
 const float SHELL_GAP_MIN_COS = 0.05; // PELT__SHELL_GAP_MIN_COS
+const float SHELL_GAP_OUTLINE_NONE = 0.1; // PELT__SHELL_GAP_OUTLINE_NONE
+const float SHELL_GAP_OUTLINE_FULL = 0.2; // PELT__SHELL_GAP_OUTLINE_FULL
 const float SHELL_GAP_PX_NONE = 0.25; // PELT__SHELL_GAP_PX_NONE
 const float SHELL_GAP_PX_FULL = 0.6;  // PELT__SHELL_GAP_PX_FULL
 vec3 shell_gap(vec3 n, vec3 t, vec3 V, vec3 u, vec3 v, float step, float uv_per_world, float spacing_px)
 {
     float vn = dot(V, n);
     float g = 1.0 - smoothstep(SHELL_GAP_FULL, SHELL_GAP_NONE, abs(vn));
+    g *= smoothstep(SHELL_GAP_OUTLINE_NONE, SHELL_GAP_OUTLINE_FULL, abs(vn));
     if (spacing_px >= 0.0) g *= smoothstep(SHELL_GAP_PX_NONE, SHELL_GAP_PX_FULL, spacing_px);
     vn = vn < 0.0 ? min(vn, -SHELL_GAP_MIN_COS) : max(vn, SHELL_GAP_MIN_COS);
     vec3 d = V * (step * dot(t, n) / vn) - t * step;
