@@ -482,23 +482,20 @@ float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float 
     return fminf(fmaxf(k, least), cap);
 }
 
+/* GLSL's smoothstep(e0, e1, x). */
+static float smooth_step(float e0, float e1, float x)
+{
+    float t = fminf(fmaxf((x - e0) / (e1 - e0), 0.0f), 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
 void pelt__lod_shell_gap(const float n[3], const float t[3], const float V[3], const float u[3], const float v[3],
                          float step, float uv_per_world, float spacing_px, float gap[3])
 {
     float vn = V[0] * n[0] + V[1] * n[1] + V[2] * n[2];
-    float x = fminf(fmaxf((fabsf(vn) - PELT__SHELL_GAP_FULL) / (PELT__SHELL_GAP_NONE - PELT__SHELL_GAP_FULL), 0.0f), 1.0f);
-    gap[2] = 1.0f - x * x * (3.0f - 2.0f * x);
-    float o = fminf(fmaxf((fabsf(vn) - PELT__SHELL_GAP_OUTLINE_NONE) /
-                              (PELT__SHELL_GAP_OUTLINE_FULL - PELT__SHELL_GAP_OUTLINE_NONE),
-                          0.0f),
-                    1.0f);
-    gap[2] *= o * o * (3.0f - 2.0f * o);
-    if (spacing_px >= 0.0f) {
-        float y = fminf(fmaxf((spacing_px - PELT__SHELL_GAP_PX_NONE) / (PELT__SHELL_GAP_PX_FULL - PELT__SHELL_GAP_PX_NONE),
-                              0.0f),
-                        1.0f);
-        gap[2] *= y * y * (3.0f - 2.0f * y);
-    }
+    gap[2] = (1.0f - smooth_step(PELT__SHELL_GAP_FULL, PELT__SHELL_GAP_NONE, fabsf(vn))) *
+             smooth_step(PELT__SHELL_GAP_OUTLINE_NONE, PELT__SHELL_GAP_OUTLINE_FULL, fabsf(vn));
+    if (spacing_px >= 0.0f) gap[2] *= smooth_step(PELT__SHELL_GAP_PX_NONE, PELT__SHELL_GAP_PX_FULL, spacing_px);
     vn = vn < 0.0f ? fminf(vn, -PELT__SHELL_GAP_MIN_COS) : fmaxf(vn, PELT__SHELL_GAP_MIN_COS);
     float tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], d[3];
     for (int k = 0; k < 3; k++) d[k] = V[k] * (step * tn / vn) - t[k] * step;

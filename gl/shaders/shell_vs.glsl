@@ -139,6 +139,7 @@ void main()
     // Close up, the sub shells a vertex needs: where its fur is seen face-on
     // the layers stand close and the ones below the layer fade (docs/lod.md).
     float need = 1.0;
+    float spacing_px = -1.0; // the shells' spacing side-on on screen, sub shells counted (-1: not known)
 #ifndef PELT_LIGHT_PASS
     float w_clip = max((u_view_proj * vec4(root, 1.0)).w, 1e-6); // the root's: spacings on screen
     if (sub > 1.0 && u_sub_view.x > 0.0 && u_sub_view.y > 0.5)
@@ -157,7 +158,8 @@ void main()
         // Sharp across a grazing view, unless the shells stand far enough
         // apart on screen to show as rows (docs/shading.md): the sub
         // shells stand closer.
-        v_aniso = fur_texture_aniso(u_shell_view.x * a_groom.z / w_clip / (1.0 + (sub - 1.0) * need), n_dot_v,
+        spacing_px = u_shell_view.x * a_groom.z / w_clip / (1.0 + (sub - 1.0) * need);
+        v_aniso = fur_texture_aniso(spacing_px, n_dot_v,
                                     u_fur_aniso);
     }
 #endif
@@ -177,10 +179,9 @@ void main()
     // Seen from the side, a hair between this shell and the next one down
     // (docs/reference.md, Hairs seen from the side, not beads).
     float scale = length(mat3(u_model) * u); // the model's, uniform
-    float gap_px = u_shell_view.x > 0.0 ? u_shell_view.x * a_groom.z / w_clip / (1.0 + (sub - 1.0) * need) : -1.0;
     v_gap = shell_gap(normalize(mat3(u_model) * n), world_t, normalize(world.xyz - u_eye),
                       normalize(mat3(u_model) * u), normalize(mat3(u_model) * v), L * scale / (u_layers * sub),
-                      u_tiling / scale, gap_px);
+                      u_tiling / scale, spacing_px);
 #endif
     vec3 light_mul = vec3(1.0);
 #ifdef PELT_LIGHT_PASS
