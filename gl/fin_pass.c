@@ -10,9 +10,11 @@
 #include "core/base/error.h"
 #include "core/base/hooks.h"
 #include "core/base/vec.h"
+#include "core/fur/fins.h"
 #include "core/fur/fur_gpu.h"
 #include "gl/programs.h"
 
+#include <math.h>
 #include <string.h>
 
 /* A table texture of `texels` RGBA texels (32-bit), PELT_TABLE_WIDTH a
@@ -52,6 +54,38 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     p->fin_rows[features] = glGetUniformLocation(p->variants[features], "u_fin_rows");
     p->fin_first[features] = glGetUniformLocation(p->variants[features], "u_fin_first");
     return PELT_OK;
+}
+
+/* The outline's hairs' program with `features` (PELT__OUTLINE_FEATURES
+ * bits), built on first use; false where it does not build. */
+static bool build_outline(pelt__fin_pass *p, unsigned features)
+{
+    if (p->outline[features]) return true;
+    if (p->outline_failed[features]) return false;
+    char defines[PELT__FEATURE_DEFINES_MAX];
+    pelt__shell_feature_defines(features, defines);
+    const char *vs[] = {defines,           pelt__shader_shading,     pelt__shader_shadow_map, pelt__shader_fur_light,
+                        pelt__shader_outline_hair, pelt__shader_outline_vs, NULL};
+    const char *fs[] = {pelt__shader_shading, pelt__shader_outline_fs, NULL};
+    GLuint prog = 0;
+    if (pelt__gl_program_create("outline", vs, fs, &p->hooks, &prog, NULL) != PELT_OK) {
+        p->outline_failed[features] = true;
+        return false;
+    }
+    p->outline[features] = prog;
+    p->outline_count[features] = glGetUniformLocation(prog, "u_fin_count");
+    p->outline_rows[features] = glGetUniformLocation(prog, "u_fin_rows");
+    p->outline_hairs[features] = glGetUniformLocation(prog, "u_outline_hairs");
+    p->outline_viewport[features] = glGetUniformLocation(prog, "u_viewport");
+    return true;
+}
+
+/* The hairs a fur tile of a fin's edge holds: fins.hairs, the share of
+ * the fin slab's (look.density a tile, fins.density texels of the tile's
+ * texture_size wide). 0: none, the fin texture's quads. */
+static float outline_hairs_per_tile(const pelt_fur_desc *d)
+{
+    return d->fins.hairs * d->look.density * d->fins.density / (float)d->look.texture_size;
 }
 
 pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__fur_snapshot *fs,
@@ -96,6 +130,15 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
     if (!p->fins || !p->vertices) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fins", most);
     p->edges = table_create(PELT_UNIT_FIN_EDGES, GL_RGBA32UI, most);
     p->vertex_table = table_create(PELT_UNIT_FIN_VERTICES, GL_RGBA32F, most_vertices * PELT_FIN_VERTEX_TEXELS);
+    /* The outline's hairs, where the fur has them: a table of their own. */
+    const pelt_fur_desc d = pelt_fur_get_desc(fur);
+    p->hairs_per_tile = outline_hairs_per_tile(&d);
+    p->tiling = d.look.tiling;
+    if (p->hairs_per_tile > 0.0f) {
+        p->hairs = pelt__alloc(&p->alloc, PELT__OUTLINE_HAIR_BUDGET * 4 * sizeof *p->hairs);
+        if (!p->hairs) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the outline's hairs");
+        p->hair_table = table_create(PELT_UNIT_FIN_EDGES, GL_RGBA32UI, PELT__OUTLINE_HAIR_BUDGET);
+    }
 
     /* One chunk of PELT_FIN_CHUNK strips of r quads as triangles, for each
      * r = 1 .. PELT_FIN_ROWS one after the other: fin c's corner k is vertex
@@ -155,6 +198,49 @@ static void draw_fins(pelt__fin_pass *p, const pelt__pass_frame *f, unsigned fea
     f->stats->fin_draw_calls++;
 }
 
+/* The outline's hairs of the fins the fin pass wrote this frame: one table
+ * entry a hair (pelt__outline_hairs), PELT_FIN_CHUNK hairs an instance,
+ * each a strip of the fins' rows (the fins' chunks of strips). */
+void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f)
+{
+    size_t fins = p->frame_fins;
+    unsigned rows = p->frame_rows;
+    p->frame_fins = 0;
+    float hairs = p->hairs_per_tile;
+    unsigned features = f->shell_features & PELT__OUTLINE_FEATURES;
+    if (!p->hairs || fins == 0 || !build_outline(p, features)) return;
+    const float *m = f->view->model;
+    float scale = sqrtf(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+    size_t count = pelt__outline_hairs(p->fins, fins, p->vertices, 4 * PELT_FIN_VERTEX_TEXELS, scale * p->tiling,
+                                       hairs, PELT__OUTLINE_LEAST_FADE, p->hairs, PELT__OUTLINE_HAIR_BUDGET);
+    if (count == 0) return;
+    table_write(PELT_UNIT_FIN_EDGES, p->hair_table, GL_RGBA32UI, p->hairs, count);
+    f->stats->upload_bytes += 16 * count;
+    glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN_VERTICES);
+    glBindTexture(GL_TEXTURE_2D, p->vertex_table);
+    pelt__gl_blended_hair_state();
+    glBindVertexArray(p->vao);
+    glUseProgram(p->outline[features]);
+    glUniform1i(p->outline_count[features], (GLint)count);
+    glUniform1i(p->outline_rows[features], (GLint)rows);
+    glUniform1f(p->outline_hairs[features], hairs);
+    /* A hair's width in pixels needs the viewport's: the view's, or GL's
+     * where the view leaves it out (0). */
+    float vw = (float)f->view->width, vh = (float)f->view->height;
+    if (vw <= 0.0f || vh <= 0.0f) {
+        GLint vp[4];
+        glGetIntegerv(GL_VIEWPORT, vp);
+        vw = (float)vp[2], vh = (float)vp[3];
+    }
+    glUniform2f(p->outline_viewport[features], vw, vh);
+    const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
+    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
+                            (GLsizei)((count + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
+    f->stats->outline_hairs = count;
+    f->stats->triangles += count * 2 * rows;
+    glBindVertexArray(f->mesh->vao);
+}
+
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
 {
     unsigned level = f->lod.full_mesh ? 0 : f->lod.fin_level;
@@ -172,18 +258,28 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     const unsigned wet_bits = PELT__SHELL_WET;
     const pelt__gpu_mesh *mesh = f->mesh;
     bool split = (f->shell_features & wet_bits) && level == 0 && mesh->split_ok && !f->draw->debug.no_wet_split;
+    /* Where the outline's hairs stand in for the fin texture, its fade
+     * alone says how many a fin carries (the sub shells' share is the
+     * quads' own). */
+    const bool hairs = p->hairs != NULL;
     pelt__fin_frame_desc fd = {level, PELT_FIN_ROWS, f->lod.fin_row_error, {local.x, local.y, local.z},
                                f->draw->fins_unfaded, f->lod.cull && !f->draw->no_skin,
                                split ? mesh->split.vertex_wet : NULL,
-                               f->lod.sub_shells > 1 ? 1.0f / (float)f->lod.sub_shells : 1.0f};
+                               f->lod.sub_shells > 1 && !hairs ? 1.0f / (float)f->lod.sub_shells : 1.0f};
     unsigned rows;
     size_t dry = 0;
     size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices, &rows, &dry);
+    p->frame_fins = count;
+    p->frame_rows = rows;
     if (count == 0) return;
-    table_write(PELT_UNIT_FIN_EDGES, p->edges, GL_RGBA32UI, p->fins, count);
     table_write(PELT_UNIT_FIN_VERTICES, p->vertex_table, GL_RGBA32F, p->vertices,
                 l->fin_vertex_count * PELT_FIN_VERTEX_TEXELS);
-    f->stats->upload_bytes += 16 * (count + l->fin_vertex_count * PELT_FIN_VERTEX_TEXELS);
+    f->stats->upload_bytes += 16 * l->fin_vertex_count * PELT_FIN_VERTEX_TEXELS;
+    f->stats->fins += count;
+    f->stats->fin_rows = rows;
+    if (hairs) return; /* the hairs stand in for the fin texture's quads (the outline pass) */
+    table_write(PELT_UNIT_FIN_EDGES, p->edges, GL_RGBA32UI, p->fins, count);
+    f->stats->upload_bytes += 16 * count;
     pelt__gl_blended_hair_state();
     glActiveTexture(GL_TEXTURE0 + PELT_UNIT_FIN);
     glBindTexture(GL_TEXTURE_2D_ARRAY, p->texture);
@@ -196,8 +292,6 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
         draw_fins(p, f, features, 0, count, rows);
     }
     glBindVertexArray(f->mesh->vao);
-    f->stats->fins += count;
-    f->stats->fin_rows = rows;
     f->stats->triangles += count * 2 * rows;
 }
 
@@ -205,11 +299,15 @@ void pelt__fin_pass_destroy(pelt__fin_pass *p)
 {
     for (int k = 0; k < PELT__SHELL_VARIANTS; k++)
         if (p->variants[k]) glDeleteProgram(p->variants[k]);
+    for (int k = 0; k <= PELT__OUTLINE_FEATURES; k++)
+        if (p->outline[k]) glDeleteProgram(p->outline[k]);
     if (p->ebo) glDeleteBuffers(1, &p->ebo);
     if (p->edges) glDeleteTextures(1, &p->edges);
     if (p->vertex_table) glDeleteTextures(1, &p->vertex_table);
     pelt__free(&p->alloc, p->fins);
     pelt__free(&p->alloc, p->vertices);
+    pelt__free(&p->alloc, p->hairs);
+    if (p->hair_table) glDeleteTextures(1, &p->hair_table);
     if (p->vao) glDeleteVertexArrays(1, &p->vao);
     if (p->texture) glDeleteTextures(1, &p->texture);
     memset(p, 0, sizeof *p);

@@ -38,6 +38,9 @@ void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFIN
     (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE |    \
      PELT__SHELL_SHADOW_MAP | PELT__SHELL_RINGLETS)
 
+/* The outline's hairs, lit per vertex, use the light's. */
+#define PELT__OUTLINE_FEATURES (PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE | PELT__SHELL_SHADOW_MAP)
+
 /* The skin uses these: a branch it never takes still costs llvmpipe every
  * fragment (docs/lod.md), so the shadow-map taps are compiled in only
  * when the light's maps are on. */
@@ -67,6 +70,14 @@ typedef struct pelt__fin_pass {
     GLint fin_count[PELT__SHELL_VARIANTS]; /* u_fin_count */
     GLint fin_rows[PELT__SHELL_VARIANTS];  /* u_fin_rows */
     GLint fin_first[PELT__SHELL_VARIANTS]; /* u_fin_first */
+    /* The outline's hairs (outline_vs.glsl), by the PELT__OUTLINE_FEATURES bits. */
+    GLuint outline[PELT__OUTLINE_FEATURES + 1];
+    bool outline_failed[PELT__OUTLINE_FEATURES + 1];
+    GLint outline_count[PELT__OUTLINE_FEATURES + 1];
+    GLint outline_rows[PELT__OUTLINE_FEATURES + 1], outline_hairs[PELT__OUTLINE_FEATURES + 1];
+    GLint outline_viewport[PELT__OUTLINE_FEATURES + 1];
+    size_t frame_fins;   /* the fins the last fin pass wrote into `fins` */
+    unsigned frame_rows; /* and their rows */
     pelt_hooks hooks;
     GLuint vao, ebo;    /* the chunk's triangles */
     GLuint texture;     /* the fin texture, PELT_UNIT_FIN */
@@ -76,12 +87,19 @@ typedef struct pelt__fin_pass {
     const pelt__lod_chain *lod;
     uint32_t *fins;      /* staging, allocated once (core/fur/fur_gpu.h) */
     float *vertices;
+    float hairs_per_tile; /* the outline's hairs a fur tile of a fin's edge holds (0: none) */
+    float tiling;        /* the fur's tiles a mesh unit */
+    uint32_t *hairs;     /* the outline's hairs, staging (NULL: the fur has none) */
+    GLuint hair_table;   /* and their table, bound to PELT_UNIT_FIN_EDGES to draw */
     pelt_allocator alloc;
 } pelt__fin_pass;
 
 pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__fur_snapshot *fs,
                                   const pelt_hooks *hooks, pelt_error *err);
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f);
+/* The outline's hairs (outline_vs.glsl) of the fins the frame's fin pass
+ * drew, after the shells: nothing where fins.hairs is 0. */
+void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f);
 void pelt__fin_pass_destroy(pelt__fin_pass *p);
 
 /* The strand reference (core/fur/strand_ref.h, docs/reference.md): every

@@ -211,6 +211,13 @@ static void run_fins(pelt_renderer *r, const pelt__pass_frame *f, const pelt__fr
     pelt__fin_pass_draw(&r->fins, f);
 }
 
+/* The outline's hairs over the shells: the fin pass's fins of this frame. */
+static void run_outline(pelt_renderer *r, const pelt__pass_frame *f, const pelt__frame_plan *p)
+{
+    (void)p;
+    pelt__fin_pass_draw_outline(&r->fins, f);
+}
+
 static void run_shells(pelt_renderer *r, const pelt__pass_frame *f, const pelt__frame_plan *p)
 {
     if (!p->gpu_skin) {
@@ -233,7 +240,8 @@ static const pass_row passes[] = {
     {"skin", want_skin, run_skin},       /* opaque, depth write */
     {"strands", want_strands, run_strands}, /* the strand reference, in place of fins and shells */
     {"fins", want_fins, run_fins},
-    {"shells", want_shells, run_shells}, /* blended inner to outer, last */
+    {"shells", want_shells, run_shells}, /* blended inner to outer */
+    {"outline", want_fins, run_outline}, /* the outline's hairs, over the shells */
 };
 
 void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw_desc *draw)

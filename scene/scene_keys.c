@@ -92,6 +92,7 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("fins.density", "fins.density"),
     PARAM("fins.curl", "fins.curl"),
     PARAM("fins.curl_turns", "fins.curl_turns"),
+    PARAM("fins.hairs", "fins.hairs"),
     /* The embedded pelt_draw_desc says what to skip; the file says what to draw. */
     {"draw.skin", K_NOT, OFF(draw.no_skin), 0, 0, 0, 0, 0, NULL},
     {"draw.fins", K_NOT, OFF(draw.no_fins), 0, 0, 0, 0, 0, NULL},

@@ -249,7 +249,8 @@ img_fins_torus() {
   pelt render --size 480x360 --no-fins -o fins_torus_c.png
   pelt render --size 480x360 -o fins_torus_d.png
   pelt render --size 480x360 --set draw.shells=false --set draw.fins_unfaded=true -o fins_torus_e.png
-  for F in a b c d e; do collect fins_torus_$F.png fins_torus_$F.png; done
+  pelt render --size 480x360 --set fins.hairs=0.5 -o fins_torus_f.png
+  for F in a b c d e f; do collect fins_torus_$F.png fins_torus_$F.png; done
 }
 img_fins_bunny() {
   B="--mesh $M/bunny00.off --size 480x360"
@@ -258,7 +259,8 @@ img_fins_bunny() {
   pelt render $B --no-fins -o fins_bunny_c.png
   pelt render $B -o fins_bunny_d.png
   pelt render $B --set draw.shells=false --set draw.fins_unfaded=true -o fins_bunny_e.png
-  for F in a b c d e; do collect fins_bunny_$F.png fins_bunny_$F.png; done
+  pelt render $B --set fins.hairs=0.5 -o fins_bunny_f.png
+  for F in a b c d e f; do collect fins_bunny_$F.png fins_bunny_$F.png; done
 }
 img_inter_shadow() {
   K="--set fur.color=[0.6,0.45,0.3] --set fur.tip_color=[0.6,0.45,0.3] --set fur.specular=[0,0,0] --size 480x360"

@@ -6,7 +6,9 @@
 #include "core/base/hooks.h"
 #include "core/base/rng.h"
 
+#include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 static int cmp_u64(const void *x, const void *y)
 {
@@ -75,4 +77,64 @@ void pelt__fin_normals(const pelt__fin_edge *edges, size_t count, const float *p
                                        v3_load(normals + 3 * a), v3_load(normals + 3 * b));
         v3_store(out + 3 * i, n);
     }
+}
+
+uint32_t pelt__outline_seed(uint32_t a, uint32_t b, uint32_t k)
+{
+    return pelt__hash32(a * 0x27d4eb2du ^ pelt__hash32(b ^ (k * 0x165667b1u)));
+}
+
+float pelt__outline_random(uint32_t seed, uint32_t i)
+{
+    return (float)(pelt__hash32(seed + i * 0x9e3779b9u) >> 8) * (1.0f / 16777216.0f);
+}
+
+static float clamp01(float x)
+{
+    return x < 0.0f ? 0.0f : x > 1.0f ? 1.0f : x;
+}
+
+float pelt__outline_alpha(float k, float count, float fade, float show)
+{
+    return clamp01(count - k) * clamp01((fade - show) * 4.0f);
+}
+
+float pelt__outline_lean(float r)
+{
+    return (r - 0.5f) * 0.8f;
+}
+
+void pelt__outline_shape(pelt_vec3 root, pelt_vec3 p, pelt_vec3 along, float r_len, float r_lean, float h,
+                         float out[4])
+{
+    float share = 0.6f + 0.4f * r_len;
+    pelt_vec3 o = v3_sub(p, root);
+    pelt_vec3 q = v3_add(root, v3_scale(v3_add(o, v3_scale(along, pelt__outline_lean(r_lean) * v3_len(o) * h)), share));
+    out[0] = q.x, out[1] = q.y, out[2] = q.z, out[3] = share;
+}
+
+pelt_vec3 pelt__outline_tangent(pelt_vec3 t, pelt_vec3 along, float r_lean, float h)
+{
+    pelt_vec3 u = v3_dot(t, t) > 1e-20f ? v3_scale(t, 1.0f / v3_len(t)) : v3(0.0f, 0.0f, 0.0f);
+    return v3_add(u, v3_scale(along, 2.0f * pelt__outline_lean(r_lean) * h));
+}
+
+size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const float *positions, size_t stride,
+                           float tiles_per_unit, float hairs, float least, uint32_t *out, size_t cap)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < count && n < cap; i++) {
+        const uint32_t *f = fins + 4 * i;
+        float fade;
+        memcpy(&fade, &f[3], sizeof fade);
+        if (!(fade >= least)) continue;
+        pelt_vec3 a = v3_load(positions + (size_t)f[0] * stride), b = v3_load(positions + (size_t)f[1] * stride);
+        float want = ceilf(v3_len(v3_sub(b, a)) * tiles_per_unit * hairs);
+        uint32_t k_end = !(want > 0.0f) ? 0u : want > (float)PELT__OUTLINE_HAIRS_MAX ? PELT__OUTLINE_HAIRS_MAX : (uint32_t)want;
+        for (uint32_t k = 0; k < k_end && n < cap; k++, n++) {
+            uint32_t *h = out + 4 * n;
+            h[0] = f[0], h[1] = f[1], h[2] = k, h[3] = f[3];
+        }
+    }
+    return n;
 }

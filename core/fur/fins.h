@@ -45,4 +45,49 @@ float pelt__fin_spacing_opacity(float edge, float slab);
 void pelt__fin_normals(const pelt__fin_edge *edges, size_t count, const float *positions, const float *normals,
                        float *out);
 
+/* The outline's hairs (gl/shaders/outline_hair.glsl, mirrored here and
+ * parity-tested): a fin near the silhouette carries up to
+ * PELT__OUTLINE_HAIRS_MAX of the hairs it stands for as geometry. */
+#define PELT__OUTLINE_HAIRS_MAX 32
+
+/* The seed of hair k on the fin between fin vertices a and b. */
+uint32_t pelt__outline_seed(uint32_t a, uint32_t b, uint32_t k);
+
+/* The fins whose fade is at least this carry hairs: those within about 40
+ * degrees of the outline (Lengyel's fade 2|p| - 1, p the cosine). */
+#define PELT__OUTLINE_LEAST_FADE 0.5f
+
+/* The most hairs a frame draws (the table's room, 16 bytes each). */
+#define PELT__OUTLINE_HAIR_BUDGET 65536
+
+/* The outline's hairs of a frame's fins (`fins`: `count` fins of 4 words,
+ * the fin vertex table's indices a, b, the texture start and the fade's
+ * bits, core/fur/fur_gpu.h; `positions`: the fin vertex table, whose
+ * vertex v's root is at positions[v * stride]): for every fin whose fade
+ * is at least `least`, its hairs k < min(ceil(edge * hairs), MAX), edge the
+ * fin's length in fur tiles (mesh units times tiles_per_unit), written as
+ * (a, b, k, fade bits) into `out`, at most `cap`. Returns how many. */
+size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const float *positions, size_t stride,
+                           float tiles_per_unit, float hairs, float least, uint32_t *out, size_t cap);
+
+/* The hair's i-th draw, uniform in [0, 1): 0 its place along the edge,
+ * 1 its length, 2 its lean, 3 the fade it shows from, 4 its shade, 5 its
+ * id against the groomed density. */
+float pelt__outline_random(uint32_t seed, uint32_t i);
+
+/* How much of hair k its fin shows: its share of the fin's `count` hairs
+ * and the fin's fade against the hair's threshold `show`. */
+float pelt__outline_alpha(float k, float count, float fade, float show);
+
+/* The hair's lean along the edge at its tip, a share of its length. */
+float pelt__outline_lean(float r);
+
+/* The hair's point at h from its fin's strand point p at its root's place
+ * on the edge (unit direction `along`), and its length share in out[3]. */
+void pelt__outline_shape(pelt_vec3 root, pelt_vec3 p, pelt_vec3 along, float r_len, float r_lean, float h,
+                         float out[4]);
+
+/* Its direction there, unnormalised, from the strand's tangent t. */
+pelt_vec3 pelt__outline_tangent(pelt_vec3 t, pelt_vec3 along, float r_lean, float h);
+
 #endif

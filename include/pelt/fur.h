@@ -167,6 +167,9 @@ typedef struct pelt_fur_fins {
     float curl;              /* sideways sine amplitude of fin hair in texels,
                                 default 0 (curlier than the shells when > 0) */
     float curl_turns;        /* turns of that sine over the height, default 2 */
+    float hairs;             /* hairs a fin near the silhouette also draws as
+                                geometry, per fur tile of its edge, so single
+                                hairs cross the outline (0 = none) */
 } pelt_fur_fins;
 
 /* Level of detail (Lengyel et al. §2.4 and beyond it, docs/lod.md): fewer

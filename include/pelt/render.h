@@ -145,6 +145,8 @@ typedef struct pelt_render_stats {
     size_t strands;            /* hairs the strand reference drew */
     size_t fins;               /* fins (mesh edges) that draw submitted; the
                                   faded-out ones collapse in the vertex stage */
+    size_t outline_hairs;      /* the outline's hairs drawn (fur fins.hairs),
+                                  in one instanced draw after the shells */
     unsigned fin_rows;         /* quads up each fin: as few as follow the bent
                                   and curled strands to within a pixel */
     size_t triangles;          /* triangles submitted by all passes, every shell

@@ -522,6 +522,42 @@ static void lod_fins_closer_than_their_slab_fade(void)
     }
 }
 
+/* The outline's hairs of a frame's fins (pelt__outline_hairs): a fin
+ * faded below the least fade carries none; the others as many as their
+ * edge in tiles times the hairs a tile holds, rounded up, at most
+ * PELT__OUTLINE_HAIRS_MAX; each names its fin's two vertices, its number
+ * and the fin's fade; the table's room is kept. */
+static void lod_outline_hairs_follow_the_fins_near_the_outline(void)
+{
+    enum { STRIDE = 8 };
+    /* Three fin vertices on a line, 0.05 and 2 units apart. */
+    float pos[3 * STRIDE] = {0};
+    pos[STRIDE] = 0.05f;
+    pos[2 * STRIDE] = 2.05f;
+    const float fades[3] = {0.3f, 0.9f, 1.0f};
+    const uint32_t ends[3][2] = {{0, 1}, {0, 1}, {1, 2}};
+    uint32_t fins[12];
+    for (int i = 0; i < 3; i++) {
+        fins[4 * i] = ends[i][0], fins[4 * i + 1] = ends[i][1], fins[4 * i + 2] = 77u;
+        memcpy(&fins[4 * i + 3], &fades[i], sizeof(float));
+    }
+    uint32_t out[4 * 64];
+    /* 2 tiles a unit, 48 hairs a tile: the short fin 0.1 tile, 4.8 -> 5. */
+    size_t n = pelt__outline_hairs(fins, 3, pos, STRIDE, 2.0f, 48.0f, PELT__OUTLINE_LEAST_FADE, out, 64);
+    CHECK(n == 5 + PELT__OUTLINE_HAIRS_MAX);
+    for (size_t h = 0; h < n && h < 64; h++) {
+        bool first = h < 5;
+        CHECK(out[4 * h] == (first ? 0u : 1u) && out[4 * h + 1] == (first ? 1u : 2u));
+        CHECK(out[4 * h + 2] == (uint32_t)(first ? h : h - 5));
+        float fade;
+        memcpy(&fade, &out[4 * h + 3], sizeof fade);
+        CHECK(fade == (first ? 0.9f : 1.0f));
+    }
+    CHECK(pelt__outline_hairs(fins, 3, pos, STRIDE, 2.0f, 48.0f, PELT__OUTLINE_LEAST_FADE, out, 7) == 7);
+    CHECK(pelt__outline_hairs(fins, 3, pos, STRIDE, 2.0f, 0.0f, PELT__OUTLINE_LEAST_FADE, out, 64) == 0);
+    CHECK(pelt__outline_hairs(fins, 3, pos, STRIDE, 2.0f, 48.0f, 0.0f, out, 64) == 10 + PELT__OUTLINE_HAIRS_MAX);
+}
+
 /* The rows of a fin frame: as few as follow the strands within row_error.
  * Straight strands at rest need one; a curled strand (bowed by about its
  * curl radius) needs more the smaller the error, never more than asked. */
@@ -953,6 +989,7 @@ int main(void)
     RUN(lod_fins_closer_than_their_slab_fade);
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);
     RUN(lod_fin_rows_follow_the_strands_bow);
+    RUN(lod_outline_hairs_follow_the_fins_near_the_outline);
     RUN(lod_fur_texture_keeps_the_short_side_sharp);
     RUN(lod_fur_texture_taps_split_a_long_footprint);
     RUN(lod_fur_edge_keeps_a_hair_its_width);

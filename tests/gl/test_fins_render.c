@@ -8,6 +8,8 @@
 #include "core/base/vec.h"
 #include "gl/shaders/bindings.glsl"
 
+#include <math.h>
+
 enum { W = 240, H = 180 };
 #define NPX ((size_t)W * H)
 #define DT (1.0f / 60.0f)
@@ -93,6 +95,51 @@ static void fins_widen_the_silhouette(void)
     }
     free(a);
     free(b);
+}
+
+/* The band's pixels' off-background amounts (band_amount's, each over
+ * 255): their mean and coefficient of variation. */
+static void band_spread(const uint8_t *edge, int r, const uint8_t *img, double *mean, double *cv)
+{
+    double sum = 0.0, sq = 0.0;
+    size_t n = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            if (near_covered(edge, x, y, 0) || !near_covered(edge, x, y, r)) continue;
+            double a = gl_test_off_background(img + 4 * ((size_t)y * W + (size_t)x)) / 255.0;
+            sum += a, sq += a * a, n++;
+        }
+    *mean = n ? sum / (double)n : 0.0;
+    double var = n ? sq / (double)n - *mean * *mean : 0.0;
+    *cv = *mean > 0.0 ? sqrt(var > 0.0 ? var : 0.0) / *mean : 0.0;
+}
+
+/* The outline's hairs (fins.hairs): in place of the fin texture's quads,
+ * single hairs cross the outline. The band outside the shells' own
+ * silhouette holds about as much fur as the quads put there (0.5 to 2
+ * times), but as hairs against the background: its pixels vary more
+ * from one to the next (coefficient of variation at least 1.2 times the
+ * quads'). */
+static void outline_hairs_cross_the_outline_as_single_hairs(void)
+{
+    const pelt_fur_desc quads = {.length = 0.15f}, hairs = {.length = 0.15f, .fins.hairs = 0.5f};
+    const pelt_draw_desc shells = {.no_fins = true};
+    uint8_t *a = gl_test_render(gl, torus, &quads, &torus_cam, &shells, NULL, NULL);
+    uint8_t *q = a ? gl_test_render(gl, torus, &quads, &torus_cam, NULL, NULL, NULL) : NULL;
+    uint8_t *h = q ? gl_test_render(gl, torus, &hairs, &torus_cam, NULL, NULL, NULL) : NULL;
+    CHECK(a && q && h);
+    if (a && q && h) {
+        double mq, cq, mh, ch;
+        band_spread(a, 6, q, &mq, &cq);
+        band_spread(a, 6, h, &mh, &ch);
+        printf("  band outside the shells' silhouette: quads mean %.3f (cv %.2f), hairs mean %.3f (cv %.2f)\n", mq,
+               cq, mh, ch);
+        CHECK(mh >= 0.5 * mq && mh <= 2.0 * mq);
+        CHECK(ch >= 1.2 * cq);
+    }
+    free(a);
+    free(q);
+    free(h);
 }
 
 /* (ii) Seen head-on, a flat furry square renders the same with and without
@@ -403,6 +450,7 @@ int main(void)
     gl_test_meshes(&torus, &square);
     CHECK(pelt_mesh_sphere(1.0f, 32, 16, &sphere, NULL) == PELT_OK);
     RUN(fins_widen_the_silhouette);
+    RUN(outline_hairs_cross_the_outline_as_single_hairs);
     RUN(fins_fade_head_on_and_show_at_grazing_views);
     RUN(fins_stay_on_the_fur_in_a_gale);
     RUN(inter_fur_shadows_make_hairs_stand_out);

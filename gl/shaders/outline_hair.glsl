@@ -1,0 +1,72 @@
+// The outline's hairs (docs/method.md, Hair across the outline): each fin
+// near the silhouette also carries a few of the hairs it stands for as
+// geometry, so the outline shows single hairs against the background, as
+// the strand reference does, where the fin texture read at a pixel's
+// footprint can only show their average. A hair's draws come from a hash
+// of its fin's two vertices and its number on the fin, so it stays the
+// same hair from frame to frame. Mirrored by pelt__outline_random and
+// pelt__outline_alpha (core/fur/fins.c).
+
+// The most hairs a fin carries: the hairs beyond its share are collapsed.
+const int OUTLINE_HAIRS_MAX = 32; // PELT__OUTLINE_HAIRS_MAX
+
+// Murmur3's 32-bit finaliser (pelt__hash32).
+uint outline_hash(uint h)
+{
+    h ^= h >> 16u;
+    h *= 0x85ebca6bu;
+    h ^= h >> 13u;
+    h *= 0xc2b2ae35u;
+    h ^= h >> 16u;
+    return h;
+}
+
+// The seed of hair k on the fin between fin vertices a and b.
+uint outline_seed(uint a, uint b, uint k)
+{
+    return outline_hash(a * 0x27d4eb2du ^ outline_hash(b ^ (k * 0x165667b1u)));
+}
+
+// The hair's i-th draw, uniform in [0, 1): 24 bits of the hash.
+float outline_random(uint seed, uint i)
+{
+    return float(outline_hash(seed + i * 0x9e3779b9u) >> 8u) * (1.0 / 16777216.0);
+}
+
+// How much of hair k a fin shows: its share of the hairs (count, the fin's
+// edge times the hairs a tile of edge holds, may be fractional) and its
+// fin's fade against the hair's own threshold `show` (so a fainter fin has
+// fewer hairs, each as sharp, rather than fainter ones), a fade of 0.25
+// wide so that none pops.
+float outline_alpha(float k, float count, float fade, float show)
+{
+    return clamp(count - k, 0.0, 1.0) * clamp((fade - show) * 4.0, 0.0, 1.0);
+}
+
+// The hair's lean along the edge at its tip, a share of its length, from
+// its draw r: up to 0.4 either way (the strand reference's hairs cross the
+// outline at angles of their own; a fin's all rise along its strands).
+float outline_lean(float r)
+{
+    return (r - 0.5) * 0.8;
+}
+
+// The hair's point at height h: the fin's strand point p at the hair's
+// place on the edge, its offset from the root scaled by the hair's length
+// (0.6 to 1 of the full length from the draw r_len, as the fur texture's
+// strands) and leaning along the edge's unit direction `along` by
+// outline_lean of the offset's length times h. w: the length share.
+vec4 outline_shape(vec3 root, vec3 p, vec3 along, float r_len, float r_lean, float h)
+{
+    float share = 0.6 + 0.4 * r_len;
+    vec3 o = p - root;
+    return vec4(root + share * (o + along * (outline_lean(r_lean) * length(o) * h)), share);
+}
+
+// The hair's direction there, unnormalised: the strand's unit tangent t
+// and the lean's growth (the offset's length is about the hair's times h).
+vec3 outline_tangent(vec3 t, vec3 along, float r_lean, float h)
+{
+    vec3 u = dot(t, t) > 1e-20 ? normalize(t) : vec3(0.0);
+    return u + along * (2.0 * outline_lean(r_lean) * h);
+}
