@@ -134,6 +134,7 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
     const pelt_fur_desc d = pelt_fur_get_desc(fur);
     p->hairs_per_tile = outline_hairs_per_tile(&d);
     p->tiling = d.look.tiling;
+    p->slab = d.fins.density / (float)d.look.texture_size;
     if (p->hairs_per_tile > 0.0f) {
         p->hairs = pelt__alloc(&p->alloc, PELT__OUTLINE_HAIR_BUDGET * 4 * sizeof *p->hairs);
         if (!p->hairs) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the outline's hairs");
@@ -209,10 +210,21 @@ void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f)
     float hairs = p->hairs_per_tile;
     unsigned features = f->shell_features & PELT__OUTLINE_FEATURES;
     if (!p->hairs || fins == 0 || !build_outline(p, features)) return;
-    const float *m = f->view->model;
-    float scale = sqrtf(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
-    size_t count = pelt__outline_hairs(p->fins, fins, p->vertices, 4 * PELT_FIN_VERTEX_TEXELS, scale * p->tiling,
-                                       hairs, PELT__OUTLINE_LEAST_FADE, p->hairs, PELT__OUTLINE_HAIR_BUDGET);
+    /* The eye in mesh units: the model's inverse (rotation, uniform scale
+     * and translation) applied to it. */
+    const float *m = f->view->model, *e = f->view->eye;
+    float s2 = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+    float dx = e[0] - m[12], dy = e[1] - m[13], dz = e[2] - m[14];
+    pelt__outline_frame of = {p->vertices,
+                              4 * PELT_FIN_VERTEX_TEXELS,
+                              4 * 2 * PELT_FIN_HEIGHTS,
+                              {(m[0] * dx + m[1] * dy + m[2] * dz) / s2, (m[4] * dx + m[5] * dy + m[6] * dz) / s2,
+                               (m[8] * dx + m[9] * dy + m[10] * dz) / s2},
+                              sqrtf(s2) * p->tiling,
+                              p->slab,
+                              hairs,
+                              PELT__OUTLINE_LEAST_FADE};
+    size_t count = pelt__outline_hairs(p->fins, fins, &of, p->hairs, PELT__OUTLINE_HAIR_BUDGET);
     if (count == 0) return;
     table_write(PELT_UNIT_FIN_EDGES, p->hair_table, GL_RGBA32UI, p->hairs, count);
     f->stats->upload_bytes += 16 * count;

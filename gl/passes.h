@@ -89,6 +89,7 @@ typedef struct pelt__fin_pass {
     float *vertices;
     float hairs_per_tile; /* the outline's hairs a fur tile of a fin's edge holds (0: none) */
     float tiling;        /* the fur's tiles a mesh unit */
+    float slab;          /* the fin texture's slab, fur tiles */
     uint32_t *hairs;     /* the outline's hairs, staging (NULL: the fur has none) */
     GLuint hair_table;   /* and their table, bound to PELT_UNIT_FIN_EDGES to draw */
     pelt_allocator alloc;

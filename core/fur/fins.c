@@ -96,44 +96,48 @@ static float clamp01(float x)
 
 float pelt__outline_alpha(float k, float count, float fade, float show)
 {
-    return clamp01(count - k) * clamp01((fade - show) * 4.0f);
+    float more = count / (float)PELT__OUTLINE_HAIRS_MAX;
+    return clamp01(count - k) * clamp01((fade - show) * 4.0f) * (more > 1.0f ? more : 1.0f);
 }
 
 float pelt__outline_lean(float r)
 {
-    return (r - 0.5f) * 0.8f;
+    return (r - 0.5f) * 2.0f;
 }
 
 void pelt__outline_shape(pelt_vec3 root, pelt_vec3 p, pelt_vec3 along, float r_len, float r_lean, float h,
                          float out[4])
 {
     float share = 0.6f + 0.4f * r_len;
-    pelt_vec3 o = v3_sub(p, root);
-    pelt_vec3 q = v3_add(root, v3_scale(v3_add(o, v3_scale(along, pelt__outline_lean(r_lean) * v3_len(o) * h)), share));
+    pelt_vec3 q = v3_add(v3_add(root, v3_scale(v3_sub(p, root), share)), v3_scale(along, pelt__outline_lean(r_lean) * h));
     out[0] = q.x, out[1] = q.y, out[2] = q.z, out[3] = share;
 }
 
-pelt_vec3 pelt__outline_tangent(pelt_vec3 t, pelt_vec3 along, float r_lean, float h)
+float pelt__outline_fade(pelt_vec3 a, pelt_vec3 b, pelt_vec3 na, pelt_vec3 nb, pelt_vec3 eye, float tiles_per_unit,
+                         float slab)
 {
-    pelt_vec3 u = v3_dot(t, t) > 1e-20f ? v3_scale(t, 1.0f / v3_len(t)) : v3(0.0f, 0.0f, 0.0f);
-    return v3_add(u, v3_scale(along, 2.0f * pelt__outline_lean(r_lean) * h));
+    pelt_vec3 ray = v3_norm_or(v3_sub(v3_scale(v3_add(a, b), 0.5f), eye), v3(0.0f, 0.0f, 0.0f));
+    float fade = pelt__fin_fade(pelt__fin_normal(a, b, na, nb), ray);
+    return fade * pelt__fin_spacing_opacity(v3_len(v3_sub(b, a)) * tiles_per_unit, slab);
 }
 
-size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const float *positions, size_t stride,
-                           float tiles_per_unit, float hairs, float least, uint32_t *out, size_t cap)
+size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const pelt__outline_frame *f, uint32_t *out,
+                           size_t cap)
 {
     size_t n = 0;
     for (size_t i = 0; i < count && n < cap; i++) {
-        const uint32_t *f = fins + 4 * i;
-        float fade;
-        memcpy(&fade, &f[3], sizeof fade);
-        if (!(fade >= least)) continue;
-        pelt_vec3 a = v3_load(positions + (size_t)f[0] * stride), b = v3_load(positions + (size_t)f[1] * stride);
-        float want = ceilf(v3_len(v3_sub(b, a)) * tiles_per_unit * hairs);
+        const uint32_t *fin = fins + 4 * i;
+        const float *va = f->vertices + (size_t)fin[0] * f->stride, *vb = f->vertices + (size_t)fin[1] * f->stride;
+        pelt_vec3 a = v3_load(va), b = v3_load(vb);
+        float fade = pelt__outline_fade(a, b, v3_load(va + f->normal), v3_load(vb + f->normal), v3_load(f->eye),
+                                        f->tiles_per_unit, f->slab);
+        if (!(fade >= f->least)) continue;
+        float want = ceilf(v3_len(v3_sub(b, a)) * f->tiles_per_unit * f->hairs);
         uint32_t k_end = !(want > 0.0f) ? 0u : want > (float)PELT__OUTLINE_HAIRS_MAX ? PELT__OUTLINE_HAIRS_MAX : (uint32_t)want;
         for (uint32_t k = 0; k < k_end && n < cap; k++, n++) {
             uint32_t *h = out + 4 * n;
-            h[0] = f[0], h[1] = f[1], h[2] = k, h[3] = f[3];
+            h[0] = fin[0], h[1] = fin[1], h[2] = k;
+            memcpy(&h[3], &fade, sizeof fade);
         }
     }
     return n;

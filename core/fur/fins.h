@@ -60,15 +60,33 @@ uint32_t pelt__outline_seed(uint32_t a, uint32_t b, uint32_t k);
 /* The most hairs a frame draws (the table's room, 16 bytes each). */
 #define PELT__OUTLINE_HAIR_BUDGET 65536
 
+/* Where the outline's hairs of a frame are drawn from. */
+typedef struct pelt__outline_frame {
+    const float *vertices;  /* the fin vertex table: vertex v's root at
+                               vertices[v * stride], its normal at
+                               vertices[v * stride + normal] */
+    size_t stride, normal;  /* floats */
+    float eye[3];           /* the eye in mesh units */
+    float tiles_per_unit;   /* fur tiles a mesh unit along an edge */
+    float slab;             /* the fin texture's slab, fur tiles */
+    float hairs;            /* hairs a fur tile of edge holds */
+    float least;            /* the least fade that carries hairs */
+} pelt__outline_frame;
+
+/* The fade of the fin from a to b (normals na, nb) seen from `eye`:
+ * Lengyel's 2|p| - 1 with p the fin normal's cosine to the ray from the eye
+ * to the edge's middle (a close view's outline is where that ray grazes,
+ * not the view direction's), times pelt__fin_spacing_opacity. */
+float pelt__outline_fade(pelt_vec3 a, pelt_vec3 b, pelt_vec3 na, pelt_vec3 nb, pelt_vec3 eye, float tiles_per_unit,
+                         float slab);
+
 /* The outline's hairs of a frame's fins (`fins`: `count` fins of 4 words,
- * the fin vertex table's indices a, b, the texture start and the fade's
- * bits, core/fur/fur_gpu.h; `positions`: the fin vertex table, whose
- * vertex v's root is at positions[v * stride]): for every fin whose fade
- * is at least `least`, its hairs k < min(ceil(edge * hairs), MAX), edge the
- * fin's length in fur tiles (mesh units times tiles_per_unit), written as
- * (a, b, k, fade bits) into `out`, at most `cap`. Returns how many. */
-size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const float *positions, size_t stride,
-                           float tiles_per_unit, float hairs, float least, uint32_t *out, size_t cap);
+ * the fin vertex table's indices a, b first, core/fur/fur_gpu.h): for every
+ * fin whose pelt__outline_fade is at least f->least, its hairs
+ * k < min(ceil(edge * hairs), MAX), edge its length in fur tiles, written
+ * as (a, b, k, fade bits) into `out`, at most `cap`. Returns how many. */
+size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const pelt__outline_frame *f, uint32_t *out,
+                           size_t cap);
 
 /* The hair's i-th draw, uniform in [0, 1): 0 its place along the edge,
  * 1 its length, 2 its lean, 3 the fade it shows from, 4 its shade, 5 its
@@ -76,18 +94,18 @@ size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const float *posi
 float pelt__outline_random(uint32_t seed, uint32_t i);
 
 /* How much of hair k its fin shows: its share of the fin's `count` hairs
- * and the fin's fade against the hair's threshold `show`. */
+ * and the fin's fade against the hair's threshold `show`; above 1 where
+ * the fin stands for more hairs than PELT__OUTLINE_HAIRS_MAX (each drawn
+ * one covers for count / MAX). */
 float pelt__outline_alpha(float k, float count, float fade, float show);
 
-/* The hair's lean along the edge at its tip, a share of its length. */
+/* The hair's lean along the edge at its tip, in its root widths. */
 float pelt__outline_lean(float r);
 
 /* The hair's point at h from its fin's strand point p at its root's place
- * on the edge (unit direction `along`), and its length share in out[3]. */
+ * on the edge, leaning along `along` (the edge's unit direction times the
+ * hair's root width); its length share in out[3]. */
 void pelt__outline_shape(pelt_vec3 root, pelt_vec3 p, pelt_vec3 along, float r_len, float r_lean, float h,
                          float out[4]);
-
-/* Its direction there, unnormalised, from the strand's tangent t. */
-pelt_vec3 pelt__outline_tangent(pelt_vec3 t, pelt_vec3 along, float r_lean, float h);
 
 #endif

@@ -37,36 +37,29 @@ float outline_random(uint seed, uint i)
 // edge times the hairs a tile of edge holds, may be fractional) and its
 // fin's fade against the hair's own threshold `show` (so a fainter fin has
 // fewer hairs, each as sharp, rather than fainter ones), a fade of 0.25
-// wide so that none pops.
+// wide so that none pops. Where the fin stands for more hairs than it
+// draws, each drawn one covers for count / OUTLINE_HAIRS_MAX of them.
 float outline_alpha(float k, float count, float fade, float show)
 {
-    return clamp(count - k, 0.0, 1.0) * clamp((fade - show) * 4.0, 0.0, 1.0);
+    return clamp(count - k, 0.0, 1.0) * clamp((fade - show) * 4.0, 0.0, 1.0) *
+           max(1.0, count / float(OUTLINE_HAIRS_MAX));
 }
 
-// The hair's lean along the edge at its tip, a share of its length, from
-// its draw r: up to 0.4 either way (the strand reference's hairs cross the
-// outline at angles of their own; a fin's all rise along its strands).
+// The hair's lean along the edge at its tip in its root widths, from its
+// draw r: up to one either way, as the fur texture's strands lean (two
+// radii over the full height, core/fur/furtex.c).
 float outline_lean(float r)
 {
-    return (r - 0.5) * 0.8;
+    return (r - 0.5) * 2.0;
 }
 
 // The hair's point at height h: the fin's strand point p at the hair's
 // place on the edge, its offset from the root scaled by the hair's length
 // (0.6 to 1 of the full length from the draw r_len, as the fur texture's
-// strands) and leaning along the edge's unit direction `along` by
-// outline_lean of the offset's length times h. w: the length share.
+// strands), leaning along `along` (the edge's unit direction times the
+// hair's root width) by outline_lean times h. w: the length share.
 vec4 outline_shape(vec3 root, vec3 p, vec3 along, float r_len, float r_lean, float h)
 {
     float share = 0.6 + 0.4 * r_len;
-    vec3 o = p - root;
-    return vec4(root + share * (o + along * (outline_lean(r_lean) * length(o) * h)), share);
-}
-
-// The hair's direction there, unnormalised: the strand's unit tangent t
-// and the lean's growth (the offset's length is about the hair's times h).
-vec3 outline_tangent(vec3 t, vec3 along, float r_lean, float h)
-{
-    vec3 u = dot(t, t) > 1e-20 ? normalize(t) : vec3(0.0);
-    return u + along * (2.0 * outline_lean(r_lean) * h);
+    return vec4(root + share * (p - root) + along * (outline_lean(r_lean) * h), share);
 }

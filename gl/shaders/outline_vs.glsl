@@ -55,14 +55,13 @@ void main()
     vec3 root = mix(root_a, root_b, at);
     vec3 p = mix(fin_vertex(e.x, 2 * row).xyz, fin_vertex(e.y, 2 * row).xyz, at);
     vec3 t = mix(fin_vertex(e.x, 2 * row + 1).xyz, fin_vertex(e.y, 2 * row + 1).xyz, at);
-    // Its own length (the fur texture's strands are 0.6 to 1 of the full
-    // length) and its own lean along the edge, growing up the hair.
+    // Its own length and lean (outline_shape), as the fur texture's strands.
+    float scale = length(mat3(u_model)[0]);
     vec3 along = root_b - root_a;
-    along = dot(along, along) > 1e-20 ? normalize(along) : vec3(0.0);
+    along = dot(along, along) > 1e-20 ? normalize(along) * (u_hair_width / scale) : vec3(0.0);
     vec4 shape = outline_shape(root, p, along, outline_random(seed, 1u), outline_random(seed, 2u), h);
     vec4 world = u_model * vec4(shape.xyz, 1.0);
-    vec3 T = normalize(mat3(u_model) * outline_tangent(t, along, outline_random(seed, 2u), h));
-    float scale = length(mat3(u_model)[0]);
+    vec3 T = normalize(mat3(u_model) * t);
 
     // The ribbon across the hair as the eye sees it, its half width in
     // pixels from the projection's derivative along it.
@@ -75,7 +74,7 @@ void main()
     float half_px = 0.5 * u_hair_width * (1.0 - u_taper * h) * scale * px_per_unit;
     float drawn = max(half_px, 0.5);
     world.xyz += across * ((side == 0 ? -1.0 : 1.0) * drawn / max(px_per_unit, 1e-12));
-    v_alpha = alpha * min(half_px / drawn, 1.0);
+    v_alpha = min(alpha * half_px / drawn, 1.0);
 
     vec4 ex = fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS + 1); // uv, colour bytes two a float
     vec4 hair_color = vec4(floor(ex.z / 256.0), mod(ex.z, 256.0), floor(ex.w / 256.0), mod(ex.w, 256.0)) / 255.0;

@@ -523,27 +523,30 @@ static void lod_fins_closer_than_their_slab_fade(void)
 }
 
 /* The outline's hairs of a frame's fins (pelt__outline_hairs): a fin
- * faded below the least fade carries none; the others as many as their
- * edge in tiles times the hairs a tile holds, rounded up, at most
- * PELT__OUTLINE_HAIRS_MAX; each names its fin's two vertices, its number
- * and the fin's fade; the table's room is kept. */
+ * that faces the eye's ray (its fade 0) carries none; the others as many
+ * as their edge in tiles times the hairs a tile holds, rounded up, at
+ * most PELT__OUTLINE_HAIRS_MAX; each names its fin's two vertices, its
+ * number and the fin's fade; the table's room is kept. The fade is the
+ * eye's ray's, not the view direction's. */
 static void lod_outline_hairs_follow_the_fins_near_the_outline(void)
 {
     enum { STRIDE = 8 };
-    /* Three fin vertices on a line, 0.05 and 2 units apart. */
-    float pos[3 * STRIDE] = {0};
-    pos[STRIDE] = 0.05f;
-    pos[2 * STRIDE] = 2.05f;
-    const float fades[3] = {0.3f, 0.9f, 1.0f};
-    const uint32_t ends[3][2] = {{0, 1}, {0, 1}, {1, 2}};
-    uint32_t fins[12];
-    for (int i = 0; i < 3; i++) {
-        fins[4 * i] = ends[i][0], fins[4 * i + 1] = ends[i][1], fins[4 * i + 2] = 77u;
-        memcpy(&fins[4 * i + 3], &fades[i], sizeof(float));
+    /* Vertices on the x axis (0, 0.05, 2.05), normals +y (a fin facing
+     * the eye on +z: its fade 1), and the first two again with normals +z
+     * (a fin seen edge-on: fade 0). */
+    const float xs[5] = {0.0f, 0.05f, 2.05f, 0.0f, 0.05f};
+    float v[5 * STRIDE] = {0};
+    for (int i = 0; i < 5; i++) {
+        v[i * STRIDE] = xs[i];
+        v[i * STRIDE + (i < 3 ? 5 : 6)] = 1.0f;
     }
-    uint32_t out[4 * 64];
+    const uint32_t ends[3][2] = {{3, 4}, {0, 1}, {1, 2}};
+    uint32_t fins[12] = {0};
+    for (int i = 0; i < 3; i++) fins[4 * i] = ends[i][0], fins[4 * i + 1] = ends[i][1];
     /* 2 tiles a unit, 48 hairs a tile: the short fin 0.1 tile, 4.8 -> 5. */
-    size_t n = pelt__outline_hairs(fins, 3, pos, STRIDE, 2.0f, 48.0f, PELT__OUTLINE_LEAST_FADE, out, 64);
+    pelt__outline_frame f = {v, STRIDE, 4, {0.025f, 0.0f, 100.0f}, 2.0f, 0.01f, 48.0f, PELT__OUTLINE_LEAST_FADE};
+    uint32_t out[4 * 64];
+    size_t n = pelt__outline_hairs(fins, 3, &f, out, 64);
     CHECK(n == 5 + PELT__OUTLINE_HAIRS_MAX);
     for (size_t h = 0; h < n && h < 64; h++) {
         bool first = h < 5;
@@ -551,11 +554,17 @@ static void lod_outline_hairs_follow_the_fins_near_the_outline(void)
         CHECK(out[4 * h + 2] == (uint32_t)(first ? h : h - 5));
         float fade;
         memcpy(&fade, &out[4 * h + 3], sizeof fade);
-        CHECK(fade == (first ? 0.9f : 1.0f));
+        CHECK(fade > 0.99f && fade <= 1.0f);
     }
-    CHECK(pelt__outline_hairs(fins, 3, pos, STRIDE, 2.0f, 48.0f, PELT__OUTLINE_LEAST_FADE, out, 7) == 7);
-    CHECK(pelt__outline_hairs(fins, 3, pos, STRIDE, 2.0f, 0.0f, PELT__OUTLINE_LEAST_FADE, out, 64) == 0);
-    CHECK(pelt__outline_hairs(fins, 3, pos, STRIDE, 2.0f, 48.0f, 0.0f, out, 64) == 10 + PELT__OUTLINE_HAIRS_MAX);
+    CHECK(pelt__outline_hairs(fins, 3, &f, out, 7) == 7);
+    /* Seen from the side (the eye on +y), the first fin faces the ray. */
+    f.eye[1] = 100.0f, f.eye[2] = 0.0f;
+    CHECK(pelt__outline_hairs(fins, 3, &f, out, 64) == 5);
+    f.hairs = 0.0f;
+    CHECK(pelt__outline_hairs(fins, 3, &f, out, 64) == 0);
+    /* Closer than the slab, a fin fades by the ratio (0.1 of 0.2 tiles). */
+    pelt_vec3 a = v3(0, 0, 0), b = v3(0.05f, 0, 0), n_up = v3(0, 1, 0);
+    CHECK(fabsf(pelt__outline_fade(a, b, n_up, n_up, v3(0.025f, 0, 100), 2.0f, 0.2f) - 0.5f) < 1e-3f);
 }
 
 /* The rows of a fin frame: as few as follow the strands within row_error.
