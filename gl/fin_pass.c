@@ -10,7 +10,6 @@
 #include "core/base/error.h"
 #include "core/base/hooks.h"
 #include "core/base/vec.h"
-#include "core/fur/fins.h"
 #include "core/fur/fur_gpu.h"
 #include "gl/programs.h"
 

@@ -9,7 +9,7 @@
 
 #include "pelt/fur.h"
 
-#include "core/fur/fins.h"
+#include "core/fur/fins.h" /* the fins and the outline's hairs (gl/fin_pass.c) */
 #include "core/fur/lod.h"
 #include "core/fur/shadow_map.h" /* the light's maps (gl/shadow_pass.c, renderer.c) */
 #include "core/fur/strand_ref.h" /* the strand reference (gl/strands_pass.c) */
