@@ -40,8 +40,9 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
 {
     char defines[PELT__FEATURE_DEFINES_MAX];
     pelt__shell_feature_defines(features & PELT__FIN_FEATURES, defines);
-    const char *vs[] = {defines,           pelt__shader_shading,   pelt__shader_shadow_map, pelt__shader_fur_light,
-                        pelt__shader_fur_shape, pelt__shader_own_light, pelt__shader_fin_vs,     NULL};
+    const char *vs[] = {defines,                   pelt__shader_shading,   pelt__shader_shadow_map,
+                        pelt__shader_fur_light,    pelt__shader_fur_shape, pelt__shader_own_light,
+                        pelt__shader_outline_hair, pelt__shader_fin_vs,    NULL};
     const char *fs[] = {defines,           pelt__shader_shading,   pelt__shader_fur_shape, pelt__shader_own_light,
                         pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_fin_fs,    NULL};
     pelt_status st = pelt__gl_program_create("fin", vs, fs, &p->hooks, &p->variants[features], err);
@@ -52,6 +53,8 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     p->fin_count[features] = glGetUniformLocation(p->variants[features], "u_fin_count");
     p->fin_rows[features] = glGetUniformLocation(p->variants[features], "u_fin_rows");
     p->fin_first[features] = glGetUniformLocation(p->variants[features], "u_fin_first");
+    p->fin_hairs[features] = glGetUniformLocation(p->variants[features], "u_outline_on");
+    p->fin_viewport[features] = glGetUniformLocation(p->variants[features], "u_viewport");
     return PELT_OK;
 }
 
@@ -134,6 +137,10 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
     p->hairs_per_tile = outline_hairs_per_tile(&d);
     p->tiling = d.look.tiling;
     p->slab = d.fins.density / (float)d.look.texture_size;
+    /* Fur that curls in its texture keeps the fin texture's quads, which
+     * carry its ringlets and curl (the hairs rise along the vertex strands
+     * alone). */
+    p->curled = fs->ringlet_levels > 1 || d.look.strand_curl > 0.0f || d.fins.curl > 0.0f;
     if (p->hairs_per_tile > 0.0f) {
         p->hairs = pelt__alloc(&p->alloc, PELT__OUTLINE_HAIR_BUDGET * 4 * sizeof *p->hairs);
         if (!p->hairs) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for the outline's hairs");
@@ -192,6 +199,8 @@ static void draw_fins(pelt__fin_pass *p, const pelt__pass_frame *f, unsigned fea
     glUniform1i(p->fin_first[features], (GLint)first);
     glUniform1i(p->fin_count[features], (GLint)end);
     glUniform1i(p->fin_rows[features], (GLint)rows);
+    glUniform1i(p->fin_hairs[features], p->hairs_on);
+    if (p->hairs_on) glUniform2f(p->fin_viewport[features], p->viewport[0], p->viewport[1]);
     const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
     glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
                             (GLsizei)((end - first + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
@@ -208,7 +217,7 @@ void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f)
     p->frame_fins = 0;
     float hairs = p->hairs_per_tile;
     unsigned features = f->shell_features & PELT__OUTLINE_FEATURES;
-    if (!p->hairs || fins == 0 || !build_outline(p, features)) return;
+    if (!p->hairs_on || fins == 0 || !build_outline(p, features)) return;
     /* The eye in mesh units: the model's inverse (rotation, uniform scale
      * and translation) applied to it. */
     const float *m = f->view->model, *e = f->view->eye;
@@ -235,15 +244,7 @@ void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f)
     glUniform1i(p->outline_count[features], (GLint)count);
     glUniform1i(p->outline_rows[features], (GLint)rows);
     glUniform1f(p->outline_hairs[features], hairs);
-    /* A hair's width in pixels needs the viewport's: the view's, or GL's
-     * where the view leaves it out (0). */
-    float vw = (float)f->view->width, vh = (float)f->view->height;
-    if (vw <= 0.0f || vh <= 0.0f) {
-        GLint vp[4];
-        glGetIntegerv(GL_VIEWPORT, vp);
-        vw = (float)vp[2], vh = (float)vp[3];
-    }
-    glUniform2f(p->outline_viewport[features], vw, vh);
+    glUniform2f(p->outline_viewport[features], p->viewport[0], p->viewport[1]);
     const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
     glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
                             (GLsizei)((count + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
@@ -269,26 +270,30 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
     const unsigned wet_bits = PELT__SHELL_WET;
     const pelt__gpu_mesh *mesh = f->mesh;
     bool split = (f->shell_features & wet_bits) && level == 0 && mesh->split_ok && !f->draw->debug.no_wet_split;
-    /* Where the outline's hairs stand in for the fin texture, its fade
-     * alone says how many a fin carries (the sub shells' share is the
-     * quads' own). */
-    const bool hairs = p->hairs != NULL;
     pelt__fin_frame_desc fd = {level, PELT_FIN_ROWS, f->lod.fin_row_error, {local.x, local.y, local.z},
                                f->draw->fins_unfaded, f->lod.cull && !f->draw->no_skin,
                                split ? mesh->split.vertex_wet : NULL,
-                               f->lod.sub_shells > 1 && !hairs ? 1.0f / (float)f->lod.sub_shells : 1.0f};
+                               f->lod.sub_shells > 1 ? 1.0f / (float)f->lod.sub_shells : 1.0f};
     unsigned rows;
     size_t dry = 0;
     size_t count = pelt__fur_gpu_fin_frame(p->fur, &fd, p->fins, p->vertices, &rows, &dry);
     p->frame_fins = count;
     p->frame_rows = rows;
+    p->hairs_on = p->hairs && !p->curled && !f->draw->no_outline_hairs && !f->draw->fins_unfaded;
+    /* A hair's length and width in pixels need the viewport's: the view's,
+     * or GL's where the view leaves it out (0). */
+    p->viewport[0] = (float)f->view->width, p->viewport[1] = (float)f->view->height;
+    if (p->hairs_on && (f->view->width == 0 || f->view->height == 0)) {
+        GLint vp[4];
+        glGetIntegerv(GL_VIEWPORT, vp);
+        p->viewport[0] = (float)vp[2], p->viewport[1] = (float)vp[3];
+    }
     if (count == 0) return;
     table_write(PELT_UNIT_FIN_VERTICES, p->vertex_table, GL_RGBA32F, p->vertices,
                 l->fin_vertex_count * PELT_FIN_VERTEX_TEXELS);
     f->stats->upload_bytes += 16 * l->fin_vertex_count * PELT_FIN_VERTEX_TEXELS;
     f->stats->fins += count;
     f->stats->fin_rows = rows;
-    if (hairs) return; /* the hairs stand in for the fin texture's quads (the outline pass) */
     table_write(PELT_UNIT_FIN_EDGES, p->edges, GL_RGBA32UI, p->fins, count);
     f->stats->upload_bytes += 16 * count;
     pelt__gl_blended_hair_state();

@@ -70,6 +70,8 @@ typedef struct pelt__fin_pass {
     GLint fin_count[PELT__SHELL_VARIANTS]; /* u_fin_count */
     GLint fin_rows[PELT__SHELL_VARIANTS];  /* u_fin_rows */
     GLint fin_first[PELT__SHELL_VARIANTS]; /* u_fin_first */
+    GLint fin_hairs[PELT__SHELL_VARIANTS]; /* u_outline_on: the outline's hairs take over from the quads */
+    GLint fin_viewport[PELT__SHELL_VARIANTS]; /* u_viewport */
     /* The outline's hairs (outline_vs.glsl), by the PELT__OUTLINE_FEATURES bits. */
     GLuint outline[PELT__OUTLINE_FEATURES + 1];
     bool outline_failed[PELT__OUTLINE_FEATURES + 1];
@@ -90,6 +92,9 @@ typedef struct pelt__fin_pass {
     float hairs_per_tile; /* the outline's hairs a fur tile of a fin's edge holds (0: none) */
     float tiling;        /* the fur's tiles a mesh unit */
     float slab;          /* the fin texture's slab, fur tiles */
+    float viewport[2];   /* this frame's, pixels */
+    bool curled;         /* the fur curls in its texture: the quads alone */
+    bool hairs_on;       /* this frame draws the outline's hairs */
     uint32_t *hairs;     /* the outline's hairs, staging (NULL: the fur has none) */
     GLuint hair_table;   /* and their table, bound to PELT_UNIT_FIN_EDGES to draw */
     pelt_allocator alloc;

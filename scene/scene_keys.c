@@ -99,6 +99,7 @@ static const pelt__scene_key scene_keys[] = {
     {"draw.shells", K_NOT, OFF(draw.debug.no_shells), 0, 0, 0, 0, 0, NULL},
     {"draw.shell_depth", K_NOT, OFF(draw.debug.no_shell_depth), 0, 0, 0, 0, 0, NULL},
     {"draw.fins_unfaded", K_BOOL, OFF(draw.fins_unfaded), 0, 0, 0, 0, 0, NULL},
+    {"draw.outline_hairs", K_NOT, OFF(draw.no_outline_hairs), 0, 0, 0, 0, 0, NULL},
     UINT_("draw.first_layer", draw.first_layer, 0, 255, 0),
     UINT_("draw.layer_count", draw.layer_count, 0, 256, 0),
     ENUM("render.mode", draw.mode, render_mode_names),

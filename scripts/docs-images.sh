@@ -245,21 +245,21 @@ img_groom_maps() {
 # docs/gallery-fins.md: Lengyel Fig. 4 a-e, Kenwright Fig. 1/3, the table.
 img_fins_torus() {
   pelt render --size 480x360 --set draw.shells=false --no-fins -o fins_torus_a.png
-  pelt render --size 480x360 --set draw.shells=false -o fins_torus_b.png
+  pelt render --size 480x360 --set draw.shells=false --set draw.outline_hairs=false -o fins_torus_b.png
   pelt render --size 480x360 --no-fins -o fins_torus_c.png
   pelt render --size 480x360 -o fins_torus_d.png
   pelt render --size 480x360 --set draw.shells=false --set draw.fins_unfaded=true -o fins_torus_e.png
-  pelt render --size 480x360 --set fins.hairs=0.5 -o fins_torus_f.png
+  pelt render --size 480x360 --set draw.outline_hairs=false -o fins_torus_f.png
   for F in a b c d e f; do collect fins_torus_$F.png fins_torus_$F.png; done
 }
 img_fins_bunny() {
   B="--mesh $M/bunny00.off --size 480x360"
   pelt render $B --set draw.shells=false --set draw.fins=false -o fins_bunny_a.png
-  pelt render $B --set draw.shells=false -o fins_bunny_b.png
+  pelt render $B --set draw.shells=false --set draw.outline_hairs=false -o fins_bunny_b.png
   pelt render $B --no-fins -o fins_bunny_c.png
   pelt render $B -o fins_bunny_d.png
   pelt render $B --set draw.shells=false --set draw.fins_unfaded=true -o fins_bunny_e.png
-  pelt render $B --set fins.hairs=0.5 -o fins_bunny_f.png
+  pelt render $B --set draw.outline_hairs=false -o fins_bunny_f.png
   for F in a b c d e f; do collect fins_bunny_$F.png fins_bunny_$F.png; done
 }
 img_inter_shadow() {

@@ -100,6 +100,17 @@ float pelt__outline_alpha(float k, float count, float fade, float show)
     return clamp01(count - k) * clamp01((fade - show) * 4.0f) * (more > 1.0f ? more : 1.0f);
 }
 
+float pelt__outline_reach(float hair_px)
+{
+    float in = clamp01((hair_px - PELT__OUTLINE_LOW_PX) / PELT__OUTLINE_LOW_PX);
+    return in * clamp01((PELT__OUTLINE_NONE_PX - hair_px) / (PELT__OUTLINE_NONE_PX - PELT__OUTLINE_FULL_PX));
+}
+
+float pelt__outline_share(float hair_px, float wetness)
+{
+    return pelt__outline_reach(hair_px) * (1.0f - clamp01(wetness));
+}
+
 float pelt__outline_lean(float r)
 {
     return (r - 0.5f) * 2.0f;

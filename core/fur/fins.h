@@ -99,6 +99,20 @@ float pelt__outline_random(uint32_t seed, uint32_t i);
  * one covers for count / MAX). */
 float pelt__outline_alpha(float k, float count, float fade, float show);
 
+/* The share of a fin's outline that its hairs carry (the rest the fin
+ * texture's quads) by the hair's length on screen, pixels: 0 up to
+ * PELT__OUTLINE_LOW_PX (every hair a fraction of a pixel), rising to 1 at
+ * twice that, 1 up to PELT__OUTLINE_FULL_PX, 0 from PELT__OUTLINE_NONE_PX
+ * (the texture resolves its hairs). outline_reach in GLSL. */
+#define PELT__OUTLINE_LOW_PX 4.0f
+#define PELT__OUTLINE_FULL_PX 16.0f
+#define PELT__OUTLINE_NONE_PX 32.0f
+float pelt__outline_reach(float hair_px);
+
+/* The share of a fin's outline its hairs carry: pelt__outline_reach, none
+ * where the fur holds water (the quads carry the tufts). */
+float pelt__outline_share(float hair_px, float wetness);
+
 /* The hair's lean along the edge at its tip, in its root widths. */
 float pelt__outline_lean(float r);
 

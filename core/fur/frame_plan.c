@@ -88,10 +88,7 @@ static pelt__frame_lod choose_lod(const pelt_fur *fur, const pelt_fur_desc *fd, 
         return l;
     }
     bool closed = c->closed && c->winding != 0;
-    /* The fin texture's quads carry the silhouette; the outline's hairs
-     * (fins.hairs) stand on the shells near it, as a mesh without fins. */
-    bool fin_quads = sw->fins && !(fd->fins.hairs > 0.0f);
-    l.cull = closed && (sw->cull_shells > 0 || (sw->cull_shells == 0 && fin_quads));
+    l.cull = closed && (sw->cull_shells > 0 || (sw->cull_shells == 0 && sw->fins));
     l.cull_skin = closed;
     /* Back-facing shells far round the back are hidden by the skin: a
      * closed mesh's front, and on an open mesh (whose skin is drawn on both

@@ -75,7 +75,7 @@ static const pelt_param fur_params[] = {
     DERIVED("fins.density", fins.density, 0, 4096, OPEN, "look.texture_size / 16, at most look.texture_size"),
     FLT("fins.curl", fins.curl, 0, 64, 0, 0),
     FLT("fins.curl_turns", fins.curl_turns, 0, 64, OPEN, 2),
-    FLT("fins.hairs", fins.hairs, 0, 16, 0, 0),
+    FLT("fins.hairs", fins.hairs, 0, 16, 0, 0.5),
     ENUM("lod.mode", lod.mode, lod_modes),
     UINT_("lod.shell_level", lod.shell_level, 0, 8, 0),
     UINT_("lod.mesh_level", lod.mesh_level, 0, 11, 0),

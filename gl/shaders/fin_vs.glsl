@@ -13,6 +13,8 @@ uniform int u_fin_first;               // this draw's first fin in the table
 uniform int u_fin_count;               // this draw's end in the table (wet fins follow dry ones)
 uniform int u_fin_rows;                // quads up a fin this frame, 1..PELT_FIN_ROWS
 uniform sampler2D u_mask;              // PELT_UNIT_MASK: wet fins shine like wet shells
+uniform int u_outline_on;              // 1: the outline's hairs take over where the fur is short on screen
+uniform vec2 u_viewport;               // pixels (with u_outline_on)
 
 out vec2 v_uv;
 out vec2 v_fin_uv;
@@ -66,6 +68,23 @@ void main()
     vec4 hair_color = vec4(floor(ex.z / 256.0), mod(ex.z, 256.0), floor(ex.w / 256.0), mod(ex.w, 256.0)) / 255.0;
     v_density = nd.w;
     v_fade = uintBitsToFloat(e.w);
+    if (u_outline_on != 0) {
+        // The outline's hairs (outline_share) take the fin's place as its
+        // hair shortens on screen: measured at the edge's middle and from
+        // both ends' wetness, so the whole fin fades alike, and gone,
+        // collapsed.
+        vec3 root_mid = 0.5 * (fin_vertex(e.x, 0).xyz + fin_vertex(e.y, 0).xyz);
+        vec3 top_mid = 0.5 * (fin_vertex(e.x, 2 * u_fin_rows).xyz + fin_vertex(e.y, 2 * u_fin_rows).xyz);
+        vec4 rc = u_view_proj * (u_model * vec4(root_mid, 1.0)), tc = u_view_proj * (u_model * vec4(top_mid, 1.0));
+        float px = length(0.5 * u_viewport * (tc.xy / max(tc.w, 1e-6) - rc.xy / max(rc.w, 1e-6)));
+        float wet = max(textureLod(u_mask, fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS + 1).xy, 0.0).a,
+                        textureLod(u_mask, fin_vertex(e.y, 2 * PELT_FIN_HEIGHTS + 1).xy, 0.0).a);
+        v_fade *= 1.0 - outline_share(px, wet);
+        if (v_fade <= 0.0) {
+            gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+            return;
+        }
+    }
     v_uv = ex.xy;
     vec4 world = u_model * vec4(p, 1.0);
     fur_wetness = textureLod(u_mask, ex.xy, 0.0).a;

@@ -45,6 +45,32 @@ float outline_alpha(float k, float count, float fade, float show)
            max(1.0, count / float(OUTLINE_HAIRS_MAX));
 }
 
+// The outline's hairs take over from the fin texture's quads where its
+// hair is sub-pixel but countable: between OUTLINE_LOW_PX and
+// OUTLINE_FULL_PX of the hair's length on screen they fade in (shorter,
+// every hair is a fraction of a pixel and the texture's average covers as
+// the hairs do), up to OUTLINE_FULL_PX they stand alone, and by
+// OUTLINE_NONE_PX they are gone: there the texture resolves its hairs and
+// the shells' layers draw them across the outline themselves.
+const float OUTLINE_LOW_PX = 4.0;   // PELT__OUTLINE_LOW_PX
+const float OUTLINE_FULL_PX = 16.0; // PELT__OUTLINE_FULL_PX
+const float OUTLINE_NONE_PX = 32.0; // PELT__OUTLINE_NONE_PX
+
+float outline_reach(float hair_px)
+{
+    float in_ = clamp((hair_px - OUTLINE_LOW_PX) / OUTLINE_LOW_PX, 0.0, 1.0);
+    float out_ = clamp((OUTLINE_NONE_PX - hair_px) / (OUTLINE_NONE_PX - OUTLINE_FULL_PX), 0.0, 1.0);
+    return in_ * out_;
+}
+
+// The share of a fin's outline its hairs carry: outline_reach of its
+// hair's length on screen, none where the fur holds water (the fin
+// texture's quads gather it into the shells' tufts).
+float outline_share(float hair_px, float wetness)
+{
+    return outline_reach(hair_px) * (1.0 - clamp(wetness, 0.0, 1.0));
+}
+
 // The hair's lean along the edge at its tip in its root widths, from its
 // draw r: up to one either way, as the fur texture's strands lean (two
 // radii over the full height, core/fur/furtex.c).

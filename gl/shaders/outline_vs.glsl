@@ -47,12 +47,23 @@ void main()
     vec4 nd = fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS); // normal, groomed density
     // Grooming thins these hairs as it thins the shells' (groom_keeps).
     if (outline_random(seed, 5u) > nd.w) alpha = 0.0;
+    float at = outline_random(seed, 0u);
+    vec3 root = mix(root_a, root_b, at);
+    // The share of the outline the fin's hairs carry (outline_share), from
+    // its hair's length on screen at the edge's middle and both ends'
+    // wetness, as the fin's quad takes the rest (fin_vs.glsl).
+    vec3 root_mid = 0.5 * (root_a + root_b);
+    vec3 top_mid = 0.5 * (fin_vertex(e.x, 2 * u_fin_rows).xyz + fin_vertex(e.y, 2 * u_fin_rows).xyz);
+    vec4 rc = u_view_proj * (u_model * vec4(root_mid, 1.0)), tc = u_view_proj * (u_model * vec4(top_mid, 1.0));
+    float px = length(0.5 * u_viewport * (tc.xy / max(tc.w, 1e-6) - rc.xy / max(rc.w, 1e-6)));
+    vec4 ex = fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS + 1); // uv, colour bytes two a float
+    vec2 uv_b = fin_vertex(e.y, 2 * PELT_FIN_HEIGHTS + 1).xy;
+    fur_wetness = max(textureLod(u_mask, ex.xy, 0.0).a, textureLod(u_mask, uv_b, 0.0).a);
+    alpha *= outline_share(px, fur_wetness);
     if (alpha <= 0.0) return;
 
     int side = corner % 2, row = corner / 2;
     float h = float(row) / float(u_fin_rows);
-    float at = outline_random(seed, 0u);
-    vec3 root = mix(root_a, root_b, at);
     vec3 p = mix(fin_vertex(e.x, 2 * row).xyz, fin_vertex(e.y, 2 * row).xyz, at);
     vec3 t = mix(fin_vertex(e.x, 2 * row + 1).xyz, fin_vertex(e.y, 2 * row + 1).xyz, at);
     // Its own length and lean (outline_shape), as the fur texture's strands.
@@ -76,9 +87,7 @@ void main()
     world.xyz += across * ((side == 0 ? -1.0 : 1.0) * drawn / max(px_per_unit, 1e-12));
     v_alpha = min(alpha * half_px / drawn, 1.0);
 
-    vec4 ex = fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS + 1); // uv, colour bytes two a float
     vec4 hair_color = vec4(floor(ex.z / 256.0), mod(ex.z, 256.0), floor(ex.w / 256.0), mod(ex.w, 256.0)) / 255.0;
-    fur_wetness = textureLod(u_mask, ex.xy, 0.0).a;
     vec3 mul;
     float spec;
     fur_light_terms(T, mat3(u_model) * nd.xyz, world.xyz, h, mul, spec);

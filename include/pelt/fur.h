@@ -167,9 +167,14 @@ typedef struct pelt_fur_fins {
     float curl;              /* sideways sine amplitude of fin hair in texels,
                                 default 0 (curlier than the shells when > 0) */
     float curl_turns;        /* turns of that sine over the height, default 2 */
-    float hairs;             /* hairs a fin near the silhouette also draws as
-                                geometry, per fur tile of its edge, so single
-                                hairs cross the outline (0 = none) */
+    float hairs;             /* the outline's hairs: the share of the hairs a
+                                fin near the silhouette stands for (its
+                                slab's) that it draws as geometry where the
+                                fur is a few pixels to a few tens long on
+                                screen, so that single hairs cross the
+                                outline (the fin texture's quads elsewhere),
+                                default 0.5; pelt_draw_desc.no_outline_hairs
+                                leaves them out */
 } pelt_fur_fins;
 
 /* Level of detail (Lengyel et al. §2.4 and beyond it, docs/lod.md): fewer

@@ -107,6 +107,8 @@ typedef struct pelt_draw_desc {
     bool no_skin;   /* skip the opaque skin pass */
     bool no_fins;   /* skip the fins (Lengyel et al. §2.3; drawn by default) */
     bool fins_unfaded; /* draw every fin at full opacity (Lengyel Fig. 4e) */
+    bool no_outline_hairs; /* the fin texture alone: no outline hairs in its
+                              place (pelt_fur_fins.hairs, docs/reference.md) */
     /* Draw only shells first_layer .. first_layer + layer_count - 1
      * (layer_count 0 = through the outermost): for inspecting one height
      * of the fur, and for level of detail. Still one instanced draw. */

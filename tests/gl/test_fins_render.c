@@ -114,19 +114,20 @@ static void band_spread(const uint8_t *edge, int r, const uint8_t *img, double *
     *cv = *mean > 0.0 ? sqrt(var > 0.0 ? var : 0.0) / *mean : 0.0;
 }
 
-/* The outline's hairs (fins.hairs): in place of the fin texture's quads,
- * single hairs cross the outline. The band outside the shells' own
- * silhouette holds about as much fur as the quads put there (0.5 to 2
- * times), but as hairs against the background: its pixels vary more
+/* The outline's hairs (fins.hairs, on by default): where the fur is a few
+ * pixels to a few tens long on screen, single hairs cross the outline in
+ * place of the fin texture's quads. The band outside the shells' own
+ * silhouette holds about as much fur as the quads alone put there (0.5 to
+ * 2 times), but as hairs against the background: its pixels vary more
  * from one to the next (coefficient of variation at least 1.2 times the
  * quads'). */
 static void outline_hairs_cross_the_outline_as_single_hairs(void)
 {
-    const pelt_fur_desc quads = {.length = 0.15f}, hairs = {.length = 0.15f, .fins.hairs = 0.5f};
-    const pelt_draw_desc shells = {.no_fins = true};
-    uint8_t *a = gl_test_render(gl, torus, &quads, &torus_cam, &shells, NULL, NULL);
-    uint8_t *q = a ? gl_test_render(gl, torus, &quads, &torus_cam, NULL, NULL, NULL) : NULL;
-    uint8_t *h = q ? gl_test_render(gl, torus, &hairs, &torus_cam, NULL, NULL, NULL) : NULL;
+    const pelt_fur_desc d = {.length = 0.15f};
+    const pelt_draw_desc shells = {.no_fins = true}, quads_only = {.no_outline_hairs = true};
+    uint8_t *a = gl_test_render(gl, torus, &d, &torus_cam, &shells, NULL, NULL);
+    uint8_t *q = a ? gl_test_render(gl, torus, &d, &torus_cam, &quads_only, NULL, NULL) : NULL;
+    uint8_t *h = q ? gl_test_render(gl, torus, &d, &torus_cam, NULL, NULL, NULL) : NULL;
     CHECK(a && q && h);
     if (a && q && h) {
         double mq, cq, mh, ch;
@@ -200,7 +201,7 @@ static void fins_stay_on_the_fur_in_a_gale(void)
 {
     const pelt_fur_desc d = {.length = 0.25f};
     motion blow = gale(), rest = {pelt_forces_default(), 1.0f};
-    const pelt_draw_desc fins_only = {.no_skin = true, .debug.no_shells = true};
+    const pelt_draw_desc fins_only = {.no_skin = true, .no_outline_hairs = true, .debug.no_shells = true};
     const pelt_draw_desc fur_only = {.no_fins = true};
     uint8_t *fur = gl_test_render(gl, torus, &d, &torus_cam, &fur_only, run_motion, &blow);
     uint8_t *fins = gl_test_render(gl, torus, &d, &torus_cam, &fins_only, run_motion, &blow);
@@ -276,7 +277,7 @@ static void fins_add_up_alike_on_fine_and_coarse_meshes(void)
      * edges (0.38 and 0.09 tiles long). */
     const pelt_fur_desc d = {.length = 0.15f, .fins.density = 128.0f};
     const pelt_camera cam = {0.0f, 0.0f, 3.4f, 40.0f, {0, 0, 0}};
-    const pelt_draw_desc shells = {.no_fins = true}, fins = {.debug.no_shells = true};
+    const pelt_draw_desc shells = {.no_fins = true}, fins = {.no_outline_hairs = true, .debug.no_shells = true};
     uint8_t *a = coarse && fine ? gl_test_render(gl, coarse, &d, &cam, &shells, NULL, NULL) : NULL;
     uint8_t *fc = a ? gl_test_render(gl, coarse, &d, &cam, &fins, NULL, NULL) : NULL;
     uint8_t *ff = fc ? gl_test_render(gl, fine, &d, &cam, &fins, NULL, NULL) : NULL;
@@ -312,7 +313,7 @@ static void fins_from_a_coarser_level_add_up_alike(void)
     const pelt_fur_desc d = {.length = 0.15f, .fins.density = 128.0f};
     pelt_fur_desc full = d;
     full.lod.mode = PELT_LOD_FIXED; /* mesh level 0 and its own fins */
-    const pelt_draw_desc shells = {.no_fins = true}, fins = {.debug.no_shells = true};
+    const pelt_draw_desc shells = {.no_fins = true}, fins = {.no_outline_hairs = true, .debug.no_shells = true};
     pelt_fur *fur = NULL;
     pelt_renderer *r = NULL;
     CHECK(pelt_fur_create(dense, &d, &fur, NULL) == PELT_OK);
@@ -364,7 +365,7 @@ static void all_fins_are_one_draw_call(void)
         pelt_view v;
         memset(&v, 0, sizeof v);
         pelt_camera_to_view(&torus_cam, (float)W / H, &v);
-        unsigned prims = gl_test_draw_primitives(r, &v, &(pelt_draw_desc){.no_skin = true, .debug.no_shells = true});
+        unsigned prims = gl_test_draw_primitives(r, &v, &(pelt_draw_desc){.no_skin = true, .no_outline_hairs = true, .debug.no_shells = true});
         pelt_render_stats st = pelt_renderer_get_stats(r);
         size_t edges = pelt_mesh_get_data(meshes[k]).triangle_count; /* at least */
         printf("  mesh %d: %u fin draw call(s), %zu fins, %u primitives\n", k, st.fin_draw_calls,
@@ -377,7 +378,8 @@ static void all_fins_are_one_draw_call(void)
         CHECK(prims == chunked(st.fins) * 2 * st.fin_rows);
         /* Unfaded, every fin of the level drawn: still one draw. */
         prims = gl_test_draw_primitives(r, &v,
-                                        &(pelt_draw_desc){.no_skin = true, .debug.no_shells = true, .fins_unfaded = true});
+                                        &(pelt_draw_desc){.no_skin = true, .no_outline_hairs = true, .debug.no_shells = true,
+                                                          .fins_unfaded = true});
         pelt_render_stats all = pelt_renderer_get_stats(r);
         CHECK(all.fin_draw_calls == 1 && all.fins >= st.fins);
         CHECK(st.fin_level > 0 || all.fins >= edges);
@@ -421,7 +423,7 @@ static void wet_fins_gather_into_tufts(void)
     pelt_fur_desc tufts = {.length = 0.15f}, open = tufts;
     open.wet.clump_tightness = 0.01f;
     const pelt_draw_desc skin_only = {.no_fins = true, .debug.no_shells = true};
-    const pelt_draw_desc fins_only = {.no_skin = true, .debug.no_shells = true, .fins_unfaded = true};
+    const pelt_draw_desc fins_only = {.no_skin = true, .no_outline_hairs = true, .debug.no_shells = true, .fins_unfaded = true};
     uint8_t *skin = gl_test_render(gl, sphere, &tufts, &cam, &skin_only, NULL, NULL);
     uint8_t *a = gl_test_render(gl, sphere, &tufts, &cam, &fins_only, soak_all_over, NULL);
     uint8_t *b = gl_test_render(gl, sphere, &open, &cam, &fins_only, soak_all_over, NULL);

@@ -286,7 +286,7 @@ static const char outline_main[] =
     "  uint seed = outline_seed(uint(c.x) * 977u, uint(c.y) * 131u + 7u, uint(c.x + c.y) % 32u);\n"
     "  float r0 = outline_random(seed, uint(c.y) % 6u), r1 = outline_random(seed, 1u), r2 = outline_random(seed, 2u);\n"
     "  vec4 q = outline_shape(0.1 * n, 0.1 * n + tip, t, r1, r2, h);\n"
-    "  vec3 dir = vec3(outline_lean(r2), r1, r0);\n"
+    "  vec3 dir = vec3(outline_lean(r2), outline_reach(30.0 * s), outline_share(30.0 * s, 2.0 * h - 0.5));\n"
     "  float a = outline_alpha(mod(c.x, 9.0), 64.0 * s, h, r0);\n"
     "  o = c.y < 24.0 ? vec4(q.xyz, r0) : vec4(dir, a);\n"
     "}\n";
@@ -310,7 +310,8 @@ static void outline_hair_glsl_matches_c(void)
             float q[4], e[4];
             pelt_vec3 root = v3_scale(n, 0.1f);
             pelt__outline_shape(root, v3_add(root, tip), t, r1, r2, h, q);
-            pelt_vec3 dir = v3(pelt__outline_lean(r2), r1, r0);
+            pelt_vec3 dir = v3(pelt__outline_lean(r2), pelt__outline_reach(30.0f * s),
+                               pelt__outline_share(30.0f * s, 2.0f * h - 0.5f));
             float a = pelt__outline_alpha((float)(x % 9), 64.0f * s, h, r0);
             if (y < 24)
                 e[0] = q[0], e[1] = q[1], e[2] = q[2], e[3] = r0;

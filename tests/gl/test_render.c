@@ -790,10 +790,10 @@ static void renderer_allocates_through_its_hooks(void)
     /* The renderer, the two interleaved vertex arrays (the pose's and the
      * rest's, freed before return), the mip chains of the fin texture and
      * the fur volume (one slice's at a time, freed before return), the
-     * staging of the fins a frame draws and of their vertices, and the wet
-     * split's five arrays (its triangles' boxes, flags, indices twice, and
-     * its vertices' flags). */
-    CHECK(counts.allocs == 12);
+     * staging of the fins a frame draws, of their vertices and of the
+     * outline's hairs, and the wet split's five arrays (its triangles'
+     * boxes, flags, indices twice, and its vertices' flags). */
+    CHECK(counts.allocs == 13);
     CHECK(counts.frees == 4);
     pelt_renderer_destroy(r);
     CHECK(counts.allocs == counts.frees);
@@ -1086,7 +1086,7 @@ static void stats_count_passes_layers_and_uploads(void)
      * the view may show, all in one draw; the full torus, every shell. */
     CHECK(st.fin_draw_calls == 1 && st.fins > 0 && st.fins < count_edges(torus));
     CHECK(st.mesh_level == 0 && st.mesh_triangles == tris && st.shell_level == 0 && st.culled);
-    CHECK(st.triangles == tris * 17 + st.fins * 2 * PELT_FIN_ROWS);
+    CHECK(st.triangles == tris * 17 + st.fins * 2 * PELT_FIN_ROWS + st.outline_hairs * 2 * st.fin_rows);
     /* Nothing changed since create: the frame block and this view's fins
      * (16 bytes a fin, and their vertices), the fins alone when drawn. */
     CHECK(st.upload_bytes > sizeof(pelt__frame_block) + st.fins * 16);
