@@ -520,9 +520,9 @@ int cmd_bench(int argc, char **argv)
            "%zu triangles submitted\n",
            rs.shell_draw_calls, rs.shell_instances, rs.layer_shells, rs.sub_shells, rs.triangles);
     printf("level of detail: mesh level %u (%zu of %zu triangles), %zu fins drawn (%u rows) from level %u, "
-           "shell level %u (blend %.2f), back faces %s\n",
-           rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.fin_rows, rs.fin_level, rs.shell_level,
-           (double)rs.shell_blend, rs.culled ? "culled" : "drawn");
+           "%zu outline hairs, shell level %u (blend %.2f), back faces %s\n",
+           rs.mesh_level, rs.mesh_triangles, ms.triangle_count, rs.fins, rs.fin_rows, rs.fin_level, rs.outline_hairs,
+           rs.shell_level, (double)rs.shell_blend, rs.culled ? "culled" : "drawn");
     if (bench_variants(&s, frames, &o, false, plain[PART_STEP].median)) rc = 1;
     if (rc == 0 && sc->animation.name[0]) rc = bench_skinning(&s, sc, frames, plain[PART_FRAME].median);
     if (rc == 0 && o.bench_dolly) bench_dolly(&s, frames);
