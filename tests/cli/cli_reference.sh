@@ -357,6 +357,14 @@ if [ -f "$archive" ]; then
   ss=$(field ssim "$res")
   awk -v s="${ss:-0}" 'BEGIN { exit !(s >= 0.9356) }'
   check creature_within_the_look $? "SSIM against the strands $ss (bound 0.9356)"
+  # Its outline as far out as the strands': the silhouette profile's 8 and
+  # 16 px bands within 25% of theirs (0.957 / 0.935 and 0.245 / 0.250 with
+  # the outline's hairs; the fin texture's quads alone put the 16 px band
+  # 17% over).
+  sh=$(printf '%s\n' "$res" | awk '/^silhouette_shells/ { print $5, $6 }')
+  st=$(printf '%s\n' "$res" | awk '/^silhouette_strands/ { print $5, $6 }')
+  echo "$sh $st" | awk '{ ok = NF == 4 && $3 > 0 && $4 > 0; for (i = 1; i <= 2; i++) { r = $i / $(i + 2); ok = ok && r >= 0.75 && r <= 1.25 } exit !ok }'
+  check creature_outline_as_far_as_the_hairs $? "silhouette at 8 and 16 px: shells $sh, strands $st (within 25%)"
 else
   check creature_within_the_look 1 "no $archive (libcgal-demo): scripts/setup.sh --tests installs it"
 fi
