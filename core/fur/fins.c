@@ -120,7 +120,8 @@ void pelt__outline_shape(pelt_vec3 root, pelt_vec3 p, pelt_vec3 along, float r_l
                          float out[4])
 {
     float share = 0.6f + 0.4f * r_len;
-    pelt_vec3 q = v3_add(v3_add(root, v3_scale(v3_sub(p, root), share)), v3_scale(along, pelt__outline_lean(r_lean) * h));
+    pelt_vec3 lean = v3_scale(along, pelt__outline_lean(r_lean) * h);
+    pelt_vec3 q = v3_add(v3_add(root, v3_scale(v3_sub(p, root), share)), lean);
     out[0] = q.x, out[1] = q.y, out[2] = q.z, out[3] = share;
 }
 
@@ -144,7 +145,9 @@ size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const pelt__outli
                                         f->tiles_per_unit, f->slab);
         if (!(fade >= f->least)) continue;
         float want = ceilf(v3_len(v3_sub(b, a)) * f->tiles_per_unit * f->hairs);
-        uint32_t k_end = !(want > 0.0f) ? 0u : want > (float)PELT__OUTLINE_HAIRS_MAX ? PELT__OUTLINE_HAIRS_MAX : (uint32_t)want;
+        uint32_t k_end = !(want > 0.0f)                             ? 0u
+                         : want > (float)PELT__OUTLINE_HAIRS_MAX ? PELT__OUTLINE_HAIRS_MAX
+                                                                 : (uint32_t)want;
         for (uint32_t k = 0; k < k_end && n < cap; k++, n++) {
             uint32_t *h = out + 4 * n;
             h[0] = fin[0], h[1] = fin[1], h[2] = k;

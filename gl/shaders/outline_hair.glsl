@@ -1,11 +1,11 @@
-// The outline's hairs (docs/method.md, Hair across the outline): each fin
-// near the silhouette also carries a few of the hairs it stands for as
-// geometry, so the outline shows single hairs against the background, as
-// the strand reference does, where the fin texture read at a pixel's
-// footprint can only show their average. A hair's draws come from a hash
-// of its fin's two vertices and its number on the fin, so it stays the
-// same hair from frame to frame. Mirrored by pelt__outline_random and
-// pelt__outline_alpha (core/fur/fins.c).
+// The outline's hairs (docs/reference.md, The outline's hairs, drawn as
+// geometry): each fin near the silhouette also carries some of the hairs
+// it stands for as geometry, so the outline shows single hairs against the
+// background, as the strand reference does, where the fin texture read at
+// a pixel's footprint can only show their average. A hair's draws come
+// from a hash of its fin's two vertices and its number on the fin, so it
+// stays the same hair from frame to frame. Every function here is
+// mirrored by its pelt__outline_* in core/fur/fins.c (test_parity).
 
 // The most hairs a fin carries: the hairs beyond its share are collapsed.
 const int OUTLINE_HAIRS_MAX = 32; // PELT__OUTLINE_HAIRS_MAX

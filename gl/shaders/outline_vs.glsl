@@ -91,7 +91,8 @@ void main()
     vec3 mul;
     float spec;
     fur_light_terms(T, mat3(u_model) * nd.xyz, world.xyz, h, mul, spec);
-    vec3 root_color = groom_root_color(u_color, hair_color), tip_color = groom_tip_color(u_color, u_tip_color, hair_color);
+    vec3 root_color = groom_root_color(u_color, hair_color);
+    vec3 tip_color = groom_tip_color(u_color, u_tip_color, hair_color);
     // The strand's shade as the fur texture draws it, 0.4 to 1 (sRGB).
     float shade = shade_decode(0.4 + 0.6 * outline_random(seed, 4u));
     v_color = wet_color(mix(root_color, tip_color, h) * shade * mul, fur_wetness, u_wet_darken)

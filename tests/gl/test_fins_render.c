@@ -394,7 +394,8 @@ static void all_fins_are_one_draw_call(void)
         pelt_view v;
         memset(&v, 0, sizeof v);
         pelt_camera_to_view(&torus_cam, (float)W / H, &v);
-        unsigned prims = gl_test_draw_primitives(r, &v, &(pelt_draw_desc){.no_skin = true, .no_outline_hairs = true, .debug.no_shells = true});
+        const pelt_draw_desc quads = {.no_skin = true, .no_outline_hairs = true, .debug.no_shells = true};
+        unsigned prims = gl_test_draw_primitives(r, &v, &quads);
         pelt_render_stats st = pelt_renderer_get_stats(r);
         size_t edges = pelt_mesh_get_data(meshes[k]).triangle_count; /* at least */
         printf("  mesh %d: %u fin draw call(s), %zu fins, %u primitives\n", k, st.fin_draw_calls,
@@ -406,9 +407,8 @@ static void all_fins_are_one_draw_call(void)
         CHECK(st.fin_rows >= 1 && st.fin_rows <= PELT_FIN_ROWS);
         CHECK(prims == chunked(st.fins) * 2 * st.fin_rows);
         /* Unfaded, every fin of the level drawn: still one draw. */
-        prims = gl_test_draw_primitives(r, &v,
-                                        &(pelt_draw_desc){.no_skin = true, .no_outline_hairs = true, .debug.no_shells = true,
-                                                          .fins_unfaded = true});
+        const pelt_draw_desc unfaded = {.no_skin = true, .debug.no_shells = true, .fins_unfaded = true};
+        prims = gl_test_draw_primitives(r, &v, &unfaded);
         pelt_render_stats all = pelt_renderer_get_stats(r);
         CHECK(all.fin_draw_calls == 1 && all.fins >= st.fins);
         CHECK(st.fin_level > 0 || all.fins >= edges);
@@ -452,7 +452,8 @@ static void wet_fins_gather_into_tufts(void)
     pelt_fur_desc tufts = {.length = 0.15f}, open = tufts;
     open.wet.clump_tightness = 0.01f;
     const pelt_draw_desc skin_only = {.no_fins = true, .debug.no_shells = true};
-    const pelt_draw_desc fins_only = {.no_skin = true, .no_outline_hairs = true, .debug.no_shells = true, .fins_unfaded = true};
+    const pelt_draw_desc fins_only = {
+        .no_skin = true, .no_outline_hairs = true, .debug.no_shells = true, .fins_unfaded = true};
     uint8_t *skin = gl_test_render(gl, sphere, &tufts, &cam, &skin_only, NULL, NULL);
     uint8_t *a = gl_test_render(gl, sphere, &tufts, &cam, &fins_only, soak_all_over, NULL);
     uint8_t *b = gl_test_render(gl, sphere, &open, &cam, &fins_only, soak_all_over, NULL);
