@@ -84,7 +84,7 @@ static bool build_outline(pelt__fin_pass *p, unsigned features)
 
 /* The hairs a fur tile of a fin's edge holds: fins.hairs, the share of
  * the fin slab's (look.density a tile, fins.density texels of the tile's
- * texture_size wide). 0: none, the fin texture's quads. */
+ * texture_size wide), from the resolved desc. */
 static float outline_hairs_per_tile(const pelt_fur_desc *d)
 {
     return d->fins.hairs * d->look.density * d->fins.density / (float)d->look.texture_size;
@@ -132,7 +132,7 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
     if (!p->fins || !p->vertices) return pelt__fail(err, PELT_ERR_OUT_OF_MEMORY, "out of memory for %zu fins", most);
     p->edges = table_create(PELT_UNIT_FIN_EDGES, GL_RGBA32UI, most);
     p->vertex_table = table_create(PELT_UNIT_FIN_VERTICES, GL_RGBA32F, most_vertices * PELT_FIN_VERTEX_TEXELS);
-    /* The outline's hairs, where the fur has them: a table of their own. */
+    /* The outline's hairs: a table of their own. */
     const pelt_fur_desc d = pelt_fur_get_desc(fur);
     p->hairs_per_tile = outline_hairs_per_tile(&d);
     p->tiling = d.look.tiling;

@@ -89,13 +89,13 @@ typedef struct pelt__fin_pass {
     const pelt__lod_chain *lod;
     uint32_t *fins;      /* staging, allocated once (core/fur/fur_gpu.h) */
     float *vertices;
-    float hairs_per_tile; /* the outline's hairs a fur tile of a fin's edge holds (0: none) */
+    float hairs_per_tile; /* the outline's hairs a fur tile of a fin's edge holds */
     float tiling;        /* the fur's tiles a mesh unit */
     float slab;          /* the fin texture's slab, fur tiles */
     float viewport[2];   /* this frame's, pixels */
     bool curled;         /* the fur curls in its texture: the quads alone */
     bool hairs_on;       /* this frame draws the outline's hairs */
-    uint32_t *hairs;     /* the outline's hairs, staging (NULL: the fur has none) */
+    uint32_t *hairs;     /* the outline's hairs, staging, allocated once */
     GLuint hair_table;   /* and their table, bound to PELT_UNIT_FIN_EDGES to draw */
     pelt_allocator alloc;
 } pelt__fin_pass;
@@ -104,7 +104,8 @@ pelt_status pelt__fin_pass_create(pelt__fin_pass *p, pelt_fur *fur, const pelt__
                                   const pelt_hooks *hooks, pelt_error *err);
 void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f);
 /* The outline's hairs (outline_vs.glsl) of the fins the frame's fin pass
- * drew, after the shells: nothing where fins.hairs is 0. */
+ * wrote, after the shells: nothing where pelt_draw_desc.no_outline_hairs
+ * or fins_unfaded is set or the fur curls in its texture. */
 void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f);
 void pelt__fin_pass_destroy(pelt__fin_pass *p);
 
