@@ -42,7 +42,7 @@ static pelt_status build(pelt__fin_pass *p, unsigned features, pelt_error *err)
     pelt__shell_feature_defines(features & PELT__FIN_FEATURES, defines);
     const char *vs[] = {defines,                   pelt__shader_shading,   pelt__shader_shadow_map,
                         pelt__shader_fur_light,    pelt__shader_fur_shape, pelt__shader_own_light,
-                        pelt__shader_outline_hair, pelt__shader_fin_vs,    NULL};
+                        pelt__shader_outline_hair, pelt__shader_fin_table, pelt__shader_fin_vs, NULL};
     const char *fs[] = {defines,           pelt__shader_shading,   pelt__shader_fur_shape, pelt__shader_own_light,
                         pelt__shader_clump, pelt__shader_shell_lod, pelt__shader_fin_fs,    NULL};
     pelt_status st = pelt__gl_program_create("fin", vs, fs, &p->hooks, &p->variants[features], err);
@@ -66,8 +66,9 @@ static bool build_outline(pelt__fin_pass *p, unsigned features)
     if (p->outline_failed[features]) return false;
     char defines[PELT__FEATURE_DEFINES_MAX];
     pelt__shell_feature_defines(features, defines);
-    const char *vs[] = {defines,           pelt__shader_shading,     pelt__shader_shadow_map, pelt__shader_fur_light,
-                        pelt__shader_outline_hair, pelt__shader_outline_vs, NULL};
+    const char *vs[] = {defines,                   pelt__shader_shading,   pelt__shader_shadow_map,
+                        pelt__shader_fur_light,    pelt__shader_outline_hair, pelt__shader_fin_table,
+                        pelt__shader_outline_vs,   NULL};
     const char *fs[] = {pelt__shader_shading, pelt__shader_outline_fs, NULL};
     GLuint prog = 0;
     if (pelt__gl_program_create("outline", vs, fs, &p->hooks, &prog, NULL) != PELT_OK) {

@@ -25,6 +25,7 @@ extern const char pelt__shader_own_light[];
 extern const char pelt__shader_fin_vs[];
 extern const char pelt__shader_fin_fs[];
 extern const char pelt__shader_outline_hair[];
+extern const char pelt__shader_fin_table[];
 extern const char pelt__shader_outline_vs[];
 extern const char pelt__shader_outline_fs[];
 extern const char pelt__shader_shadow_map[];

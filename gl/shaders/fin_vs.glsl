@@ -7,14 +7,11 @@
 // displaced strand, worked out once a frame per vertex on the CPU by the C
 // references of shell_vs.glsl (core/fur/fin_frame.c), so fins bend, curl,
 // comb and are groomed with the shells. The fade comes with the fin.
-uniform highp usampler2D u_fin_edges;  // PELT_UNIT_FIN_EDGES: ends, start and fade bits
-uniform highp sampler2D u_fin_vertices; // PELT_UNIT_FIN_VERTICES: PELT_FIN_VERTEX_TEXELS each
+// The tables (fin_table.glsl): u_fin_edges holds each fin's ends, start
+// and fade bits; u_mask's wetness makes wet fins shine like wet shells.
 uniform int u_fin_first;               // this draw's first fin in the table
 uniform int u_fin_count;               // this draw's end in the table (wet fins follow dry ones)
-uniform int u_fin_rows;                // quads up a fin this frame, 1..PELT_FIN_ROWS
-uniform sampler2D u_mask;              // PELT_UNIT_MASK: wet fins shine like wet shells
 uniform int u_outline_on;              // 1: the outline's hairs take over where the fur is short on screen
-uniform vec2 u_viewport;               // pixels (with u_outline_on)
 
 out vec2 v_uv;
 out vec2 v_fin_uv;
@@ -38,16 +35,6 @@ out vec3 v_ring_g;
 flat out vec2 v_clump_dir;
 #endif
 
-ivec2 table_at(int i)
-{
-    return ivec2(i % PELT_TABLE_WIDTH, i / PELT_TABLE_WIDTH);
-}
-
-vec4 fin_vertex(uint v, int k)
-{
-    return texelFetch(u_fin_vertices, table_at(int(v) * PELT_FIN_VERTEX_TEXELS + k), 0);
-}
-
 void main()
 {
     int corners = 2 * (u_fin_rows + 1);
@@ -69,17 +56,11 @@ void main()
     v_density = nd.w;
     v_fade = uintBitsToFloat(e.w);
     if (u_outline_on != 0) {
-        // The outline's hairs (outline_share) take the fin's place as its
-        // hair shortens on screen: measured at the edge's middle and from
-        // both ends' wetness, so the whole fin fades alike, and gone,
-        // collapsed.
-        vec3 root_mid = 0.5 * (fin_vertex(e.x, 0).xyz + fin_vertex(e.y, 0).xyz);
-        vec3 top_mid = 0.5 * (fin_vertex(e.x, 2 * u_fin_rows).xyz + fin_vertex(e.y, 2 * u_fin_rows).xyz);
-        vec4 rc = u_view_proj * (u_model * vec4(root_mid, 1.0)), tc = u_view_proj * (u_model * vec4(top_mid, 1.0));
-        float px = length(0.5 * u_viewport * (tc.xy / max(tc.w, 1e-6) - rc.xy / max(rc.w, 1e-6)));
-        float wet = max(textureLod(u_mask, fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS + 1).xy, 0.0).a,
-                        textureLod(u_mask, fin_vertex(e.y, 2 * PELT_FIN_HEIGHTS + 1).xy, 0.0).a);
-        v_fade *= 1.0 - outline_share(px, wet);
+        // The outline's hairs take the fin's place as its hair shortens on
+        // screen (fin_outline_share, the same for the whole fin), and
+        // gone, the fin collapses.
+        float wet;
+        v_fade *= 1.0 - fin_outline_share(e.x, e.y, wet);
         if (v_fade <= 0.0) {
             gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
             return;

@@ -7,26 +7,12 @@
 // and at least a pixel (its alpha then the share of the pixel it covers),
 // rising along its fin's strands at its root's place on the edge, lit as
 // the fins are.
-uniform highp usampler2D u_fin_edges;  // PELT_UNIT_FIN_EDGES: the hairs' table in this draw
-uniform highp sampler2D u_fin_vertices; // PELT_UNIT_FIN_VERTICES
+// The tables (fin_table.glsl): u_fin_edges holds the hairs in this draw.
 uniform int u_fin_count;               // the hairs in the table
-uniform int u_fin_rows;                // quads up a hair this frame
 uniform float u_outline_hairs;         // hairs a fin carries per fur tile of its edge
-uniform vec2 u_viewport;               // pixels
-uniform sampler2D u_mask;              // PELT_UNIT_MASK: wet hair darkens
 
 out vec3 v_color;
 out float v_alpha;
-
-ivec2 table_at(int i)
-{
-    return ivec2(i % PELT_TABLE_WIDTH, i / PELT_TABLE_WIDTH);
-}
-
-vec4 fin_vertex(uint v, int k)
-{
-    return texelFetch(u_fin_vertices, table_at(int(v) * PELT_FIN_VERTEX_TEXELS + k), 0);
-}
 
 void main()
 {
@@ -49,17 +35,9 @@ void main()
     if (outline_random(seed, 5u) > nd.w) alpha = 0.0;
     float at = outline_random(seed, 0u);
     vec3 root = mix(root_a, root_b, at);
-    // The share of the outline the fin's hairs carry (outline_share), from
-    // its hair's length on screen at the edge's middle and both ends'
-    // wetness, as the fin's quad takes the rest (fin_vs.glsl).
-    vec3 root_mid = 0.5 * (root_a + root_b);
-    vec3 top_mid = 0.5 * (fin_vertex(e.x, 2 * u_fin_rows).xyz + fin_vertex(e.y, 2 * u_fin_rows).xyz);
-    vec4 rc = u_view_proj * (u_model * vec4(root_mid, 1.0)), tc = u_view_proj * (u_model * vec4(top_mid, 1.0));
-    float px = length(0.5 * u_viewport * (tc.xy / max(tc.w, 1e-6) - rc.xy / max(rc.w, 1e-6)));
-    vec4 ex = fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS + 1); // uv, colour bytes two a float
-    vec2 uv_b = fin_vertex(e.y, 2 * PELT_FIN_HEIGHTS + 1).xy;
-    fur_wetness = max(textureLod(u_mask, ex.xy, 0.0).a, textureLod(u_mask, uv_b, 0.0).a);
-    alpha *= outline_share(px, fur_wetness);
+    // The share of the outline the fin's hairs carry, the fin's quad the
+    // rest (fin_outline_share); wet hair darkens.
+    alpha *= fin_outline_share(e.x, e.y, fur_wetness);
     if (alpha <= 0.0) return;
 
     int side = corner % 2, row = corner / 2;
@@ -87,6 +65,7 @@ void main()
     world.xyz += across * ((side == 0 ? -1.0 : 1.0) * drawn / max(px_per_unit, 1e-12));
     v_alpha = min(alpha * half_px / drawn, 1.0);
 
+    vec4 ex = fin_vertex(e.x, 2 * PELT_FIN_HEIGHTS + 1); // uv, colour bytes two a float
     vec4 hair_color = vec4(floor(ex.z / 256.0), mod(ex.z, 256.0), floor(ex.w / 256.0), mod(ex.w, 256.0)) / 255.0;
     vec3 mul;
     float spec;
