@@ -112,7 +112,22 @@ float pelt__tone(float x, float exposure, int tone)
     return fminf(fmaxf(pelt__aces(PELT__TONE_BIAS * v), 0.0f), 1.0f);
 }
 
-float pelt__display(float x, float exposure, int tone) { return pelt__srgb_encode(pelt__tone(x, exposure, tone)); }
+/* scripts/display_fit.c's output: p1..p5, q1..q4, v_max; display_color's
+ * DISPLAY_* constants (gl/shaders/shading.glsl). */
+static const float display_fit[2][10] = {
+    {-0.0576929201f, 3.39692282f, -35.8013261f, 146.612241f, 2.03500454f, -12.7071925f, 60.9314706f, -69.6605025f,
+     158.831435f, 12.0694f},
+    {0.0326068422f, 3.15541583f, 363.172133f, 0.0f, 0.0f, -2.93838857f, 323.863771f, 44.6805545f, 0.0f, 1.0f},
+};
+
+float pelt__display(float x, float exposure, int tone)
+{
+    const float *c = display_fit[tone != 0];
+    float s = sqrtf(fminf(fmaxf(x * exposure, 0.0f), c[9]));
+    float p = s * (c[0] + s * (c[1] + s * (c[2] + s * (c[3] + s * c[4]))));
+    float q = 1.0f + s * (c[5] + s * (c[6] + s * (c[7] + s * c[8])));
+    return fminf(fmaxf(p / q, 0.0f), 1.0f);
+}
 
 pelt_vec3 pelt__shift_tangent(pelt_vec3 t, pelt_vec3 n, float shift)
 {

@@ -58,7 +58,8 @@ vec3 srgb_decode(vec3 c)
     return mix(pow((c + 0.055) / 1.055, vec3(2.4)), c / 12.92, lessThanEqual(c, vec3(0.04045)));
 }
 
-// Taylor's fit of the power in square roots (pelt__srgb_encode).
+// Taylor's fit of the power in square roots (pelt__srgb_encode); the
+// display mapping below folds it into one fit with the tone curve.
 vec3 srgb_encode(vec3 l)
 {
     l = clamp(l, 0.0, 1.0);
@@ -90,9 +91,28 @@ vec3 tone_map(vec3 x, float exposure, float tone)
     return clamp(aces(TONE_BIAS * v), 0.0, 1.0);
 }
 
+// What a pixel shows: the sRGB encoding of tone_map, fitted whole for
+// each curve (pelt__display): with s = sqrt(clamp(exposure x, 0, v_max)),
+// P(s) / Q(s), P = p1 s + ... + p5 s^5, Q = 1 + q1 s + ... + q4 s^4. One
+// square root and one division a channel instead of tone_map's division
+// and srgb_encode's three square roots. P's p1..p4, Q's q1..q4, (p5, v_max).
+const vec4 DISPLAY_FILMIC_P = vec4(-0.0576929201, 3.39692282, -35.8013261, 146.612241);
+const vec4 DISPLAY_FILMIC_Q = vec4(-12.7071925, 60.9314706, -69.6605025, 158.831435);
+const vec2 DISPLAY_FILMIC_R = vec2(2.03500454, 12.0694);
+const vec4 DISPLAY_NONE_P = vec4(0.0326068422, 3.15541583, 363.172133, 0.0);
+const vec4 DISPLAY_NONE_Q = vec4(-2.93838857, 323.863771, 44.6805545, 0.0);
+const vec2 DISPLAY_NONE_R = vec2(0.0, 1.0);
+
 vec3 display_color(vec3 x, float exposure, float tone)
 {
-    return srgb_encode(tone_map(x, exposure, tone));
+    bool none = tone > 0.5;
+    vec4 p = none ? DISPLAY_NONE_P : DISPLAY_FILMIC_P;
+    vec4 q = none ? DISPLAY_NONE_Q : DISPLAY_FILMIC_Q;
+    vec2 r = none ? DISPLAY_NONE_R : DISPLAY_FILMIC_R;
+    vec3 s = sqrt(clamp(x * exposure, 0.0, r.y));
+    vec3 num = s * (p.x + s * (p.y + s * (p.z + s * (p.w + s * r.x))));
+    vec3 den = 1.0 + s * (q.x + s * (q.y + s * (q.z + s * q.w)));
+    return clamp(num / den, 0.0, 1.0);
 }
 
 // Hair beyond Kajiya-Kay: Scheuermann's (GDC 2004) reading of Marschner et

@@ -123,6 +123,33 @@ static void tone_curves_are_monotone_and_start_at_black(void)
     CHECK(fabsf(pelt__tone(0.2f, 2.0f, 0) - pelt__tone(0.4f, 1.0f, 0)) < 1e-6f);
 }
 
+/* The display mapping's one fit per curve against the curve then the exact
+ * sRGB power, over eight decades of exposed light: within 0.22 / 255,
+ * monotone, black at 0 and white where the curve reaches it. */
+static void display_fit_follows_the_curve_and_the_encoding(void)
+{
+    for (int tone = 0; tone < 2; tone++) {
+        double worst = 0.0;
+        float prev = 0.0f;
+        CHECK(pelt__display(0.0f, 1.0f, tone) == 0.0f);
+        CHECK(pelt__display(-1.0f, 1.0f, tone) == 0.0f);
+        for (int i = 0; i <= 80000; i++) {
+            float x = powf(10.0f, -6.0f + 8.0f * (float)i / 80000.0f);
+            float t = pelt__tone(x, 1.0f, tone);
+            double exact = t <= 0.0031308f ? 12.92 * t : 1.055 * pow(t, 1.0 / 2.4) - 0.055;
+            float y = pelt__display(x, 1.0f, tone);
+            worst = fmax(worst, fabs(y - exact));
+            CHECK(y >= prev - 1e-6f && y <= 1.0f);
+            prev = y;
+        }
+        printf("  %s: within %.3f / 255 of the curve's sRGB encoding\n", tone ? "none" : "filmic", 255.0 * worst);
+        CHECK(worst < 0.22 / 255.0);
+        CHECK(255.0f * pelt__display(100.0f, 1.0f, tone) > 254.5f); /* white, written as 255 */
+        /* Exposure multiplies first. */
+        CHECK(fabsf(pelt__display(0.2f, 2.0f, tone) - pelt__display(0.4f, 1.0f, tone)) < 1e-6f);
+    }
+}
+
 /* The brightest colour the hair models light at the default look and light
  * (white hair, ambient 0.25, light 1, K_s (0.9, 0.85, 0.8), fully
  * wet: specular gain 2), each lobe at its peak of 1, stays below white
@@ -184,6 +211,7 @@ int main(void)
     RUN(wet_highlight_grows_sharper_and_stronger);
     RUN(srgb_round_trips_every_byte);
     RUN(tone_curves_are_monotone_and_start_at_black);
+    RUN(display_fit_follows_the_curve_and_the_encoding);
     RUN(white_highlight_stays_below_clipping);
     RUN(hair_lobes_peak_where_the_model_says);
     return check_summary();

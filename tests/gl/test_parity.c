@@ -1253,7 +1253,8 @@ static const char display_main[] =
     "    : u_which == 1 ? vec4(srgb_encode(v), 0.0)\n"
     "    : u_which == 2 ? vec4(tone_map(v, 1.7, 0.0), 0.0)\n"
     "    : u_which == 3 ? vec4(tone_map(v, 1.7, 1.0), 0.0)\n"
-    "    : vec4(display_color(v, 0.8, 0.0), 0.0);\n"
+    "    : u_which == 4 ? vec4(display_color(v, 0.8, 0.0), 0.0)\n"
+    "    : vec4(display_color(v, 0.8, 1.0), 0.0);\n"
     "}\n";
 
 /* Linear light: sRGB decode and encode, the tone curves and the whole
@@ -1261,8 +1262,8 @@ static const char display_main[] =
 static void display_glsl_matches_c(void)
 {
     const char *names[] = {"srgb_decode, shade_decode", "srgb_encode", "tone_map filmic", "tone_map none",
-                           "display_color"};
-    for (int which = 0; which < 5; which++) {
+                           "display_color filmic", "display_color none"};
+    for (int which = 0; which < 6; which++) {
         char define[96];
         snprintf(define, sizeof define, "#define u_which %d\n#define W %d\n#define H %d\n", which, W, H);
         const char *fs[] = {pelt__shader_shading, define, display_main, NULL};
@@ -1279,6 +1280,7 @@ static void display_glsl_matches_c(void)
                     if (which == 2) r[k] = pelt__tone(v[k], 1.7f, PELT_TONE_FILMIC);
                     if (which == 3) r[k] = pelt__tone(v[k], 1.7f, PELT_TONE_NONE);
                     if (which == 4) r[k] = pelt__display(v[k], 0.8f, PELT_TONE_FILMIC);
+                    if (which == 5) r[k] = pelt__display(v[k], 0.8f, PELT_TONE_NONE);
                 }
                 if (which == 0) r[3] = pelt__shade_decode(v[0]);
                 const float *g = out + 4 * (y * W + x);
