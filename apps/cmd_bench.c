@@ -314,7 +314,7 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
 static int bench_variants(cli_session *s, unsigned frames, const cli_options *o, bool wet, double step_ms)
 {
     enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, PLAIN, WET_WHOLE, NO_LIGHT, LIGHT_ONLY,
-           SKIN_ONLY, LOD_OFF, NO_DEPTH, ONE_A_LAYER, VARIANTS };
+           SKIN_ONLY, LOD_OFF, NO_DEPTH, ONE_A_LAYER, ONE_PROGRAM, VARIANTS };
     const bool with_floor = o->bench_floor, with_plain = o->bench_plain, with_lod_off = o->bench_lod_off;
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
@@ -354,13 +354,17 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     v[NO_DEPTH].debug.no_shell_depth = true;
     /* Each layer drawn once: what the sub shells cost, close up or wet. */
     v[ONE_A_LAYER].debug.no_sub_shells = true;
+    /* Every triangle's shells with the program that reads across the gap:
+     * what the view split saves. */
+    v[ONE_PROGRAM].debug.no_view_split = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
     (void)timed_draw(s, &v[FULL]);
     const pelt_render_stats drawn = pelt_renderer_get_stats(s->renderer);
     const bool sub = drawn.layer_shells > 1 || drawn.sub_shells > 0;
+    const bool view_split = drawn.face_on_triangles > 0;
     bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, with_plain, wet, light, light, true,
-                           with_lod_off, true, sub};
+                           with_lod_off, true, sub, view_split};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -385,6 +389,7 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     print_stats("no depth", st[NO_DEPTH]);
     if (with_lod_off) print_stats("lod off", st[LOD_OFF]);
     if (sub) print_stats("one a layer", st[ONE_A_LAYER]);
+    if (view_split) print_stats("one program", st[ONE_PROGRAM]);
     print_fragments(s, &v[FULL], &v[NO_FINS], &v[SKIN_ONLY], st[FULL].median, st[NO_FINS].median,
                     st[SKIN_ONLY].median, with_floor ? st[FLOOR].median : 0.0);
     if (fins)
@@ -405,6 +410,10 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
         printf("  sub shells (%u shells a layer close up, %u more wet): the frame takes %.2fx as long as one "
                "shell a layer\n",
                drawn.layer_shells, drawn.sub_shells, st[FULL].median / st[ONE_A_LAYER].median);
+    if (view_split)
+        printf("  face-on and side-on drawn apart (%zu of %zu triangles face-on, no read across the gap): the "
+               "frame takes %.2fx as long as with one program\n",
+               drawn.face_on_triangles, drawn.mesh_triangles, st[FULL].median / st[ONE_PROGRAM].median);
     if (wet)
         printf("  wet and dry drawn apart: the frame takes %.2fx as long as with every triangle drawn wet\n",
                st[FULL].median / st[WET_WHOLE].median);

@@ -65,6 +65,15 @@ typedef struct pelt__gpu_mesh {
     pelt__wet_split split;
     size_t split_offset; /* bytes into ebo */
     bool split_ok;
+    /* The drawn level's triangles again, those whose shells never read the
+     * gap first (pelt__fur_gpu_view_split), after the wet split in ebo:
+     * rewritten when the view moves them. view_ok false: out of memory. */
+    uint32_t *view_indices; /* the last split, room for the full mesh */
+    uint32_t *view_staging; /* this frame's, compared with it */
+    uint8_t *view_side;     /* per vertex, the split's scratch */
+    size_t view_offset;     /* bytes into ebo */
+    size_t view_face, view_total;
+    bool view_ok;
     unsigned tips_version;
     unsigned pose_version;
     /* A skinned mesh, skinned in the vertex stage (for measuring): */
@@ -92,6 +101,10 @@ size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur);
 /* The mask's texels in rect changed: triangles that turned wet or dry move
  * between the split's parts; returns bytes sent. */
 size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *fs, const unsigned rect[4]);
+/* Splits the drawn triangles by the view (pelt__fur_gpu_view_split) and
+ * rewrites the split's part of ebo when it changed; returns bytes sent.
+ * view_face and view_total say what it holds. */
+size_t pelt__gpu_mesh_update_view(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
 /* Points the bound VAO's PELT_ATTR_FIT_NORMAL at the slice of the level
  * the shells are drawn on (the full mesh: zeros). */

@@ -177,6 +177,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
     enum { ATTRS = sizeof attrs / sizeof attrs[0] };
     g->vertex_count = m.vertex_count;
     g->triangle_count = m.triangle_count;
+    g->alloc = hooks->allocator;
     glGenVertexArrays(1, &g->vao);
     glBindVertexArray(g->vao);
     pelt_status st = interleave(&g->vbo_pose, pose_attrs, 3, m.vertex_count, GL_DYNAMIC_DRAW, hooks, err);
@@ -200,7 +201,7 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
     /* One index buffer: the mesh's own triangles (the skin, and the shells
      * with level of detail off), then each level of detail's (lod.h). */
     const pelt__lod_chain *lod = fs.lod;
-    size_t total = 2 * m.triangle_count; /* the mesh's, and its wet split */
+    size_t total = 3 * m.triangle_count; /* the mesh's, its wet split and its view split */
     for (unsigned k = 0; k < lod->count; k++) total += lod->levels[k].triangle_count;
     glGenBuffers(1, &g->ebo);
     glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
@@ -225,6 +226,11 @@ pelt_status pelt__gpu_mesh_create(pelt__gpu_mesh *g, const pelt_mesh *mesh, pelt
         glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)at,
                         (GLsizeiptr)(m.triangle_count * 3 * sizeof(uint32_t)), g->split.indices);
     }
+    g->view_offset = at + m.triangle_count * 3 * sizeof(uint32_t);
+    g->view_indices = pelt__alloc_zero(&hooks->allocator, m.triangle_count * 3, sizeof(uint32_t));
+    g->view_staging = pelt__alloc_zero(&hooks->allocator, m.triangle_count * 3, sizeof(uint32_t));
+    g->view_side = pelt__alloc_zero(&hooks->allocator, m.vertex_count ? m.vertex_count : 1, 1);
+    g->view_ok = g->view_indices && g->view_staging && g->view_side;
     upload_fit(g, lod);
     point(g->vbo_pose, pose_attrs, 3);
     point_shared(g, attrs, ATTRS, stride);
@@ -297,9 +303,28 @@ size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *
     return bytes;
 }
 
+size_t pelt__gpu_mesh_update_view(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d)
+{
+    if (!g->view_ok) return 0;
+    size_t total, face = pelt__fur_gpu_view_split(fur, d, g->view_side, g->view_staging, &total);
+    size_t bytes = total * 3 * sizeof(uint32_t);
+    if (total > g->triangle_count) return 0; /* a level never holds more than the mesh */
+    bool same = face == g->view_face && total == g->view_total && !memcmp(g->view_staging, g->view_indices, bytes);
+    g->view_face = face, g->view_total = total;
+    if (same) return 0;
+    memcpy(g->view_indices, g->view_staging, bytes);
+    /* The VAO holds the element buffer: bind it there, as every draw does. */
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
+    glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)g->view_offset, (GLsizeiptr)bytes, g->view_indices);
+    return bytes;
+}
+
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)
 {
     pelt__wet_split_free(&g->split);
+    if (g->view_indices) pelt__free(&g->alloc, g->view_indices);
+    if (g->view_staging) pelt__free(&g->alloc, g->view_staging);
+    if (g->view_side) pelt__free(&g->alloc, g->view_side);
     GLuint buffers[8] = {g->vbo_static, g->vbo_pose, g->vbo_tips, g->vbo_groom,
                          g->ebo,        g->vbo_bind, g->vbo_bones, g->vbo_fit};
     glDeleteBuffers(8, buffers);

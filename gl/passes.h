@@ -27,6 +27,7 @@ typedef struct pelt__pass_frame {
     pelt__frame_lod lod;
     const pelt_view *view;
     unsigned shell_features;  /* PELT__SHELL_* the shells need this frame */
+    bool view_split;          /* the mesh's view split holds the drawn triangles */
 } pelt__pass_frame;
 
 /* The #define lines of `features` (PELT_WET, ...), for a program's sources. */

@@ -218,10 +218,34 @@ static void run_outline(pelt_renderer *r, const pelt__pass_frame *f, const pelt_
     pelt__fin_pass_draw_outline(&r->fins, f);
 }
 
+/* The view split (pelt__fur_gpu_view_split): brought up to this frame's
+ * view where the dry shells' program draws the frame. True when it holds
+ * the drawn triangles. */
+static bool view_split(pelt_renderer *r, const pelt__pass_frame *f)
+{
+    const pelt_draw_desc *d = f->draw;
+    if (d->debug.no_view_split || d->debug.floor_shader || d->debug.plain_shells ||
+        (f->shell_features & PELT__SHELL_WET))
+        return false;
+    const float *m = f->view->model;
+    pelt__view_split_desc vd = {
+        .level = f->lod.mesh_level,
+        .full_mesh = f->lod.full_mesh,
+        .model_scale = sqrtf(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]),
+        .eye = {f->view->eye[0], f->view->eye[1], f->view->eye[2]},
+        .margin = PELT__VIEW_SPLIT_MARGIN,
+    };
+    memcpy(vd.model, m, sizeof vd.model);
+    f->stats->upload_bytes += pelt__gpu_mesh_update_view(&r->mesh, r->fur, &vd);
+    return r->mesh.view_ok;
+}
+
 static void run_shells(pelt_renderer *r, const pelt__pass_frame *f, const pelt__frame_plan *p)
 {
     if (!p->gpu_skin) {
-        pelt__shell_pass_draw(&r->shells, f);
+        pelt__pass_frame split = *f;
+        split.view_split = view_split(r, f);
+        pelt__shell_pass_draw(&r->shells, &split);
         return;
     }
     f->stats->upload_bytes += pelt__gpu_mesh_upload_bones(&r->mesh, r->fur);

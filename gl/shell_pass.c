@@ -12,7 +12,7 @@
 static const char *const feature_defines[] = {"PELT_WET", "PELT_INTER_SHADOW", "PELT_LOD_BLEND",
                                               "PELT_COLOR_TEXTURE", "PELT_SHADING_KK", "PELT_SHADING_TABLE",
                                               "PELT_SHADOW_MAP", "PELT_RINGLETS", "PELT_FUR_TAPS", "PELT_LIGHT_PASS",
-                                              "PELT_GPU_SKIN"};
+                                              "PELT_GPU_SKIN", "PELT_NO_GAP"};
 
 void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFINES_MAX])
 {
@@ -213,6 +213,37 @@ static void draw_split(const pelt__shell_program *dry_sp, const pelt__shell_prog
     }
 }
 
+/* Face-on and side-on triangles drawn apart (the view split,
+ * pelt__fur_gpu_view_split), a shell at a time: the face-on part's shell
+ * i with face_sp, which does not read the fur texture across the gap,
+ * then the side-on part's with side_sp, which does, so the shells blend in
+ * the order one draw of every triangle gives them (as draw_split). */
+static void draw_apart(const pelt__shell_program *face_sp, const pelt__shell_program *side_sp,
+                       const pelt__pass_frame *f, const float shells[4], const float next[2], size_t offset,
+                       size_t face, size_t side, unsigned count)
+{
+    const size_t side_offset = offset + face * 3 * sizeof(uint32_t);
+    const unsigned close = close_up_shells(f);
+    const pelt__shell_program *sps[2] = {face_sp, side_sp};
+    for (int k = 0; k < 2; k++) {
+        use_program(sps[k], f, shells, next);
+        glUniform1f(sps[k]->sub_shells, (float)close);
+    }
+    for (unsigned i = 0; i < count; i++) {
+        glUseProgram(face_sp->program);
+        glUniform1f(face_sp->instance_base, (float)i);
+        draw_instanced(f, offset, face, close);
+        glUseProgram(side_sp->program);
+        glUniform1f(side_sp->instance_base, (float)i);
+        draw_instanced(f, side_offset, side, close);
+    }
+    for (int k = 0; k < 2; k++) {
+        glUseProgram(sps[k]->program);
+        glUniform1f(sps[k]->instance_base, 0.0f);
+        glUniform1f(sps[k]->sub_shells, 1.0f);
+    }
+}
+
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
 {
     if (f->draw->debug.plain_shells) {
@@ -266,6 +297,16 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
             draw_split(dry_sp, sp, f, shells, next, m->split_offset, dry, triangles - dry, count);
     } else if (sp != &p->floor && (f->shell_features & PELT__SHELL_WET) && any_sub_shells(f, shells, next, count)) {
         draw_split(NULL, sp, f, shells, next, offset, 0, triangles, count);
+    } else if (sp != &p->floor && f->view_split && m->view_total == triangles && m->view_face > 0) {
+        /* The view split: the face-on triangles without the read across
+         * the gap, which llvmpipe would run on every fragment (docs/lod.md). */
+        const pelt__shell_program *face_sp = pelt__shell_pass_program(p, f->shell_features | PELT__SHELL_NO_GAP);
+        size_t side = triangles - m->view_face;
+        f->stats->face_on_triangles = m->view_face;
+        if (side == 0)
+            draw_part(face_sp, f, shells, next, m->view_offset, triangles, count);
+        else
+            draw_apart(face_sp, sp, f, shells, next, m->view_offset, m->view_face, side, count);
     } else {
         draw_part(sp, f, shells, next, offset, triangles, count);
     }

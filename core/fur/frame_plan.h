@@ -89,7 +89,9 @@ enum {
     PELT__SHELL_GENERIC = (1 << 9) - 1, /* everything, chosen per fragment */
     PELT__SHELL_LIGHT_PASS = 1 << 9,    /* drawn from the light into its opacity slices */
     PELT__SHELL_GPU_SKIN = 1 << 10,     /* skinned in the vertex stage (for measuring) */
-    PELT__SHELL_VARIANTS = 1 << 11
+    PELT__SHELL_NO_GAP = 1 << 11,       /* no second read across the gap: the triangles the
+                                           view split finds face-on (pelt__fur_gpu_view_split) */
+    PELT__SHELL_VARIANTS = 1 << 12
 };
 
 /* What the caller asks of this frame (pelt_draw_desc, read by the renderer). */

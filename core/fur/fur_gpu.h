@@ -144,6 +144,36 @@ typedef struct pelt__fin_frame_desc {
 size_t pelt__fur_gpu_fin_frame(const pelt_fur *fur, const pelt__fin_frame_desc *d, uint32_t *fins,
                                float *vertices, unsigned *rows, size_t *dry);
 
+/* Shell triangles drawn apart by the view (gl/shell_pass.c, docs/lod.md).
+ * The shell fragment reads the fur texture a second time where the eye
+ * sees the surface from the side (shell_gap's weight, shell_lod.glsl:
+ * above 0 only for |N.V| between PELT__SHELL_GAP_OUTLINE_NONE and
+ * PELT__SHELL_GAP_NONE), and llvmpipe runs a read behind a branch on
+ * every fragment of a program that has it. */
+typedef struct pelt__view_split_desc {
+    unsigned level;      /* the level of detail whose triangles (lod.h) */
+    bool full_mesh;      /* the mesh's own triangles instead (lod off) */
+    float model[16];     /* the mesh's placement, column-major (pelt_view) */
+    float model_scale;   /* its scale, as the vertex stage takes it: |model x| */
+    float eye[3];        /* world */
+    float margin;        /* widens the band on both sides (|N.V| units) */
+} pelt__view_split_desc;
+
+/* The margin the renderer takes: the vertex stage's normal and ray, in
+ * float, against these in C. */
+#define PELT__VIEW_SPLIT_MARGIN 0.02f
+
+/* Writes the drawn triangles (3 indices each) into `indices`: first those
+ * none of whose vertices may see the surface from the side, then the
+ * others, each part in the given order; returns how many come first and
+ * sets *total. A vertex may when |N.V| lies within the band widened by the
+ * margin and by twice its hair's length over its distance to the eye (the
+ * vertex stage takes V at the shell's vertex, and a coarse level's fitted
+ * normal, as here). vertex_side: scratch of a byte per mesh vertex.
+ * No allocation. */
+size_t pelt__fur_gpu_view_split(const pelt_fur *fur, const pelt__view_split_desc *d, uint8_t *vertex_side,
+                                uint32_t *indices, size_t *total);
+
 /* One mip level of a hair texture's slice (the fur volume, the fin
  * texture) from the level above it (w x h texels,
  * premultiplied as the volume is; an odd side of 1 kept): each 2 x 2

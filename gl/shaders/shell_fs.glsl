@@ -208,7 +208,7 @@ void main()
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
     vec4 hair = wet_hair(fur_uv, rho);
-#ifndef PELT_LIGHT_PASS
+#if !defined(PELT_LIGHT_PASS) && !defined(PELT_NO_GAP)
     // Seen from the side, this shell holds the hair down to the next one:
     // the union with the hair half a gap back (pelt__lod_shell_gap). Not in
     // a tuft, whose hairs the clump moves.

@@ -175,7 +175,9 @@ void main()
                 : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
                                   dot(world_t, normalize(u_eye - world.xyz)), drift, least,
                                   shell_overcount_cap(u_layers));
-#ifndef PELT_LIGHT_PASS
+#if !defined(PELT_LIGHT_PASS) && defined(PELT_NO_GAP)
+    v_gap = vec3(0.0); // a face-on triangle of the view split: no read across the gap
+#elif !defined(PELT_LIGHT_PASS)
     // Seen from the side, a hair between this shell and the next one down
     // (docs/reference.md, Hairs seen from the side, not beads).
     float scale = length(mat3(u_model) * u); // the model's, uniform

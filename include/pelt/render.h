@@ -73,6 +73,10 @@ typedef struct pelt_draw_debug {
     /* Draw every triangle's shells with the wet shader while any fur is
      * wet, as before wet and dry were drawn apart (for measuring it). */
     bool no_wet_split;
+    /* Draw every triangle's shells with the program that reads the fur
+     * texture across the gap where the surface is seen from the side, as
+     * before the view split drew the others without it (for measuring). */
+    bool no_view_split;
     /* Draw each layer once, even where tufts gather their hairs (no wet
        sub shells, docs/wetness.md) or the shells stand far apart close up
        (lod.sub_shells, docs/lod.md), for measuring what they buy. */
@@ -126,7 +130,12 @@ typedef struct pelt_draw_desc {
 /* What the last pelt_renderer_draw did. */
 typedef struct pelt_render_stats {
     unsigned skin_draw_calls;  /* 1 when the skin was drawn, else 0 */
-    unsigned shell_draw_calls; /* 1 when shells were drawn: all in one instanced draw */
+    unsigned shell_draw_calls; /* 1 when shells were drawn: all in one instanced draw
+                                  (a shell at a time, two draws each, where wet and
+                                  dry or face-on and side-on are drawn apart) */
+    size_t face_on_triangles;  /* of mesh_triangles, those the view split drew
+                                  without the read across the gap (docs/lod.md);
+                                  0: not split */
     unsigned shell_instances;  /* shell layers that draw covered */
     unsigned sub_shells;       /* wet shells drawn beyond one a layer, where
                                   tufts gather their hairs (docs/wetness.md,

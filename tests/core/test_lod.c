@@ -7,6 +7,7 @@
 #include "core/fur/fins.h"
 #include "core/fur/fur_gpu.h"
 #include "core/fur/lod.h"
+#include "core/fur/vertex_strand.h"
 #include "core/wet/clump.h"
 
 #include <math.h>
@@ -985,6 +986,89 @@ static void lod_shell_gap_reaches_the_next_shell(void)
     CHECK_NEAR(g[2], ungated[2], 1e-6);
 }
 
+/* The view split (pelt__fur_gpu_view_split): its face-on triangles are a
+ * part of the level's, the rest side-on, and no vertex of a face-on one
+ * gives the read across the gap any weight at any height of its hair, as
+ * the vertex stage works it out (V at the shell's vertex, a coarse level's
+ * fitted normal, the model's placement). */
+static void lod_view_split_keeps_the_gap_read_where_it_is_weighed(void)
+{
+    pelt_mesh *m = NULL;
+    pelt_fur *fur = NULL;
+    CHECK(pelt_mesh_sphere(1.0f, 32, 16, &m, NULL) == PELT_OK);
+    CHECK(m && pelt_fur_create(m, &(pelt_fur_desc){.look.texture_size = 16, .length = 0.1f}, &fur, NULL) == PELT_OK);
+    if (!fur) {
+        pelt_mesh_destroy(m);
+        return;
+    }
+    const pelt_mesh_data d = pelt_mesh_get_data(m);
+    const float *tangents = pelt_mesh_tangents(m);
+    pelt__fur_snapshot fs;
+    pelt__fur_gpu_snapshot(fur, &fs);
+    uint8_t *side_of = malloc(d.vertex_count);
+    uint32_t *tris = malloc(d.triangle_count * 3 * sizeof *tris);
+    size_t *uses = calloc(d.vertex_count, sizeof *uses);
+    const float eyes[4][3] = {{0.0f, 0.5f, 4.0f}, {2.0f, -1.0f, 1.5f}, {0.0f, 0.0f, 1.6f}, {-3.0f, 2.0f, -6.0f}};
+    /* Twice the size, turned a quarter about y and moved. */
+    const float turned[16] = {0, 0, -2, 0, 0, 2, 0, 0, 2, 0, 0, 0, 0.5f, -0.25f, 0.1f, 1};
+    const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    size_t faces = 0, sides = 0, wrong = 0, lost = 0;
+    for (unsigned level = 0; level < 2 && level < fs.lod->count && side_of && tris && uses; level++)
+        for (int k = 0; k < 8; k++) {
+            const float *model = k < 4 ? identity : turned;
+            float scale = k < 4 ? 1.0f : 2.0f;
+            pelt__view_split_desc vd = {level, false, {0}, scale, {eyes[k % 4][0], eyes[k % 4][1], eyes[k % 4][2]},
+                                        PELT__VIEW_SPLIT_MARGIN};
+            memcpy(vd.model, model, sizeof vd.model);
+            const pelt__lod_level *l = &fs.lod->levels[level];
+            size_t total = 0, face = pelt__fur_gpu_view_split(fur, &vd, side_of, tris, &total);
+            CHECK(total == l->triangle_count && face <= total);
+            faces += face, sides += total - face;
+            /* The same triangles: every vertex used as often. */
+            memset(uses, 0, d.vertex_count * sizeof *uses);
+            for (size_t t = 0; t < 3 * total; t++) uses[l->indices[t]]++, uses[tris[t]]--;
+            for (size_t i = 0; i < d.vertex_count; i++) lost += uses[i] != 0;
+            for (size_t t = 0; t < 3 * face; t++) {
+                uint32_t i = tris[t];
+                fin_strand st = pelt__fur_vertex_strand(fur, &d, tangents, false, 0.0f, 1.0f, i);
+                if (level > 0 && l->fit_normals) {
+                    float n[3], u[3], v[3], fit[3];
+                    v3_store(n, st.n), v3_store(u, st.u), v3_store(v, st.v);
+                    pelt__lod_fit_normal(n, u, v, l->fit_normals + 3 * i, fit);
+                    pelt_vec3 fitted = v3(fit[0], fit[1], fit[2]);
+                    st.tip = v3_mad(st.tip, v3_sub(fitted, st.n), st.L);
+                    st.n = fitted;
+                }
+                for (int h = 0; h <= 4; h++) {
+                    pelt_vec3 p = v3_add(st.p, pelt__fur_vertex_strand_offset(&st, 0.25f * (float)h));
+                    pelt_vec3 w = v3(model[0] * p.x + model[4] * p.y + model[8] * p.z + model[12],
+                                     model[1] * p.x + model[5] * p.y + model[9] * p.z + model[13],
+                                     model[2] * p.x + model[6] * p.y + model[10] * p.z + model[14]);
+                    pelt_vec3 n = v3_norm_or(v3(model[0] * st.n.x + model[4] * st.n.y + model[8] * st.n.z,
+                                                model[1] * st.n.x + model[5] * st.n.y + model[9] * st.n.z,
+                                                model[2] * st.n.x + model[6] * st.n.y + model[10] * st.n.z),
+                                             v3(0, 1, 0));
+                    float nf[3], Vf[3], g[3];
+                    v3_store(nf, n);
+                    v3_store(Vf, v3_norm_or(v3_sub(w, v3_load(vd.eye)), v3(0, 0, -1)));
+                    const float u[3] = {1, 0, 0}, v[3] = {0, 1, 0};
+                    pelt__lod_shell_gap(nf, nf, Vf, u, v, 0.01f, 1.0f, -1.0f, g);
+                    wrong += g[2] > 0.0f;
+                }
+            }
+        }
+    printf("  %zu face-on and %zu side-on triangles over 16 views; %zu face-on vertex heights weigh the read\n",
+           faces, sides, wrong);
+    CHECK(lost == 0);
+    CHECK(wrong == 0);
+    CHECK(faces > 0 && sides > 0);
+    free(side_of);
+    free(tris);
+    free(uses);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(m);
+}
+
 int main(void)
 {
     RUN(lod_levels_shrink_and_their_error_grows);
@@ -1008,5 +1092,6 @@ int main(void)
     RUN(lod_sub_shells_close_the_rows);
     RUN(lod_fitted_normals_follow_the_full_mesh);
     RUN(lod_shell_gap_reaches_the_next_shell);
+    RUN(lod_view_split_keeps_the_gap_read_where_it_is_weighed);
     return check_summary();
 }

@@ -76,7 +76,7 @@ static void shells_are_one_instanced_draw(void)
         pelt_fur_desc d = {.layers = layer_counts[k]};
         pelt_fur *fur = NULL;
         pelt_renderer *r = NULL;
-        pelt_draw_desc shells_only = {.no_skin = true, .no_fins = true};
+        pelt_draw_desc shells_only = {.no_skin = true, .no_fins = true, .debug.no_view_split = true};
         CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
         CHECK(pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
         if (!r) {
@@ -157,6 +157,52 @@ static void wet_left_half(pelt_fur *fur, void *user)
     }
 }
 
+/* Face-on and side-on drawn apart (the view split): dry fur draws the
+ * triangles none of whose vertices see the surface from the side without
+ * the read across the gap, a shell at a time (two draws a shell), and the
+ * picture is the one every triangle drawn with the read gives, within the
+ * wet split's bounds (a shell's triangles where the two parts overlap on
+ * screen may blend in another order). A view from the side splits anew. */
+static void face_on_and_side_on_drawn_apart(void)
+{
+    pelt_fur_desc d = {0};
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
+    CHECK(fur && pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    uint8_t *apart = malloc((size_t)W * H * 4), *together = malloc((size_t)W * H * 4);
+    for (int view = 0; view < 2 && r && apart && together; view++) {
+        pelt_camera cam = torus_cam;
+        if (view == 1) cam.pitch = 4.0f; /* degrees: nearly edge-on */
+        pelt_view v;
+        memset(&v, 0, sizeof v);
+        pelt_camera_to_view(&cam, (float)W / H, &v);
+        pelt_draw_desc split = {0}, whole = {.debug.no_view_split = true};
+        pelt_headless_bind(gl);
+        glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        pelt_renderer_draw(r, &v, &split);
+        pelt_headless_read_rgba8(gl, apart);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        printf("  view %d: %zu of %zu triangles face-on\n", view, st.face_on_triangles, st.mesh_triangles);
+        CHECK(st.face_on_triangles > 0 && st.face_on_triangles < st.mesh_triangles);
+        CHECK(st.shell_instances > 1 && st.shell_draw_calls == 2 * st.shell_instances);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        pelt_renderer_draw(r, &v, &whole);
+        pelt_headless_read_rgba8(gl, together);
+        st = pelt_renderer_get_stats(r);
+        CHECK(st.shell_draw_calls == 1 && st.face_on_triangles == 0);
+        double mean, frac;
+        gl_test_compare(apart, together, (size_t)W * H, &mean, &frac);
+        printf("  apart against one program: mean %.3f, %.4f of pixels off by more than 32\n", mean, frac);
+        CHECK(mean < 0.1 && frac < 0.002);
+    }
+    free(apart);
+    free(together);
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+}
+
 /* Wet and dry drawn apart: a torus wet on one half draws its dry triangles
  * with the dry shader (two shell draws a shell, dry then wet), its fins
  * with both ends dry with the dry fin shader (two fin draws), and the
@@ -179,7 +225,7 @@ static void wet_and_dry_drawn_apart(void)
         memset(&v, 0, sizeof v);
         pelt_camera_to_view(&torus_cam, (float)W / H, &v);
         v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.5f, 1.45f, 1.4f}, 0.25f};
-        pelt_draw_desc split = {0}, whole = {.debug.no_wet_split = true};
+        pelt_draw_desc split = {.debug.no_view_split = true}, whole = {.debug.no_wet_split = true};
         pelt_headless_bind(gl);
         glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
         glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -791,9 +837,10 @@ static void renderer_allocates_through_its_hooks(void)
      * rest's, freed before return), the mip chains of the fin texture and
      * the fur volume (one slice's at a time, freed before return), the
      * staging of the fins a frame draws, of their vertices and of the
-     * outline's hairs, and the wet split's five arrays (its triangles'
-     * boxes, flags, indices twice, and its vertices' flags). */
-    CHECK(counts.allocs == 13);
+     * outline's hairs, the wet split's five arrays (its triangles'
+     * boxes, flags, indices twice, and its vertices' flags) and the view
+     * split's three (its indices, this frame's, its vertices' scratch). */
+    CHECK(counts.allocs == 16);
     CHECK(counts.frees == 4);
     pelt_renderer_destroy(r);
     CHECK(counts.allocs == counts.frees);
@@ -945,6 +992,10 @@ static void every_shell_variant_compiles(void)
         asked[n++] = bit | PELT__SHELL_WET;
     }
     asked[n++] = PELT__SHELL_GENERIC | PELT__SHELL_GPU_SKIN;
+    /* The view split's face-on programs: without the read across the gap. */
+    asked[n++] = PELT__SHELL_NO_GAP;
+    asked[n++] = PELT__SHELL_GENERIC | PELT__SHELL_NO_GAP;
+    asked[n++] = PELT__SHELL_INTER_SHADOW | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_NO_GAP;
     const unsigned kept[] = {PELT__SHELL_WET, PELT__SHELL_RINGLETS, PELT__SHELL_GPU_SKIN};
     for (unsigned m = 0; m < 8; m++) {
         unsigned f = PELT__SHELL_LIGHT_PASS;
@@ -1081,7 +1132,10 @@ static void stats_count_passes_layers_and_uploads(void)
 
     pelt_renderer_draw(r, &v, NULL);
     st = pelt_renderer_get_stats(r);
-    CHECK(st.skin_draw_calls == 1 && st.shell_draw_calls == 1 && st.shell_instances == 16);
+    CHECK(st.skin_draw_calls == 1 && st.shell_instances == 16);
+    /* One instanced draw, or a shell at a time where the view split drew
+     * the face-on triangles apart (face_on_and_side_on_drawn_apart). */
+    CHECK(st.face_on_triangles > 0 && st.face_on_triangles < tris && st.shell_draw_calls == 2 * 16);
     /* Of the fins, one per edge (counted here by brute force), the ones
      * the view may show, all in one draw; the full torus, every shell. */
     CHECK(st.fin_draw_calls == 1 && st.fins > 0 && st.fins < count_edges(torus));
@@ -1289,6 +1343,7 @@ int main(void)
         RUN(shells_are_one_instanced_draw);
         RUN(plain_renderer_draws_every_shell);
         RUN(wet_and_dry_drawn_apart);
+        RUN(face_on_and_side_on_drawn_apart);
         RUN(wet_and_dry_drawn_apart_at_a_grazing_angle);
         RUN(sub_shells_join_a_tufts_hairs);
         RUN(wet_clumps_show_skin_and_leave_dry_fur_alone);
