@@ -102,8 +102,8 @@ size_t pelt__gpu_mesh_upload_bones(pelt__gpu_mesh *g, pelt_fur *fur);
  * between the split's parts; returns bytes sent. */
 size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *fs, const unsigned rect[4]);
 /* Splits the drawn triangles by the view (pelt__fur_gpu_view_split) and
- * rewrites the split's part of ebo when it changed; returns bytes sent.
- * view_face and view_total say what it holds. */
+ * rewrites the split's part of ebo when it changed (binding g->vao);
+ * returns bytes sent. view_face and view_total say what it holds. */
 size_t pelt__gpu_mesh_update_view(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
 /* Points the bound VAO's PELT_ATTR_FIT_NORMAL at the slice of the level

@@ -306,15 +306,16 @@ size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *
 size_t pelt__gpu_mesh_update_view(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d)
 {
     if (!g->view_ok) return 0;
+    /* A level never holds more triangles than the mesh: room for them. */
     size_t total, face = pelt__fur_gpu_view_split(fur, d, g->view_side, g->view_staging, &total);
     size_t bytes = total * 3 * sizeof(uint32_t);
-    if (total > g->triangle_count) return 0; /* a level never holds more than the mesh */
     bool same = face == g->view_face && total == g->view_total && !memcmp(g->view_staging, g->view_indices, bytes);
     g->view_face = face, g->view_total = total;
     if (same) return 0;
     memcpy(g->view_indices, g->view_staging, bytes);
-    /* The VAO holds the element buffer: bind it there, as every draw does. */
-    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, g->ebo);
+    /* The VAO holds the element buffer (WebGL2 binds an element buffer to
+     * no other target): through it, and it stays bound for the shells. */
+    glBindVertexArray(g->vao);
     glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)g->view_offset, (GLsizeiptr)bytes, g->view_indices);
     return bytes;
 }
