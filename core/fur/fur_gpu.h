@@ -157,6 +157,12 @@ typedef struct pelt__view_split_desc {
     float model_scale;   /* its scale, as the vertex stage takes it: |model x| */
     float eye[3];        /* world */
     float margin;        /* widens the band on both sides (|N.V| units) */
+    /* The shells' spacing side-on on screen, as the vertex stage gates the
+     * read by it (u_shell_view.x: pixels times clip w per unit of groom
+     * length; 0: not known, no gate), and the clip w row of the view and
+     * projection (column-major: w = dot(w_row, (world, 1))). */
+    float shell_spacing;
+    float w_row[4];
 } pelt__view_split_desc;
 
 /* The margin the renderer takes: the vertex stage's normal and ray, in
@@ -169,8 +175,10 @@ typedef struct pelt__view_split_desc {
  * sets *total. A vertex may when |N.V| lies within the band widened by the
  * margin and by twice its hair's length over its distance to the eye (the
  * vertex stage takes V at the shell's vertex, and a coarse level's fitted
- * normal, as here). vertex_side: scratch of a byte per mesh vertex.
- * No allocation. */
+ * normal, as here), and, where the spacing is known, when its shells stand
+ * at least PELT__SHELL_GAP_PX_NONE apart on screen less the margin's share
+ * (sub shells only bring them closer). vertex_side: scratch of a byte per
+ * mesh vertex. No allocation. */
 size_t pelt__fur_gpu_view_split(const pelt_fur *fur, const pelt__view_split_desc *d, uint8_t *vertex_side,
                                 uint32_t *indices, size_t *total);
 

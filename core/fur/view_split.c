@@ -53,7 +53,14 @@ static bool vertex_side_on(const pelt_fur *f, const pelt_mesh_data *m, const flo
      * shell vertex's ray turns, doubled for the normal's own turn. */
     float reach = f->desc.length * f->groom.v[i].length * d->model_scale;
     float widen = d->margin + 2.0f * reach / dist;
-    return vn > PELT__SHELL_GAP_OUTLINE_NONE - widen && vn < PELT__SHELL_GAP_NONE + widen;
+    if (!(vn > PELT__SHELL_GAP_OUTLINE_NONE - widen && vn < PELT__SHELL_GAP_NONE + widen)) return false;
+    if (d->shell_spacing > 0.0f) {
+        /* The root's clip w, as the vertex stage takes it. */
+        const float *r = d->w_row;
+        float w = fmaxf(r[0] * world.x + r[1] * world.y + r[2] * world.z + r[3], 1e-6f);
+        if (d->shell_spacing * f->groom.v[i].length / w < PELT__SHELL_GAP_PX_NONE * (1.0f - d->margin)) return false;
+    }
+    return true;
 }
 
 static bool triangle_side_on(const uint8_t *vertex_side, const uint32_t *tri)

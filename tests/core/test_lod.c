@@ -990,7 +990,8 @@ static void lod_shell_gap_reaches_the_next_shell(void)
  * part of the level's, the rest side-on, and no vertex of a face-on one
  * gives the read across the gap any weight at any height of its hair, as
  * the vertex stage works it out (V at the shell's vertex, a coarse level's
- * fitted normal, the model's placement). */
+ * fitted normal, the model's placement, and in half the views the shells'
+ * spacing on screen, about the gate's). */
 static void lod_view_split_keeps_the_gap_read_where_it_is_weighed(void)
 {
     pelt_mesh *m = NULL;
@@ -1014,11 +1015,14 @@ static void lod_view_split_keeps_the_gap_read_where_it_is_weighed(void)
     const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
     size_t faces = 0, sides = 0, wrong = 0, lost = 0;
     for (unsigned level = 0; level < 2 && level < fs.lod->count && side_of && tris && uses; level++)
-        for (int k = 0; k < 8; k++) {
-            const float *model = k < 4 ? identity : turned;
-            float scale = k < 4 ? 1.0f : 2.0f;
-            pelt__view_split_desc vd = {level, false, {0}, scale, {eyes[k % 4][0], eyes[k % 4][1], eyes[k % 4][2]},
-                                        PELT__VIEW_SPLIT_MARGIN};
+        for (int k = 0; k < 16; k++) {
+            const float *model = k % 8 < 4 ? identity : turned;
+            float scale = k % 8 < 4 ? 1.0f : 2.0f;
+            pelt_vec3 eye = v3_load(eyes[k % 4]), fwd = v3_norm_or(v3_scale(eye, -1.0f), v3(0, 0, -1));
+            pelt__view_split_desc vd = {level, false, {0}, scale, {eye.x, eye.y, eye.z}, PELT__VIEW_SPLIT_MARGIN,
+                                        /* shells 0.26 px apart at the eye's distance */
+                                        k < 8 ? 0.0f : 0.26f * v3_len(eye),
+                                        {fwd.x, fwd.y, fwd.z, -v3_dot(fwd, eye)}};
             memcpy(vd.model, model, sizeof vd.model);
             const pelt__lod_level *l = &fs.lod->levels[level];
             size_t total = 0, face = pelt__fur_gpu_view_split(fur, &vd, side_of, tris, &total);
@@ -1031,6 +1035,13 @@ static void lod_view_split_keeps_the_gap_read_where_it_is_weighed(void)
             for (size_t t = 0; t < 3 * face; t++) {
                 uint32_t i = tris[t];
                 fin_strand st = pelt__fur_vertex_strand(fur, &d, tangents, false, 0.0f, 1.0f, i);
+                /* The shells' spacing on screen at the root, as shell_vs.glsl. */
+                pelt_vec3 root = v3(model[0] * st.p.x + model[4] * st.p.y + model[8] * st.p.z + model[12],
+                                    model[1] * st.p.x + model[5] * st.p.y + model[9] * st.p.z + model[13],
+                                    model[2] * st.p.x + model[6] * st.p.y + model[10] * st.p.z + model[14]);
+                float clip_w = fmaxf(v3_dot(fwd, root) + vd.w_row[3], 1e-6f);
+                float groom = st.L / pelt_fur_get_desc(fur).length; /* the groom's length multiple */
+                float spacing_px = vd.shell_spacing > 0.0f ? vd.shell_spacing * groom / clip_w : -1.0f;
                 if (level > 0 && l->fit_normals) {
                     float n[3], u[3], v[3], fit[3];
                     v3_store(n, st.n), v3_store(u, st.u), v3_store(v, st.v);
@@ -1052,12 +1063,12 @@ static void lod_view_split_keeps_the_gap_read_where_it_is_weighed(void)
                     v3_store(nf, n);
                     v3_store(Vf, v3_norm_or(v3_sub(w, v3_load(vd.eye)), v3(0, 0, -1)));
                     const float u[3] = {1, 0, 0}, v[3] = {0, 1, 0};
-                    pelt__lod_shell_gap(nf, nf, Vf, u, v, 0.01f, 1.0f, -1.0f, g);
+                    pelt__lod_shell_gap(nf, nf, Vf, u, v, 0.01f, 1.0f, spacing_px, g);
                     wrong += g[2] > 0.0f;
                 }
             }
         }
-    printf("  %zu face-on and %zu side-on triangles over 16 views; %zu face-on vertex heights weigh the read\n",
+    printf("  %zu face-on and %zu side-on triangles over 32 views; %zu face-on vertex heights weigh the read\n",
            faces, sides, wrong);
     CHECK(lost == 0);
     CHECK(wrong == 0);
