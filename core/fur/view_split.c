@@ -49,8 +49,8 @@ static bool vertex_side_on(const pelt_fur *f, const pelt_mesh_data *m, const flo
     float dist = v3_len(ray), nl = v3_len(wn);
     if (!(dist > 1e-12f) || !(nl > 1e-12f)) return true;
     float vn = fabsf(v3_dot(wn, ray)) / (nl * dist);
-    /* The hair's reach in world units over the distance: the most its
-     * shell vertex's ray turns, doubled for the normal's own turn. */
+    /* The hair's reach in world units over the distance: about the most
+     * its shell vertex's ray turns (in radians), taken twice for safety. */
     float reach = f->desc.length * f->groom.v[i].length * d->model_scale;
     float widen = d->margin + 2.0f * reach / dist;
     if (!(vn > PELT__SHELL_GAP_OUTLINE_NONE - widen && vn < PELT__SHELL_GAP_NONE + widen)) return false;
