@@ -613,16 +613,22 @@ static void lod_fin_rows_follow_the_strands_bow(void)
     pelt_mesh_destroy(m);
 }
 
+/* A unit sphere (32 x 16) with fur 0.1 long on a 16-texel texture; false,
+ * with nothing left over, when either could not be made. */
+static bool sphere_with_fur(pelt_mesh **m, pelt_fur **fur)
+{
+    CHECK(pelt_mesh_sphere(1.0f, 32, 16, m, NULL) == PELT_OK);
+    CHECK(*m && pelt_fur_create(*m, &(pelt_fur_desc){.look.texture_size = 16, .length = 0.1f}, fur, NULL) == PELT_OK);
+    if (*fur) return true;
+    pelt_mesh_destroy(*m);
+    return false;
+}
+
 static void lod_a_fin_frame_holds_the_fins_the_view_shows(void)
 {
     pelt_mesh *m = NULL;
     pelt_fur *fur = NULL;
-    CHECK(pelt_mesh_sphere(1.0f, 32, 16, &m, NULL) == PELT_OK);
-    CHECK(m && pelt_fur_create(m, &(pelt_fur_desc){.look.texture_size = 16, .length = 0.1f}, &fur, NULL) == PELT_OK);
-    if (!fur) {
-        pelt_mesh_destroy(m);
-        return;
-    }
+    if (!sphere_with_fur(&m, &fur)) return;
     pelt__fur_snapshot fs;
     pelt__fur_gpu_snapshot(fur, &fs);
     const pelt__lod_chain *c = fs.lod;
@@ -996,12 +1002,7 @@ static void lod_view_split_keeps_the_gap_read_where_it_is_weighed(void)
 {
     pelt_mesh *m = NULL;
     pelt_fur *fur = NULL;
-    CHECK(pelt_mesh_sphere(1.0f, 32, 16, &m, NULL) == PELT_OK);
-    CHECK(m && pelt_fur_create(m, &(pelt_fur_desc){.look.texture_size = 16, .length = 0.1f}, &fur, NULL) == PELT_OK);
-    if (!fur) {
-        pelt_mesh_destroy(m);
-        return;
-    }
+    if (!sphere_with_fur(&m, &fur)) return;
     const pelt_mesh_data d = pelt_mesh_get_data(m);
     const float *tangents = pelt_mesh_tangents(m);
     pelt__fur_snapshot fs;

@@ -157,6 +157,16 @@ static void wet_left_half(pelt_fur *fur, void *user)
     }
 }
 
+/* One frame of r from v with d over the test background, read into px. */
+static void draw_and_read(pelt_renderer *r, const pelt_view *v, const pelt_draw_desc *d, uint8_t *px)
+{
+    pelt_headless_bind(gl);
+    glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    pelt_renderer_draw(r, v, d);
+    pelt_headless_read_rgba8(gl, px);
+}
+
 /* Face-on and side-on drawn apart (the view split): dry fur draws the
  * triangles none of whose vertices see the surface from the side without
  * the read across the gap, a shell at a time (two draws a shell), and the
@@ -178,18 +188,12 @@ static void face_on_and_side_on_drawn_apart(void)
         memset(&v, 0, sizeof v);
         pelt_camera_to_view(&cam, (float)W / H, &v);
         pelt_draw_desc split = {0}, whole = {.debug.no_view_split = true};
-        pelt_headless_bind(gl);
-        glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_renderer_draw(r, &v, &split);
-        pelt_headless_read_rgba8(gl, apart);
+        draw_and_read(r, &v, &split, apart);
         pelt_render_stats st = pelt_renderer_get_stats(r);
         printf("  view %d: %zu of %zu triangles face-on\n", view, st.face_on_triangles, st.mesh_triangles);
         CHECK(st.face_on_triangles > 0 && st.face_on_triangles < st.mesh_triangles);
         CHECK(st.shell_instances > 1 && st.shell_draw_calls == 2 * st.shell_instances);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_renderer_draw(r, &v, &whole);
-        pelt_headless_read_rgba8(gl, together);
+        draw_and_read(r, &v, &whole, together);
         st = pelt_renderer_get_stats(r);
         CHECK(st.shell_draw_calls == 1 && st.face_on_triangles == 0);
         double mean, frac;
@@ -226,17 +230,11 @@ static void wet_and_dry_drawn_apart(void)
         pelt_camera_to_view(&torus_cam, (float)W / H, &v);
         v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.5f, 1.45f, 1.4f}, 0.25f};
         pelt_draw_desc split = {.debug.no_view_split = true}, whole = {.debug.no_wet_split = true};
-        pelt_headless_bind(gl);
-        glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_renderer_draw(r, &v, &split);
-        pelt_headless_read_rgba8(gl, apart);
+        draw_and_read(r, &v, &split, apart);
         pelt_render_stats st = pelt_renderer_get_stats(r);
         CHECK(st.shell_instances > 1 && st.shell_draw_calls == 2 * st.shell_instances);
         CHECK(st.fin_draw_calls == 2); /* the fins too: dry, then wet */
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_renderer_draw(r, &v, &whole);
-        pelt_headless_read_rgba8(gl, together);
+        draw_and_read(r, &v, &whole, together);
         CHECK(pelt_renderer_get_stats(r).shell_draw_calls == 1);
         CHECK(pelt_renderer_get_stats(r).fin_draw_calls == 1);
         double mean, frac;
@@ -254,14 +252,10 @@ static void wet_and_dry_drawn_apart(void)
             pelt_droplet drop = {{u, 0.25f}, 0.05f, 1.0f};
             pelt_fur_add_droplet(fur, &drop, NULL);
         }
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_renderer_draw(r, &v, &split);
-        pelt_headless_read_rgba8(gl, apart);
+        draw_and_read(r, &v, &split, apart);
         st = pelt_renderer_get_stats(r);
         CHECK(st.shell_instances > 1 && st.shell_draw_calls == 2 * st.shell_instances);
-        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-        pelt_renderer_draw(r, &v, &whole);
-        pelt_headless_read_rgba8(gl, together);
+        draw_and_read(r, &v, &whole, together);
         gl_test_compare(apart, together, (size_t)W * H, &mean, &frac);
         printf("  wet again elsewhere: mean %.3f, %.4f off\n", mean, frac);
         CHECK(mean < 0.1 && frac < 0.002);
@@ -619,14 +613,10 @@ static void sub_shells_join_a_tufts_hairs(void)
         memset(&v, 0, sizeof v);
         v.light = (pelt_light){{0.5f, 1.0f, 0.8f}, {1.5f, 1.45f, 1.4f}, 0.25f};
         pelt_draw_desc dd[2] = {{.debug.no_sub_shells = true}, {0}};
-        pelt_headless_bind(gl);
-        glClearColor(gl_test_background[0], gl_test_background[1], gl_test_background[2], 1.0f);
         for (int k = 0; k < 2; k++) {
             pelt_camera_to_view(&close, (float)W / H, &v);
             v.width = W, v.height = H; /* the sub shells measure tufts in pixels */
-            glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-            pelt_renderer_draw(r, &v, &dd[k]);
-            pelt_headless_read_rgba8(gl, px[k]);
+            draw_and_read(r, &v, &dd[k], px[k]);
             sub[k] = pelt_renderer_get_stats(r).sub_shells;
         }
         double lum[2] = {0, 0}, step[2] = {0, 0};
