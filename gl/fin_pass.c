@@ -190,6 +190,15 @@ static void table_write(GLenum unit, GLuint t, GLenum internal, const void *texe
 
 /* Fins [first, end) of the table with the variant of `features` (the
  * generic one where that fails to build), in instances of PELT_FIN_CHUNK. */
+/* `count` strips of `rows` quads (fins or the outline's hairs), PELT_FIN_CHUNK
+ * an instance: the element buffer's chunk of strips with that many rows. */
+static void draw_strips(unsigned rows, size_t count)
+{
+    const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
+    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
+                            (GLsizei)((count + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
+}
+
 static void draw_fins(pelt__fin_pass *p, const pelt__pass_frame *f, unsigned features, size_t first, size_t end,
                       unsigned rows)
 {
@@ -202,9 +211,7 @@ static void draw_fins(pelt__fin_pass *p, const pelt__pass_frame *f, unsigned fea
     glUniform1i(p->fin_rows[features], (GLint)rows);
     glUniform1i(p->fin_hairs[features], p->hairs_on);
     if (p->hairs_on) glUniform2f(p->fin_viewport[features], p->viewport[0], p->viewport[1]);
-    const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
-    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
-                            (GLsizei)((end - first + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
+    draw_strips(rows, end - first);
     f->stats->fin_draw_calls++;
 }
 
@@ -246,9 +253,7 @@ void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f)
     glUniform1i(p->outline_rows[features], (GLint)rows);
     glUniform1f(p->outline_hairs[features], hairs);
     glUniform2f(p->outline_viewport[features], p->viewport[0], p->viewport[1]);
-    const size_t at = (rows - 1) * PELT_FIN_CHUNK * 6 * PELT_FIN_ROWS * sizeof(uint32_t);
-    glDrawElementsInstanced(GL_TRIANGLES, (GLsizei)(6 * rows * PELT_FIN_CHUNK), GL_UNSIGNED_INT, (const void *)at,
-                            (GLsizei)((count + PELT_FIN_CHUNK - 1) / PELT_FIN_CHUNK));
+    draw_strips(rows, count);
     f->stats->outline_hairs = count;
     f->stats->triangles += count * 2 * rows;
     glBindVertexArray(f->mesh->vao);

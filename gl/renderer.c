@@ -5,6 +5,7 @@
 #include "pelt/render.h"
 
 #include "core/base/error.h"
+#include "core/base/vec.h"
 #include "core/fur/fur_gpu.h"
 #include "gl/passes.h"
 
@@ -236,12 +237,12 @@ static bool view_split(pelt_renderer *r, const pelt__pass_frame *f)
         .margin = PELT__VIEW_SPLIT_MARGIN,
     };
     memcpy(vd.model, m, sizeof vd.model);
-    /* The clip w row of proj x view (column-major), where the vertex stage
-     * gates the read by the shells' spacing on screen. */
-    const float *pr = f->view->proj, *vw = f->view->view;
+    /* The clip w row of proj x view (the vertex stage's u_view_proj), where
+     * it gates the read by the shells' spacing on screen. */
+    float view_proj[16];
+    pelt__mat4_mul(view_proj, f->view->proj, f->view->view);
     vd.shell_spacing = f->lod.shell_view[0];
-    for (int c = 0; c < 4; c++)
-        vd.w_row[c] = pr[3] * vw[4 * c] + pr[7] * vw[4 * c + 1] + pr[11] * vw[4 * c + 2] + pr[15] * vw[4 * c + 3];
+    for (int c = 0; c < 4; c++) vd.w_row[c] = view_proj[4 * c + 3];
     f->stats->upload_bytes += pelt__gpu_mesh_update_view(&r->mesh, r->fur, &vd);
     return r->mesh.view_ok;
 }

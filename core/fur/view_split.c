@@ -11,19 +11,6 @@
 #include <math.h>
 #include <string.h>
 
-/* The point, and the direction, `m` (column-major) takes p and d to. */
-static pelt_vec3 model_point(const float *m, pelt_vec3 p)
-{
-    return v3(m[0] * p.x + m[4] * p.y + m[8] * p.z + m[12], m[1] * p.x + m[5] * p.y + m[9] * p.z + m[13],
-              m[2] * p.x + m[6] * p.y + m[10] * p.z + m[14]);
-}
-
-static pelt_vec3 model_direction(const float *m, pelt_vec3 d)
-{
-    return v3(m[0] * d.x + m[4] * d.y + m[8] * d.z, m[1] * d.x + m[5] * d.y + m[9] * d.z,
-              m[2] * d.x + m[6] * d.y + m[10] * d.z);
-}
-
 /* Whether the shells over vertex i may read the gap: |N.V| inside the band
  * where shell_gap's weight is above 0, widened by `margin` plus the angle
  * the hair's length, seen from the eye, moves the shell vertex's ray by
@@ -43,8 +30,8 @@ static bool vertex_side_on(const pelt_fur *f, const pelt_mesh_data *m, const flo
         pelt__lod_fit_normal(nn, uu, vv, fit + 3 * i, out);
         n = v3(out[0], out[1], out[2]);
     }
-    pelt_vec3 world = model_point(d->model, p);
-    pelt_vec3 wn = model_direction(d->model, n);
+    pelt_vec3 world = pelt__mat4_apply(d->model, p, 1.0f);
+    pelt_vec3 wn = pelt__mat4_apply(d->model, n, 0.0f);
     pelt_vec3 ray = v3_sub(world, v3_load(d->eye));
     float dist = v3_len(ray), nl = v3_len(wn);
     if (!(dist > 1e-12f) || !(nl > 1e-12f)) return true;

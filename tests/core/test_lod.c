@@ -1037,9 +1037,7 @@ static void lod_view_split_keeps_the_gap_read_where_it_is_weighed(void)
                 uint32_t i = tris[t];
                 fin_strand st = pelt__fur_vertex_strand(fur, &d, tangents, false, 0.0f, 1.0f, i);
                 /* The shells' spacing on screen at the root, as shell_vs.glsl. */
-                pelt_vec3 root = v3(model[0] * st.p.x + model[4] * st.p.y + model[8] * st.p.z + model[12],
-                                    model[1] * st.p.x + model[5] * st.p.y + model[9] * st.p.z + model[13],
-                                    model[2] * st.p.x + model[6] * st.p.y + model[10] * st.p.z + model[14]);
+                pelt_vec3 root = pelt__mat4_apply(model, st.p, 1.0f);
                 float clip_w = fmaxf(v3_dot(fwd, root) + vd.w_row[3], 1e-6f);
                 float groom = st.L / pelt_fur_get_desc(fur).length; /* the groom's length multiple */
                 float spacing_px = vd.shell_spacing > 0.0f ? vd.shell_spacing * groom / clip_w : -1.0f;
@@ -1053,13 +1051,8 @@ static void lod_view_split_keeps_the_gap_read_where_it_is_weighed(void)
                 }
                 for (int h = 0; h <= 4; h++) {
                     pelt_vec3 p = v3_add(st.p, pelt__fur_vertex_strand_offset(&st, 0.25f * (float)h));
-                    pelt_vec3 w = v3(model[0] * p.x + model[4] * p.y + model[8] * p.z + model[12],
-                                     model[1] * p.x + model[5] * p.y + model[9] * p.z + model[13],
-                                     model[2] * p.x + model[6] * p.y + model[10] * p.z + model[14]);
-                    pelt_vec3 n = v3_norm_or(v3(model[0] * st.n.x + model[4] * st.n.y + model[8] * st.n.z,
-                                                model[1] * st.n.x + model[5] * st.n.y + model[9] * st.n.z,
-                                                model[2] * st.n.x + model[6] * st.n.y + model[10] * st.n.z),
-                                             v3(0, 1, 0));
+                    pelt_vec3 w = pelt__mat4_apply(model, p, 1.0f);
+                    pelt_vec3 n = v3_norm_or(pelt__mat4_apply(model, st.n, 0.0f), v3(0, 1, 0));
                     float nf[3], Vf[3], g[3];
                     v3_store(nf, n);
                     v3_store(Vf, v3_norm_or(v3_sub(w, v3_load(vd.eye)), v3(0, 0, -1)));
