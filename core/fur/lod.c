@@ -540,6 +540,16 @@ float pelt__lod_shell_hair_drift(float ringlet, float omega, float h, float leng
     return ring + fabsf(curl_radius * curl_omega);
 }
 
+float pelt__lod_shell_lean_drift(const float t[3], const float n[3])
+{
+    float c[3] = {t[1] * n[2] - t[2] * n[1], t[2] * n[0] - t[0] * n[2], t[0] * n[1] - t[1] * n[0]};
+    float across = sqrtf(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    float along = fabsf(t[0] * n[0] + t[1] * n[1] + t[2] * n[2]);
+    float least = PELT__SHELL_LEAN_MIN_COS * sqrtf((t[0] * t[0] + t[1] * t[1] + t[2] * t[2]) *
+                                                   (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]));
+    return across > 0.0f ? across / fmaxf(along, least) : 0.0f;
+}
+
 void pelt__lod_view_texel(float w, float rgba[4])
 {
     float gain = 1.0f + w * (1.0f - rgba[3]);

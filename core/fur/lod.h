@@ -375,6 +375,17 @@ float pelt__lod_shell_hair_span(float width, float taper, float h, float layers,
 float pelt__lod_shell_hair_drift(float ringlet, float omega, float h, float length, float curl_radius,
                                  float curl_omega);
 
+/* How far a leaning hair moves sideways from one shell to the next, per
+ * layer spacing: tan of the angle between its tangent t and the surface
+ * normal n (neither need be unit), |t x n| / |t . n|, at most
+ * 1 / PELT__SHELL_LEAN_MIN_COS for a hair lying on the skin. Combing,
+ * Silva's curl and the dynamics' bend all lean it; seen face-on, its
+ * sections in consecutive shells stand that far apart, so the view's
+ * budget weighs it with the curl's drift (shell_vs.glsl; docs/lod.md,
+ * The view's shell budget and leaning hair). Mirrors shell_lean_drift(). */
+#define PELT__SHELL_LEAN_MIN_COS 0.05f
+float pelt__lod_shell_lean_drift(const float t[3], const float n[3]);
+
 /* An even shell's premultiplied texel under weight w: over itself,
  * rgba (1 + w (1 - a)). Mirrors shell_view_texel() (shell_lod.glsl). */
 void pelt__lod_view_texel(float w, float rgba[4]);

@@ -22,6 +22,16 @@ float shell_view_blend(float side_px, float n_dot_v, float target_px, float drif
     return clamp(log2(target_px / spacing), 0.0, 1.0);
 }
 
+// pelt__lod_shell_lean_drift (core/fur/lod.c): a leaning hair's sideways
+// move per layer spacing, tan of the angle between t and n.
+const float SHELL_LEAN_MIN_COS = 0.05; // PELT__SHELL_LEAN_MIN_COS
+float shell_lean_drift(vec3 t, vec3 n)
+{
+    float across = length(cross(t, n));
+    float least = SHELL_LEAN_MIN_COS * sqrt(dot(t, t) * dot(n, n));
+    return across > 0.0 ? across / max(abs(dot(t, n)), least) : 0.0;
+}
+
 // pelt__lod_sub_shell_need (core/fur/lod.c): how far a vertex needs the
 // frame's close-up sub shells, from its layers' spacing on screen.
 const float SUB_SHELL_PIXELS = 1.4; // PELT__SUB_SHELL_PIXELS

@@ -151,7 +151,10 @@ void main()
         // Face-on, the shells' spacing is foreshortened: the odd shells
         // (from the outside) fade and the even ones stand for them, unless
         // the hair curls, moving sideways from one shell to the next.
-        float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_shell_view.y, drift);
+        // A leaning hair (combed, curled, bent) moves sideways too: face-on
+        // its sections would stand twice as far apart with every other shell.
+        float view_drift = length(vec2(drift, shell_lean_drift(t, n)));
+        float w = shell_view_blend(u_shell_view.x * a_groom.z / w_clip, n_dot_v, u_shell_view.y, view_drift);
         bool odd = mod(u_shells.x - 1.0 - instance, 2.0) > 0.5;
         v_alpha *= odd ? 1.0 - w : 1.0;
         v_view = odd ? 0.0 : w;

@@ -417,6 +417,31 @@ static void lod_coverage_powers_compose(void)
     CHECK(pelt__lod_coverage_log(0.049f) > PELT__COVERAGE_CLEAR_LOG && pelt__lod_coverage_log(0.051f) < PELT__COVERAGE_CLEAR_LOG);
 }
 
+/* A leaning hair's sideways move per layer: none standing up, tan of its
+ * lean, whatever the lengths of t and n, bounded lying flat; and what it
+ * is for: face-on, the budget that fades half the shells of upright hair
+ * keeps those of hair combed 60 degrees. */
+static void lod_lean_drift_is_the_tangent_of_the_lean(void)
+{
+    const float n[3] = {0.0f, 0.0f, 1.0f}, n2[3] = {0.0f, 0.0f, 3.0f};
+    const float up[3] = {0.0f, 0.0f, 0.5f}, down[3] = {0.0f, 0.0f, -2.0f};
+    CHECK(pelt__lod_shell_lean_drift(up, n) == 0.0f);
+    CHECK(pelt__lod_shell_lean_drift(down, n) == 0.0f);
+    for (int deg = 5; deg <= 85; deg += 10) {
+        float a = (float)deg * 3.14159265f / 180.0f;
+        float t[3] = {2.0f * sinf(a) * 0.6f, 2.0f * sinf(a) * 0.8f, 2.0f * cosf(a)};
+        CHECK_NEAR(pelt__lod_shell_lean_drift(t, n), tanf(a), 1e-4 * (1.0 + tanf(a)));
+        CHECK_NEAR(pelt__lod_shell_lean_drift(t, n2), tanf(a), 1e-4 * (1.0 + tanf(a)));
+    }
+    const float flat[3] = {1.0f, 0.0f, 0.0f}, zero[3] = {0.0f, 0.0f, 0.0f};
+    CHECK_NEAR(pelt__lod_shell_lean_drift(flat, n), 1.0f / PELT__SHELL_LEAN_MIN_COS, 1e-3);
+    CHECK(pelt__lod_shell_lean_drift(zero, n) == 0.0f);
+    const float combed[3] = {sinf(1.0471976f), 0.0f, cosf(1.0471976f)};
+    float lean = pelt__lod_shell_lean_drift(combed, n);
+    CHECK(pelt__lod_view_blend(0.6f, 0.95f, 0.5f, 0.0f) == 1.0f); /* upright: every other shell */
+    CHECK(pelt__lod_view_blend(0.6f, 0.95f, 0.5f, lean) == 0.0f); /* combed: every shell */
+}
+
 /* The view's budget: edge-on every shell, face-on half of them; the
  * weight grows as the fur turns towards the eye. An even shell's texel at
  * weight 1 is the texel composited over itself (what it stands for). */
@@ -1083,6 +1108,7 @@ int main(void)
     RUN(lod_shell_levels_halve_to_one_shell);
     RUN(lod_shell_choice_blends_without_a_jump);
     RUN(lod_view_blend_follows_the_view);
+    RUN(lod_lean_drift_is_the_tangent_of_the_lean);
     RUN(lod_shell_composite_is_over);
     RUN(lod_fins_closer_than_their_slab_fade);
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);

@@ -885,6 +885,40 @@ static void shell_view_blend_glsl_matches_c(void)
     CHECK(worst < 1e-4);
 }
 
+/* A leaning hair's drift per layer (shell_lean_drift in shell_lod.glsl)
+ * against pelt__lod_shell_lean_drift: tangents from upright through flat
+ * to pointing into the skin, of several lengths, over tilted normals. */
+static void shell_lean_drift_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy);\n"
+        "  float a = 3.14159265 * c.x / 63.0, b = 6.2831853 * c.y / 47.0;\n"
+        "  vec3 n = vec3(0.3 * sin(b), 0.2, 1.0 + 0.5 * mod(c.y, 3.0));\n"
+        "  vec3 t = (0.5 + mod(c.x, 4.0)) * vec3(sin(a) * cos(b), sin(a) * sin(b), cos(a));\n"
+        "  o = vec4(shell_lean_drift(t, n), 0.0, 0.0, 0.0);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int steep = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float a = 3.14159265f * (float)x / 63.0f, b = 6.2831853f * (float)y / 47.0f;
+            float n[3] = {0.3f * sinf(b), 0.2f, 1.0f + 0.5f * fmodf((float)y, 3.0f)};
+            float l = 0.5f + fmodf((float)x, 4.0f);
+            float t[3] = {l * sinf(a) * cosf(b), l * sinf(a) * sinf(b), l * cosf(a)};
+            float r = pelt__lod_shell_lean_drift(t, n);
+            worst = fmax(worst, fabs(out[4 * (y * W + x)] - r) / fmax(1.0, fabs(r)));
+            steep += r > 2.0f;
+        }
+    printf("  shell_lean_drift: worst |GLSL - C| = %.3g (relative above 1), %d samples leaning past 63 degrees\n",
+           worst, steep);
+    CHECK(steep > 100);
+    CHECK(worst < 1e-4);
+}
+
 /* A shell fragment's coverage in one power (coverage_log, coverage_share),
  * GLSL vs C, over coverages 0..1 (both ends) and exponents 0.05..3. */
 static void coverage_share_glsl_matches_c(void)
@@ -1317,6 +1351,7 @@ int main(void)
     RUN(inter_shadow_glsl_matches_c);
     RUN(shell_lod_glsl_matches_c);
     RUN(shell_view_blend_glsl_matches_c);
+    RUN(shell_lean_drift_glsl_matches_c);
     RUN(fur_texture_lod_glsl_matches_c);
     RUN(fur_texture_taps_glsl_matches_c);
     RUN(shell_edge_least_glsl_matches_c);
