@@ -229,6 +229,8 @@ void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f)
     /* The eye in mesh units: the model's inverse (rotation, uniform scale
      * and translation) applied to it. */
     const float *m = f->view->model, *e = f->view->eye;
+    float view_proj[16]; /* as the frame block's u_view_proj */
+    pelt__mat4_mul(view_proj, f->view->proj, f->view->view);
     float s2 = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
     float dx = e[0] - m[12], dy = e[1] - m[13], dz = e[2] - m[14];
     pelt__outline_frame of = {p->vertices,
@@ -239,7 +241,11 @@ void pelt__fin_pass_draw_outline(pelt__fin_pass *p, const pelt__pass_frame *f)
                               sqrtf(s2) * p->tiling,
                               p->slab,
                               hairs,
-                              PELT__OUTLINE_LEAST_FADE};
+                              PELT__OUTLINE_LEAST_FADE,
+                              view_proj,
+                              m,
+                              {p->viewport[0], p->viewport[1]},
+                              4 * 2 * (size_t)rows};
     size_t count = pelt__outline_hairs(p->fins, fins, &of, p->hairs, PELT__OUTLINE_HAIR_BUDGET);
     if (count == 0) return;
     table_write(PELT_UNIT_FIN_EDGES, p->hair_table, GL_RGBA32UI, p->hairs, count);

@@ -133,6 +133,41 @@ float pelt__outline_fade(pelt_vec3 a, pelt_vec3 b, pelt_vec3 na, pelt_vec3 nb, p
     return fade * pelt__fin_spacing_opacity(v3_len(v3_sub(b, a)) * tiles_per_unit, slab);
 }
 
+/* m (column-major) times (x, y, z, w). */
+static void mat4_times(const float m[16], const float p[4], float out[4])
+{
+    for (int i = 0; i < 4; i++) out[i] = m[i] * p[0] + m[4 + i] * p[1] + m[8 + i] * p[2] + m[12 + i] * p[3];
+}
+
+/* Where the middle of (a, b) lands in normalised device coordinates. */
+static void outline_ndc(const pelt__outline_frame *f, const float *a, const float *b, float ndc[2])
+{
+    float p[4] = {0.5f * (a[0] + b[0]), 0.5f * (a[1] + b[1]), 0.5f * (a[2] + b[2]), 1.0f}, w[4], c[4];
+    mat4_times(f->model, p, w);
+    mat4_times(f->view_proj, w, c);
+    float cw = c[3] > 1e-6f ? c[3] : 1e-6f;
+    ndc[0] = c[0] / cw, ndc[1] = c[1] / cw;
+}
+
+float pelt__outline_hair_px(const pelt__outline_frame *f, const float *va, const float *vb)
+{
+    float r[2], t[2];
+    outline_ndc(f, va, vb, r);
+    outline_ndc(f, va + f->top, vb + f->top, t);
+    float dx = 0.5f * f->viewport[0] * (t[0] - r[0]), dy = 0.5f * f->viewport[1] * (t[1] - r[1]);
+    return sqrtf(dx * dx + dy * dy);
+}
+
+/* The outline's reach is 0 at and below PELT__OUTLINE_LOW_PX and at and
+ * above PELT__OUTLINE_NONE_PX: a fin is left out only clearly beyond
+ * either, so that the vertex stage's own rounding never disagrees. */
+static bool outline_out_of_reach(const pelt__outline_frame *f, const float *va, const float *vb)
+{
+    if (!f->view_proj || !f->model) return false;
+    float px = pelt__outline_hair_px(f, va, vb);
+    return px < PELT__OUTLINE_LOW_PX * 0.999f || px > PELT__OUTLINE_NONE_PX * 1.001f;
+}
+
 size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const pelt__outline_frame *f, uint32_t *out,
                            size_t cap)
 {
@@ -143,13 +178,21 @@ size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const pelt__outli
         pelt_vec3 a = v3_load(va), b = v3_load(vb);
         float fade = pelt__outline_fade(a, b, v3_load(va + f->normal), v3_load(vb + f->normal), v3_load(f->eye),
                                         f->tiles_per_unit, f->slab);
-        if (!(fade >= f->least)) continue;
+        if (!(fade >= f->least) || outline_out_of_reach(f, va, vb)) continue;
         float want = ceilf(v3_len(v3_sub(b, a)) * f->tiles_per_unit * f->hairs);
         uint32_t k_end = !(want > 0.0f)                             ? 0u
                          : want > (float)PELT__OUTLINE_HAIRS_MAX ? PELT__OUTLINE_HAIRS_MAX
                                                                  : (uint32_t)want;
-        for (uint32_t k = 0; k < k_end && n < cap; k++, n++) {
-            uint32_t *h = out + 4 * n;
+        for (uint32_t k = 0; k < k_end && n < cap; k++) {
+            /* A hair that shows only from a stronger fade than its fin's
+             * (pelt__outline_alpha is 0) is left out: the same tests as
+             * the vertex stage's (outline_vs.glsl), on the same bits, for
+             * no vertex work. */
+            uint32_t seed = pelt__outline_seed(fin[0], fin[1], k);
+            if (!(fade > pelt__outline_random(seed, 3u))) continue;
+            /* ... nor one grooming thins away (groomed density at a). */
+            if (pelt__outline_random(seed, 5u) > va[f->normal + 3]) continue;
+            uint32_t *h = out + 4 * n++;
             h[0] = fin[0], h[1] = fin[1], h[2] = k;
             memcpy(&h[3], &fade, sizeof fade);
         }

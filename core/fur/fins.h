@@ -71,6 +71,13 @@ typedef struct pelt__outline_frame {
     float slab;             /* the fin texture's slab, fur tiles */
     float hairs;            /* hairs a fur tile of edge holds */
     float least;            /* the least fade that carries hairs */
+    /* Where the view is known (view_proj not NULL), a fin whose hair is too
+     * short or too long on screen for its hairs to carry any of the outline
+     * (pelt__outline_share 0, as fin_outline_share in fin_table.glsl finds
+     * it) lists none. */
+    const float *view_proj, *model; /* column-major */
+    float viewport[2];              /* pixels */
+    size_t top;                     /* floats to the fin's top point from its root */
 } pelt__outline_frame;
 
 /* The fade of the fin from a to b (normals na, nb) seen from `eye`:
@@ -80,10 +87,20 @@ typedef struct pelt__outline_frame {
 float pelt__outline_fade(pelt_vec3 a, pelt_vec3 b, pelt_vec3 na, pelt_vec3 nb, pelt_vec3 eye, float tiles_per_unit,
                          float slab);
 
+/* The fin from a to b's hair length on screen, pixels, measured between
+ * the middles of its roots and of its top points as fin_outline_share
+ * (fin_table.glsl) measures it. */
+float pelt__outline_hair_px(const pelt__outline_frame *f, const float *va, const float *vb);
+
 /* The outline's hairs of a frame's fins (`fins`: `count` fins of 4 words,
  * the fin vertex table's indices a, b first, core/fur/fur_gpu.h): for every
  * fin whose pelt__outline_fade is at least f->least, its hairs
- * k < min(ceil(edge * hairs), MAX), edge its length in fur tiles, written
+ * k < min(ceil(edge * hairs), MAX), edge its length in fur tiles, but
+ * those whose threshold (pelt__outline_random's draw 3) is not below the
+ * fade, which pelt__outline_alpha gives 0, those whose draw 5 is above
+ * the groomed density at a (vertices[a * stride + normal + 3]), which
+ * outline_vs.glsl leaves out, and those of a fin whose hair
+ * on screen (pelt__outline_hair_px) is out of the outline's reach: written
  * as (a, b, k, fade bits) into `out`, at most `cap`. Returns how many. */
 size_t pelt__outline_hairs(const uint32_t *fins, size_t count, const pelt__outline_frame *f, uint32_t *out,
                            size_t cap);

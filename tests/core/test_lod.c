@@ -565,6 +565,7 @@ static void lod_outline_hairs_follow_the_fins_near_the_outline(void)
     for (int i = 0; i < 5; i++) {
         v[i * STRIDE] = xs[i];
         v[i * STRIDE + (i < 3 ? 5 : 6)] = 1.0f;
+        v[i * STRIDE + 7] = 1.0f; /* groomed density: every hair */
     }
     const uint32_t ends[3][2] = {{3, 4}, {0, 1}, {1, 2}};
     uint32_t fins[12] = {0};
@@ -591,6 +592,84 @@ static void lod_outline_hairs_follow_the_fins_near_the_outline(void)
     /* Closer than the slab, a fin fades by the ratio (0.1 of 0.2 tiles). */
     pelt_vec3 a = v3(0, 0, 0), b = v3(0.05f, 0, 0), n_up = v3(0, 1, 0);
     CHECK(fabsf(pelt__outline_fade(a, b, n_up, n_up, v3(0.025f, 0, 100), 2.0f, 0.2f) - 0.5f) < 1e-3f);
+}
+
+/* A fin fainter than 1 shows only the hairs whose threshold lies below its
+ * fade (pelt__outline_alpha): the list leaves the others out, so the
+ * vertex stage does no work for them, and the picture is the same. A fin
+ * at fade 0.75 (its normal's cosine to the eye's ray 0.875): of its 32
+ * hairs, the listed ones are exactly those with alpha above 0. */
+static void lod_outline_hairs_leave_out_those_the_fade_hides(void)
+{
+    enum { STRIDE = 8 };
+    const float c = 0.875f, s = 0.48412292f;
+    float v[2 * STRIDE] = {0};
+    v[STRIDE] = 2.05f;
+    for (int i = 0; i < 2; i++) v[i * STRIDE + 5] = c, v[i * STRIDE + 6] = s, v[i * STRIDE + 7] = 1.0f;
+    const uint32_t fins[4] = {0, 1, 0, 0};
+    pelt__outline_frame f = {v, STRIDE, 4, {1.025f, 0.0f, 100.0f}, 2.0f, 0.01f, 48.0f, PELT__OUTLINE_LEAST_FADE};
+    uint32_t out[4 * 64];
+    size_t n = pelt__outline_hairs(fins, 1, &f, out, 64);
+    float fade = pelt__outline_fade(v3(0, 0, 0), v3(2.05f, 0, 0), v3(0, c, s), v3(0, c, s), v3(1.025f, 0, 100), 2.0f,
+                                    0.01f);
+    CHECK(fabsf(fade - 0.75f) < 1e-3f);
+    size_t shown = 0, listed_shown = 0;
+    for (uint32_t k = 0; k < PELT__OUTLINE_HAIRS_MAX; k++) {
+        float show = pelt__outline_random(pelt__outline_seed(0, 1, k), 3u);
+        bool visible = pelt__outline_alpha((float)k, (float)PELT__OUTLINE_HAIRS_MAX, fade, show) > 0.0f;
+        bool listed = false;
+        for (size_t h = 0; h < n && h < 64; h++) listed = listed || out[4 * h + 2] == k;
+        shown += visible;
+        listed_shown += visible && listed;
+        CHECK(listed == visible);
+    }
+    printf("  a fin at fade %.3f: %zu of its %d hairs listed, %zu show\n", fade, n, PELT__OUTLINE_HAIRS_MAX, shown);
+    CHECK(n == shown && listed_shown == shown);
+    CHECK(n < PELT__OUTLINE_HAIRS_MAX && n > PELT__OUTLINE_HAIRS_MAX / 2);
+    /* Grooming thinned to 0.4 at a: the hairs whose draw 5 is above it go too. */
+    v[7] = 0.4f;
+    size_t thinned = pelt__outline_hairs(fins, 1, &f, out, 64), kept = 0;
+    for (uint32_t k = 0; k < PELT__OUTLINE_HAIRS_MAX; k++) {
+        uint32_t seed = pelt__outline_seed(0, 1, k);
+        kept += fade > pelt__outline_random(seed, 3u) && !(pelt__outline_random(seed, 5u) > 0.4f);
+    }
+    printf("  groomed to 0.4: %zu listed, %zu kept\n", thinned, kept);
+    CHECK(thinned == kept && thinned < n);
+}
+
+/* Where the view is known, a fin whose hair is out of the outline's reach
+ * on screen (pelt__outline_share 0: at most PELT__OUTLINE_LOW_PX, at least
+ * PELT__OUTLINE_NONE_PX) lists no hair: the vertex stage would give every
+ * one of them alpha 0. Identity matrices on a 100 px viewport: a hair of
+ * height y is 50 y px long; a model scaling by 2 doubles it. */
+static void lod_outline_hairs_leave_out_fins_out_of_reach(void)
+{
+    enum { STRIDE = 16, TOP = 8 };
+    float v[2 * STRIDE] = {0};
+    v[STRIDE] = 0.5f;
+    for (int i = 0; i < 2; i++) v[i * STRIDE + 5] = v[i * STRIDE + 7] = 1.0f; /* normals +y: the fin faces +z */
+    const uint32_t fins[4] = {0, 1, 0, 0};
+    static const float identity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+    static const float twice[16] = {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1};
+    pelt__outline_frame f = {v,   STRIDE,   4,           {0.25f, 0.0f, 100.0f}, 2.0f, 0.01f, 48.0f,
+                             PELT__OUTLINE_LEAST_FADE, identity, identity, {100.0f, 100.0f}, TOP};
+    uint32_t out[4 * 64];
+    const float heights[5] = {0.05f, 0.079f, 0.2f, 0.64f, 0.66f}; /* 2.5, 3.95, 10, 32, 33 px */
+    const bool listed[5] = {false, false, true, true, false};
+    for (int i = 0; i < 5; i++) {
+        v[TOP + 1] = v[STRIDE + TOP + 1] = heights[i];
+        v[TOP] = 0.0f, v[STRIDE + TOP] = 0.5f;
+        CHECK_NEAR(pelt__outline_hair_px(&f, v, v + STRIDE), 50.0f * heights[i], 1e-3);
+        size_t n = pelt__outline_hairs(fins, 1, &f, out, 64);
+        printf("  hair %.2f px on screen: %zu hairs listed\n", 50.0f * heights[i], n);
+        CHECK(listed[i] ? n > 0 : n == 0);
+    }
+    f.model = twice; /* 2.5 px -> 5 px: within reach */
+    v[TOP + 1] = v[STRIDE + TOP + 1] = 0.05f;
+    CHECK(pelt__outline_hairs(fins, 1, &f, out, 64) > 0);
+    f.view_proj = NULL; /* the view not known: every fin near the outline */
+    v[TOP + 1] = v[STRIDE + TOP + 1] = 0.66f;
+    CHECK(pelt__outline_hairs(fins, 1, &f, out, 64) > 0);
 }
 
 /* The rows of a fin frame: as few as follow the strands within row_error.
@@ -1114,6 +1193,8 @@ int main(void)
     RUN(lod_a_fin_frame_holds_the_fins_the_view_shows);
     RUN(lod_fin_rows_follow_the_strands_bow);
     RUN(lod_outline_hairs_follow_the_fins_near_the_outline);
+    RUN(lod_outline_hairs_leave_out_those_the_fade_hides);
+    RUN(lod_outline_hairs_leave_out_fins_out_of_reach);
     RUN(lod_fur_texture_keeps_the_short_side_sharp);
     RUN(lod_fur_texture_taps_split_a_long_footprint);
     RUN(lod_fur_edge_keeps_a_hair_its_width);
