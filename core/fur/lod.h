@@ -382,7 +382,7 @@ float pelt__lod_shell_hair_drift(float ringlet, float omega, float h, float leng
  * Silva's curl and the dynamics' bend all lean it; seen face-on, its
  * sections in consecutive shells stand that far apart, so the view's
  * budget weighs it with the curl's drift (shell_vs.glsl; docs/lod.md,
- * The view's shell budget and leaning hair). Mirrors shell_lean_drift(). */
+ * The view's shell budget). Mirrors shell_lean_drift(). */
 #define PELT__SHELL_LEAN_MIN_COS 0.05f
 float pelt__lod_shell_lean_drift(const float t[3], const float n[3]);
 
