@@ -194,6 +194,36 @@ static double invocations(pelt_renderer *r, const pelt_draw_desc *dd, uint8_t *p
     return invocations_at(r, 25.0f, 4.2f, dd, px);
 }
 
+/* A square combed `slant` degrees seen from 80 degrees above, its fur about
+ * 12 px long, drawn with the view's budget (into `png`) and with every
+ * shell: the fragment shader invocations of each (-1 where GL does not
+ * count them) and the mean error and share of pixels off between them.
+ * False where it could not be drawn. */
+static bool budget_against_every_shell(float slant, const char *png, double *budget, double *every, double *mean,
+                                       double *frac)
+{
+    pelt_mesh *sq = NULL;
+    CHECK(pelt_mesh_square(2.0f, 32, &sq, NULL) == PELT_OK);
+    pelt_fur *fur;
+    pelt_renderer *r;
+    const pelt_fur_desc d = {.look.texture_size = 128, .comb.slant = slant};
+    CHECK(make_on(sq, &d, &fur, &r));
+    uint8_t *a = malloc(NPX * 4), *b = malloc(NPX * 4);
+    bool ok = r && a && b;
+    if (ok) {
+        pelt_draw_desc flat = {0};
+        flat.debug.flat_shells = true;
+        *budget = invocations_at(r, 80.0f, 3.0f, NULL, a), *every = invocations_at(r, 80.0f, 3.0f, &flat, b);
+        gl_test_compare(a, b, NPX, mean, frac);
+        stbi_write_png(png, W, H, 4, a, W * 4);
+    }
+    free(a), free(b);
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+    pelt_mesh_destroy(sq);
+    return ok;
+}
+
 /* The view's shell budget (docs/lod.md) is for less work: where fur is
  * seen face-on the level's odd shells fade out, and where they have faded
  * they are clipped in the vertex stage, so they are not rasterised. A
@@ -202,32 +232,17 @@ static double invocations(pelt_renderer *r, const pelt_draw_desc *dd, uint8_t *p
  * within the golden tolerance of every shell drawn. */
 static void lod_view_budget_clips_the_faded_shells(void)
 {
-    pelt_mesh *sq = NULL;
-    CHECK(pelt_mesh_square(2.0f, 32, &sq, NULL) == PELT_OK);
-    pelt_fur *fur;
-    pelt_renderer *r;
-    const pelt_fur_desc d = {.look.texture_size = 128};
-    CHECK(make_on(sq, &d, &fur, &r));
-    uint8_t *a = malloc(NPX * 4), *b = malloc(NPX * 4);
-    CHECK(r && a && b);
-    if (r && a && b) {
-        pelt_draw_desc flat = {0};
-        flat.debug.flat_shells = true;
-        double budget = invocations_at(r, 80.0f, 3.0f, NULL, a), every = invocations_at(r, 80.0f, 3.0f, &flat, b);
-        double mean, frac;
-        gl_test_compare(a, b, NPX, &mean, &frac);
+    double budget, every, mean, frac;
+    bool ok = budget_against_every_shell(0.0f, PELT_TEST_OUT "/lod_view_budget.png", &budget, &every, &mean, &frac);
+    CHECK(ok);
+    if (ok) {
         printf("  face-on square: the view's budget against every shell, mean error %.3f (max 4), pixels off %.4f "
                "(max 0.03); fragment shader invocations %.0f against %.0f\n",
                mean, frac, budget, every);
         CHECK(mean <= 4.0);
         CHECK(frac <= 0.03);
         if (every >= 0.0) CHECK(budget < 0.7 * every);
-        stbi_write_png(PELT_TEST_OUT "/lod_view_budget.png", W, H, 4, a, W * 4);
     }
-    free(a), free(b);
-    pelt_renderer_destroy(r);
-    pelt_fur_destroy(fur);
-    pelt_mesh_destroy(sq);
 }
 
 /* ... but not where the hair leans (combed 60 degrees here): seen face-on,
@@ -237,31 +252,17 @@ static void lod_view_budget_clips_the_faded_shells(void)
  * of leaning hair: the picture is every shell's, and so is the work. */
 static void lod_view_budget_keeps_the_shells_of_leaning_hair(void)
 {
-    pelt_mesh *sq = NULL;
-    CHECK(pelt_mesh_square(2.0f, 32, &sq, NULL) == PELT_OK);
-    pelt_fur *fur;
-    pelt_renderer *r;
-    const pelt_fur_desc d = {.look.texture_size = 128, .comb.slant = 60.0f};
-    CHECK(make_on(sq, &d, &fur, &r));
-    uint8_t *a = malloc(NPX * 4), *b = malloc(NPX * 4);
-    CHECK(r && a && b);
-    if (r && a && b) {
-        pelt_draw_desc flat = {0};
-        flat.debug.flat_shells = true;
-        double budget = invocations_at(r, 80.0f, 3.0f, NULL, a), every = invocations_at(r, 80.0f, 3.0f, &flat, b);
-        double mean, frac;
-        gl_test_compare(a, b, NPX, &mean, &frac);
+    double budget, every, mean, frac;
+    bool ok = budget_against_every_shell(60.0f, PELT_TEST_OUT "/lod_view_budget_combed.png", &budget, &every, &mean,
+                                         &frac);
+    CHECK(ok);
+    if (ok) {
         printf("  face-on square combed 60 degrees: the view's budget against every shell, mean error %.3f "
                "(max 0.5); fragment shader invocations %.0f against %.0f\n",
                mean, budget, every);
         CHECK(mean <= 0.5);
         if (every >= 0.0) CHECK(budget > 0.9 * every);
-        stbi_write_png(PELT_TEST_OUT "/lod_view_budget_combed.png", W, H, 4, a, W * 4);
     }
-    free(a), free(b);
-    pelt_renderer_destroy(r);
-    pelt_fur_destroy(fur);
-    pelt_mesh_destroy(sq);
 }
 
 /* An open mesh (a torus with a slab cut out, so the eye sees into it and
