@@ -105,6 +105,13 @@ static void print_result(const pelt_compare_result *r, unsigned layers)
     printf("stripe_shells %.4g\n", r->stripe_shells);
     printf("stripe_strands %.4g\n", r->stripe_strands);
     printf("stripe_energy_ratio %.3f\n", r->stripe_energy_ratio);
+    printf("outline_grain_shells %.3f\n", r->outline_grain_shells);
+    printf("outline_grain_strands %.3f\n", r->outline_grain_strands);
+    printf("outline_grain_ratio %.3f\n", r->outline_grain_ratio);
+    printf("outline_radial_shells %.3f\n", r->outline_radial_shells);
+    printf("outline_radial_strands %.3f\n", r->outline_radial_strands);
+    printf("outline_luminance_shells %.2f\n", r->outline_luminance_shells);
+    printf("outline_luminance_strands %.2f\n", r->outline_luminance_strands);
     printf("luminance_shells %.2f\n", r->luminance_shells);
     printf("luminance_strands %.2f\n", r->luminance_strands);
     fflush(stdout);

@@ -29,7 +29,9 @@ const cli_command cli_commands[] = {
      "ssim (luminance at half size, 1 = the same), mae (mean R, G, B error, 0..255),\n"
      "silhouette_px and the fur's coverage in those bands outside the skin for\n"
      "shells and strands, stripe_energy_ratio (the shells' spacing across the rim,\n"
-     "shells over strands), luminance_shells and luminance_strands. -o writes\n"
+     "shells over strands), outline_grain (the step along the outline outside the\n"
+     "skin: hairs crossing it against a smooth band), luminance_shells and\n"
+     "luminance_strands. -o writes\n"
      "shells | strands | difference (x4) as one PNG. Takes the flags of render;\n"
      "an animation compares its last frame. docs/reference.md says how to read it.",
      cli_scene_flag, cmd_compare, "*.json", NULL, false},

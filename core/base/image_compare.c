@@ -1,5 +1,6 @@
 /* How far a shell picture is from the strand reference (pelt/compare.h):
- * SSIM, mean error, the silhouette profile, the stripe energy, luminance. */
+ * SSIM, mean error, the silhouette profile, the stripe energy, the
+ * outline's grain, luminance. */
 #include "core/base/image_compare.h"
 
 #include "core/base/error.h"
@@ -301,6 +302,32 @@ double pelt__stripe_energy(const uint8_t *rgba, unsigned w, unsigned h, const fl
     return profiles ? total / (double)profiles : NAN;
 }
 
+double pelt__outline_grain(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
+                           const uint32_t *nearest, float fur_px, double *band_luminance,
+                           double *along_normal)
+{
+    double grain = 0.0, luma = 0.0, radial = 0.0;
+    size_t count = 0;
+    /* Every pixel of the band outside the outline, d in [1, fur_px]: its
+     * step to the next pixel along the outline (across the normal from its
+     * nearest skin pixel), where hairs crossing the outline stand side by
+     * side and a smooth band has none. */
+    for (size_t i = 0; fur_px >= 1.0f && i < (size_t)w * h; i++) {
+        if (!(dist[i] >= 1.0f && dist[i] <= fur_px) || nearest[i] == PELT__NO_PIXEL) continue;
+        double x = (double)(i % w), y = (double)(i / w);
+        double tx = -(y - (double)(nearest[i] / w)) / dist[i], ty = (x - (double)(nearest[i] % w)) / dist[i];
+        double here = pelt__luma(rgba + i * 4), next, out;
+        if (!luma_at(rgba, w, h, x + tx, y + ty, &next) || !luma_at(rgba, w, h, x + ty, y - tx, &out)) continue;
+        grain += fabs(next - here);
+        radial += fabs(out - here);
+        luma += here;
+        count++;
+    }
+    if (band_luminance) *band_luminance = count ? luma / (double)count : NAN;
+    if (along_normal) *along_normal = count ? radial / (double)count : NAN;
+    return count ? grain / (double)count : NAN;
+}
+
 double pelt__mean_luminance(const uint8_t *rgba, unsigned w, unsigned h, const uint8_t *mask)
 {
     double sum = 0.0;
@@ -363,6 +390,8 @@ pelt_status pelt_compare_images(const pelt_compare_desc *desc, pelt_compare_resu
     }
     out->stripe_shells = out->stripe_strands = out->stripe_energy_ratio = NAN;
     out->stripe_frequency = NAN;
+    out->outline_grain_shells = out->outline_grain_strands = out->outline_grain_ratio = NAN;
+    out->outline_luminance_shells = out->outline_luminance_strands = NAN;
     pelt_status st = PELT_OK;
     if (s->rgba) {
         for (size_t i = 0; i < pixels; i++)
@@ -375,6 +404,11 @@ pelt_status pelt_compare_images(const pelt_compare_desc *desc, pelt_compare_resu
             out->extent_shells_px = pelt__fur_extent(a->rgba, w, h, dist, desc->background);
             out->extent_strands_px = pelt__fur_extent(b->rgba, w, h, dist, desc->background);
             out->fur_px = desc->fur_px > 0.0f ? desc->fur_px : out->extent_strands_px;
+            out->outline_grain_shells = pelt__outline_grain(a->rgba, w, h, dist, nearest, out->fur_px,
+                                                            &out->outline_luminance_shells, &out->outline_radial_shells);
+            out->outline_grain_strands = pelt__outline_grain(b->rgba, w, h, dist, nearest, out->fur_px,
+                                                             &out->outline_luminance_strands, &out->outline_radial_strands);
+            out->outline_grain_ratio = out->outline_grain_shells / out->outline_grain_strands;
             if (out->fur_px > 0.0f && desc->layers > 0) {
                 /* The band: from the shells' own spacing (folded into what
                  * pixels hold) or 0.25 cycles a pixel, whichever is lower,

@@ -63,6 +63,16 @@ float pelt__fur_extent(const uint8_t *rgba, unsigned w, unsigned h, const float 
 double pelt__stripe_energy(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
                            const uint32_t *nearest, float fur_px, double low);
 
+/* The outline's grain: the mean step in luminance from each pixel of the
+ * band outside the outline (distance 1 to fur_px) to the next pixel along
+ * the outline (across its normal to the nearest skin pixel): hairs that
+ * cross the outline side by side step from hair to gap, a smooth band
+ * does not. *band_luminance (may be NULL) gets the band's mean luminance.
+ * NaN when fur_px < 1 or no pixel of the band fits. */
+double pelt__outline_grain(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
+                           const uint32_t *nearest, float fur_px, double *band_luminance,
+                           double *along_normal);
+
 /* Mean luminance of the pixels where mask (w*h bytes) is non-zero; the
  * whole picture for a NULL mask; NaN for an empty mask. */
 double pelt__mean_luminance(const uint8_t *rgba, unsigned w, unsigned h, const uint8_t *mask);

@@ -1,7 +1,8 @@
 /* pelt — how far a shell picture is from the strand reference: structural
- * similarity, mean error, the silhouette profile, the stripe energy and
- * the luminance of two RGBA8 pictures of the same view (`pelt compare`,
- * docs/reference.md). Plain C over pixels, no OpenGL. */
+ * similarity, mean error, the silhouette profile, the stripe energy, the
+ * outline's grain and the luminance of two RGBA8 pictures of the same
+ * view (`pelt compare`, docs/reference.md). Plain C over pixels, no
+ * OpenGL. */
 #ifndef PELT_COMPARE_H
 #define PELT_COMPARE_H
 
@@ -57,6 +58,13 @@ typedef struct pelt_compare_result {
     double stripe_shells, stripe_strands; /* power in [stripe_frequency, 0.5] across the rim */
     double stripe_energy_ratio;           /* stripe_shells / stripe_strands */
     double luminance_shells, luminance_strands; /* mean luminance of the subject, 0..255 */
+    /* The band outside the outline, 1 to fur_px pixels: the mean step in
+     * luminance from pixel to pixel along the outline (hairs crossing it
+     * side by side against a smooth band) and the band's mean luminance. */
+    double outline_grain_shells, outline_grain_strands;
+    double outline_grain_ratio; /* outline_grain_shells / outline_grain_strands */
+    double outline_luminance_shells, outline_luminance_strands;
+    double outline_radial_shells, outline_radial_strands;
 } pelt_compare_result;
 
 /* Measures desc->shells against desc->strands. PELT_ERR_INVALID_ARGUMENT

@@ -1,6 +1,7 @@
 /* The measures of pelt compare (core/base/image_compare.c) on synthetic
  * pictures: SSIM and mean error, the distance transform, the silhouette
- * profile, the stripe energy, luminance, and pelt_compare_images. */
+ * profile, the stripe energy, the outline's grain, luminance, and
+ * pelt_compare_images. */
 #include "support/check.h"
 
 #include "core/base/image_compare.h"
@@ -225,6 +226,51 @@ static void striped_rim_has_more_stripe_energy_than_smooth(void)
     CHECK(isnan(pelt__stripe_energy(img, W, H, dist, nearest, fur_px, 0.6)));
 }
 
+/* Skin a disc of radius 20 about the centre, fur out to radius 30 whose
+ * luminance is `level`, plus `amp` in one of three patterns: hairs
+ * crossing the outline (alternating with the angle, 4 px apart at radius
+ * 25), rings along it (alternating with the radius) or none. */
+enum band_pattern { BAND_SMOOTH, BAND_HAIRS, BAND_RINGS };
+
+static void furred_disc(uint8_t *rgba, uint8_t *mask, enum band_pattern pattern, double level, double amp)
+{
+    fill(rgba, W, H, bg[0], bg[1], bg[2]);
+    for (unsigned y = 0; y < H; y++)
+        for (unsigned x = 0; x < W; x++) {
+            double dx = x - 48.0, dy = y - 40.0, r = hypot(dx, dy);
+            mask[y * W + x] = r <= 20.0;
+            if (r > 30.0) continue;
+            double v = level;
+            if (pattern == BAND_HAIRS) v += amp * (cos(atan2(dy, dx) * 2.0 * 3.14159265358979 * 25.0 / 4.0) > 0.0 ? 1 : -1);
+            if (pattern == BAND_RINGS) v += amp * (cos(r * 3.14159265358979) > 0.0 ? 1 : -1);
+            memset(rgba + (y * W + x) * 4, (uint8_t)lround(v), 3);
+        }
+}
+
+static void outline_grain_sees_hairs_across_the_outline(void)
+{
+    static uint8_t img[W * H * 4], mask[W * H];
+    static float dist[W * H];
+    static uint32_t nearest[W * H];
+    double luma, radial;
+    furred_disc(img, mask, BAND_SMOOTH, 150.0, 0.0);
+    CHECK(pelt__distance_outside(mask, W, H, dist, nearest, NULL));
+    double smooth = pelt__outline_grain(img, W, H, dist, nearest, 8.0f, &luma, &radial);
+    CHECK(smooth < 0.5 && radial < 0.5);
+    CHECK_NEAR(luma, 150.0, 1e-9); /* the band's mean */
+    /* Hairs crossing the outline: a step along it, little across it. */
+    furred_disc(img, mask, BAND_HAIRS, 150.0, 40.0);
+    double hairs = pelt__outline_grain(img, W, H, dist, nearest, 8.0f, &luma, &radial);
+    CHECK(hairs > 20.0 && hairs > 2.0 * radial);
+    CHECK(fabs(luma - 150.0) < 10.0);
+    /* Rows along the outline (shells seen edge-on): the other way round. */
+    furred_disc(img, mask, BAND_RINGS, 150.0, 40.0);
+    double rings = pelt__outline_grain(img, W, H, dist, nearest, 8.0f, NULL, &radial);
+    CHECK(radial > 40.0 && rings < 0.5 * radial);
+    /* No band to measure. */
+    CHECK(isnan(pelt__outline_grain(img, W, H, dist, nearest, 0.5f, &luma, NULL)) && isnan(luma));
+}
+
 static void fur_extent_is_the_last_half_covered_distance(void)
 {
     static uint8_t img[W * H * 4], mask[W * H];
@@ -268,15 +314,23 @@ static void compare_images_measures_shells_against_strands(void)
     CHECK(r.luminance_shells > r.luminance_strands);
     CHECK(isfinite(r.stripe_shells) && isfinite(r.stripe_strands));
     CHECK_NEAR(r.stripe_frequency, 0.25, 1e-9); /* 4 layers / 10 px = 0.4, above the band's 0.25 */
+    /* The strands' flat disc covers the band (its luminance); the shells'
+     * ends inside it: an edge along the outline, which steps across it more
+     * than along it, and more than the strands' at the band's end. */
+    CHECK(r.outline_radial_shells > 2.0 * r.outline_grain_shells);
+    CHECK_NEAR(r.outline_luminance_strands, 100.0, 1e-9);
+    CHECK(r.outline_grain_shells > r.outline_grain_strands);
+    CHECK_NEAR(r.outline_grain_ratio, r.outline_grain_shells / r.outline_grain_strands, 1e-12);
     /* The same picture twice. */
     d.strands = d.shells;
     CHECK(pelt_compare_images(&d, &r, &err) == PELT_OK);
     CHECK_NEAR(r.ssim, 1.0, 1e-9);
     CHECK(r.mae == 0.0 && r.luminance_shells == r.luminance_strands);
+    CHECK(r.outline_luminance_shells == r.outline_luminance_strands);
     /* No skin picture: no silhouette, no stripes. */
     d.skin.rgba = NULL;
     CHECK(pelt_compare_images(&d, &r, &err) == PELT_OK);
-    CHECK(isnan(r.silhouette_shells[0]) && isnan(r.stripe_energy_ratio));
+    CHECK(isnan(r.silhouette_shells[0]) && isnan(r.stripe_energy_ratio) && isnan(r.outline_grain_ratio));
     /* Bad input names the problem. */
     d.strands.width = W - 1;
     CHECK(pelt_compare_images(&d, &r, &err) == PELT_ERR_INVALID_ARGUMENT);
@@ -339,6 +393,7 @@ int main(void)
     RUN(distance_transform_is_exact_euclidean);
     RUN(disc_grown_by_3_px_covers_1_and_2_not_8);
     RUN(striped_rim_has_more_stripe_energy_than_smooth);
+    RUN(outline_grain_sees_hairs_across_the_outline);
     RUN(fur_extent_is_the_last_half_covered_distance);
     RUN(mean_luminance_uses_bt601_weights_and_the_mask);
     RUN(compare_images_measures_shells_against_strands);
