@@ -315,9 +315,11 @@ double pelt__outline_grain(const uint8_t *rgba, unsigned w, unsigned h, const fl
     for (size_t i = 0; fur_px >= 1.0f && i < (size_t)w * h; i++) {
         if (!(dist[i] >= 1.0f && dist[i] <= fur_px) || nearest[i] == PELT__NO_PIXEL) continue;
         double x = (double)(i % w), y = (double)(i / w);
-        double tx = -(y - (double)(nearest[i] / w)) / dist[i], ty = (x - (double)(nearest[i] % w)) / dist[i];
+        double tx = -(y - (double)(nearest[i] / w)) / dist[i];
+        double ty = (x - (double)(nearest[i] % w)) / dist[i];
         double here = pelt__luma(rgba + i * 4), next, out;
-        if (!luma_at(rgba, w, h, x + tx, y + ty, &next) || !luma_at(rgba, w, h, x + ty, y - tx, &out)) continue;
+        if (!luma_at(rgba, w, h, x + tx, y + ty, &next) || !luma_at(rgba, w, h, x + ty, y - tx, &out))
+            continue;
         grain += fabs(next - here);
         radial += fabs(out - here);
         luma += here;
@@ -392,6 +394,7 @@ pelt_status pelt_compare_images(const pelt_compare_desc *desc, pelt_compare_resu
     out->stripe_frequency = NAN;
     out->outline_grain_shells = out->outline_grain_strands = out->outline_grain_ratio = NAN;
     out->outline_luminance_shells = out->outline_luminance_strands = NAN;
+    out->outline_radial_shells = out->outline_radial_strands = NAN;
     pelt_status st = PELT_OK;
     if (s->rgba) {
         for (size_t i = 0; i < pixels; i++)
@@ -405,9 +408,11 @@ pelt_status pelt_compare_images(const pelt_compare_desc *desc, pelt_compare_resu
             out->extent_strands_px = pelt__fur_extent(b->rgba, w, h, dist, desc->background);
             out->fur_px = desc->fur_px > 0.0f ? desc->fur_px : out->extent_strands_px;
             out->outline_grain_shells = pelt__outline_grain(a->rgba, w, h, dist, nearest, out->fur_px,
-                                                            &out->outline_luminance_shells, &out->outline_radial_shells);
+                                                            &out->outline_luminance_shells,
+                                                            &out->outline_radial_shells);
             out->outline_grain_strands = pelt__outline_grain(b->rgba, w, h, dist, nearest, out->fur_px,
-                                                             &out->outline_luminance_strands, &out->outline_radial_strands);
+                                                             &out->outline_luminance_strands,
+                                                             &out->outline_radial_strands);
             out->outline_grain_ratio = out->outline_grain_shells / out->outline_grain_strands;
             if (out->fur_px > 0.0f && desc->layers > 0) {
                 /* The band: from the shells' own spacing (folded into what

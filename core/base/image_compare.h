@@ -67,8 +67,10 @@ double pelt__stripe_energy(const uint8_t *rgba, unsigned w, unsigned h, const fl
  * band outside the outline (distance 1 to fur_px) to the next pixel along
  * the outline (across its normal to the nearest skin pixel): hairs that
  * cross the outline side by side step from hair to gap, a smooth band
- * does not. *band_luminance (may be NULL) gets the band's mean luminance.
- * NaN when fur_px < 1 or no pixel of the band fits. */
+ * does not. *band_luminance and *along_normal (either may be NULL) get
+ * the band's mean luminance and its mean step to the next pixel outward,
+ * along the normal. NaN (all three) when fur_px < 1 or no pixel of the
+ * band fits. */
 double pelt__outline_grain(const uint8_t *rgba, unsigned w, unsigned h, const float *dist,
                            const uint32_t *nearest, float fur_px, double *band_luminance,
                            double *along_normal);

@@ -64,6 +64,8 @@ typedef struct pelt_compare_result {
     double outline_grain_shells, outline_grain_strands;
     double outline_grain_ratio; /* outline_grain_shells / outline_grain_strands */
     double outline_luminance_shells, outline_luminance_strands;
+    /* The same step outward, along the line to the nearest skin pixel:
+       little along a hair that crosses the outline, more across rows. */
     double outline_radial_shells, outline_radial_strands;
 } pelt_compare_result;
 

@@ -241,7 +241,8 @@ static void furred_disc(uint8_t *rgba, uint8_t *mask, enum band_pattern pattern,
             mask[y * W + x] = r <= 20.0;
             if (r > 30.0) continue;
             double v = level;
-            if (pattern == BAND_HAIRS) v += amp * (cos(atan2(dy, dx) * 2.0 * 3.14159265358979 * 25.0 / 4.0) > 0.0 ? 1 : -1);
+            double hairs = cos(atan2(dy, dx) * 2.0 * 3.14159265358979 * 25.0 / 4.0);
+            if (pattern == BAND_HAIRS) v += amp * (hairs > 0.0 ? 1 : -1);
             if (pattern == BAND_RINGS) v += amp * (cos(r * 3.14159265358979) > 0.0 ? 1 : -1);
             memset(rgba + (y * W + x) * 4, (uint8_t)lround(v), 3);
         }
@@ -268,7 +269,8 @@ static void outline_grain_sees_hairs_across_the_outline(void)
     double rings = pelt__outline_grain(img, W, H, dist, nearest, 8.0f, NULL, &radial);
     CHECK(radial > 40.0 && rings < 0.5 * radial);
     /* No band to measure. */
-    CHECK(isnan(pelt__outline_grain(img, W, H, dist, nearest, 0.5f, &luma, NULL)) && isnan(luma));
+    CHECK(isnan(pelt__outline_grain(img, W, H, dist, nearest, 0.5f, &luma, &radial)));
+    CHECK(isnan(luma) && isnan(radial));
 }
 
 static void fur_extent_is_the_last_half_covered_distance(void)
@@ -331,6 +333,7 @@ static void compare_images_measures_shells_against_strands(void)
     d.skin.rgba = NULL;
     CHECK(pelt_compare_images(&d, &r, &err) == PELT_OK);
     CHECK(isnan(r.silhouette_shells[0]) && isnan(r.stripe_energy_ratio) && isnan(r.outline_grain_ratio));
+    CHECK(isnan(r.outline_radial_shells) && isnan(r.outline_luminance_strands));
     /* Bad input names the problem. */
     d.strands.width = W - 1;
     CHECK(pelt_compare_images(&d, &r, &err) == PELT_ERR_INVALID_ARGUMENT);
