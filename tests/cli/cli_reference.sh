@@ -212,6 +212,14 @@ ss=$(field ssim "$res")
 awk -v s="${ss:-0}" 'BEGIN { exit !(s >= 0.9246) }'
 check fur_as_sharp_as_the_hairs $? "SSIM against the strands $ss (bound 0.9246)"
 
+# The outline's grain (docs/reference.md, The outline's grain): the band
+# outside the torus's outline steps from pixel to pixel along the outline
+# 0.57 as much as the hairs' band does (0.52 without the outline's hairs,
+# 0.55 with the read across the gap down to the outline): no smoother.
+grain=$(field outline_grain_ratio "$res")
+awk -v g="${grain:-0}" 'BEGIN { exit !(g >= 0.555) }'
+check outline_no_smoother_than_today $? "the outline's grain $grain of the hairs' (bound 0.555)"
+
 # The reference's hairs shade each other (shadowed.json, Kenwright's
 # inter-fur shadows on the shells): its hairs drawn into the light's maps
 # darken it (40.5 -> 36.2 in luminance), the same whatever the shells
