@@ -73,6 +73,10 @@ typedef struct pelt__gpu_mesh {
     uint8_t *view_side;     /* per vertex, the split's scratch */
     size_t view_offset;     /* bytes into ebo */
     size_t view_face, view_total;
+    /* A wet frame's: the wet split's dry part split so (view_face of its
+     * view_total), then its wet part (view_wet_face of view_wet_total). */
+    bool view_wet;
+    size_t view_wet_face, view_wet_total;
     bool view_ok;
     unsigned tips_version;
     unsigned pose_version;
@@ -105,6 +109,10 @@ size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *
  * rewrites the split's part of ebo when it changed (binding g->vao);
  * returns bytes sent. view_face and view_total say what it holds. */
 size_t pelt__gpu_mesh_update_view(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d);
+/* The same for a wet frame drawn apart (the full mesh): the wet split's
+ * dry part and its wet part each split by the view, one after the other
+ * (view_wet). Returns bytes sent. */
+size_t pelt__gpu_mesh_update_view_wet(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d);
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g);
 /* Points the bound VAO's PELT_ATTR_FIT_NORMAL at the slice of the level
  * the shells are drawn on (the full mesh: zeros). */

@@ -303,14 +303,16 @@ size_t pelt__gpu_mesh_update_split(pelt__gpu_mesh *g, const pelt__fur_snapshot *
     return bytes;
 }
 
-size_t pelt__gpu_mesh_update_view(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d)
+/* Sends the view split in view_staging where it differs from the last:
+ * face of total triangles, then (a wet frame's) wet_face of wet_total. */
+static size_t view_upload(pelt__gpu_mesh *g, bool wet, size_t face, size_t total, size_t wet_face, size_t wet_total)
 {
-    if (!g->view_ok) return 0;
-    /* A level never holds more triangles than the mesh: room for them. */
-    size_t total, face = pelt__fur_gpu_view_split(fur, d, g->view_side, g->view_staging, &total);
-    size_t bytes = total * 3 * sizeof(uint32_t);
-    bool same = face == g->view_face && total == g->view_total && !memcmp(g->view_staging, g->view_indices, bytes);
-    g->view_face = face, g->view_total = total;
+    size_t bytes = (total + wet_total) * 3 * sizeof(uint32_t);
+    bool same = wet == g->view_wet && face == g->view_face && total == g->view_total &&
+                wet_face == g->view_wet_face && wet_total == g->view_wet_total &&
+                !memcmp(g->view_staging, g->view_indices, bytes);
+    g->view_wet = wet, g->view_face = face, g->view_total = total;
+    g->view_wet_face = wet_face, g->view_wet_total = wet_total;
     if (same) return 0;
     memcpy(g->view_indices, g->view_staging, bytes);
     /* The VAO holds the element buffer (WebGL2 binds an element buffer to
@@ -318,6 +320,27 @@ size_t pelt__gpu_mesh_update_view(pelt__gpu_mesh *g, const pelt_fur *fur, const 
     glBindVertexArray(g->vao);
     glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, (GLintptr)g->view_offset, (GLsizeiptr)bytes, g->view_indices);
     return bytes;
+}
+
+size_t pelt__gpu_mesh_update_view(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d)
+{
+    if (!g->view_ok) return 0;
+    /* A level never holds more triangles than the mesh: room for them. */
+    size_t total, face = pelt__fur_gpu_view_split(fur, d, g->view_side, g->view_staging, &total);
+    return view_upload(g, false, face, total, 0, 0);
+}
+
+size_t pelt__gpu_mesh_update_view_wet(pelt__gpu_mesh *g, const pelt_fur *fur, const pelt__view_split_desc *d)
+{
+    if (!g->view_ok || !g->split_ok) return 0;
+    const size_t dry = g->split.dry_count, all = g->split.triangle_count;
+    pelt__view_split_desc part = *d;
+    part.triangles = g->split.indices, part.triangle_count = dry;
+    size_t total, face = pelt__fur_gpu_view_split(fur, &part, g->view_side, g->view_staging, &total);
+    part.triangles = g->split.indices + 3 * dry, part.triangle_count = all - dry;
+    size_t wet_total, wet_face =
+        pelt__fur_gpu_view_split(fur, &part, g->view_side, g->view_staging + 3 * dry, &wet_total);
+    return view_upload(g, true, face, total, wet_face, wet_total);
 }
 
 void pelt__gpu_mesh_destroy(pelt__gpu_mesh *g)

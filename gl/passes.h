@@ -168,6 +168,9 @@ pelt_status pelt__shell_pass_create(pelt__shell_pass *p, const pelt_hooks *hooks
  * it does not build (a light-pass variant that does not build: NULL). */
 const pelt__shell_program *pelt__shell_pass_program(pelt__shell_pass *p, unsigned features);
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f);
+/* Whether a wet frame's shells draw wet and dry apart (the wet split):
+ * the full mesh, at least a third of it dry. */
+bool pelt__shell_pass_wet_apart(const pelt__pass_frame *f);
 void pelt__shell_pass_destroy(pelt__shell_pass *p);
 
 /* The light's maps (Yuksel and Keyser's deep opacity maps, docs/shadows.md):

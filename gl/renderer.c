@@ -220,14 +220,15 @@ static void run_outline(pelt_renderer *r, const pelt__pass_frame *f, const pelt_
 }
 
 /* The view split (pelt__fur_gpu_view_split): brought up to this frame's
- * view where the dry shells' program draws the frame. True when it holds
- * the drawn triangles. */
+ * view where the dry shells' program draws the frame, or where a wet frame
+ * draws wet and dry apart (each part split so). True when it holds the
+ * drawn triangles. */
 static bool view_split(pelt_renderer *r, const pelt__pass_frame *f)
 {
     const pelt_draw_desc *d = f->draw;
-    if (d->debug.no_view_split || d->debug.floor_shader || d->debug.plain_shells ||
-        (f->shell_features & PELT__SHELL_WET))
-        return false;
+    if (d->debug.no_view_split || d->debug.floor_shader || d->debug.plain_shells) return false;
+    const bool wet = f->shell_features & PELT__SHELL_WET;
+    if (wet && !pelt__shell_pass_wet_apart(f)) return false;
     const float *m = f->view->model;
     pelt__view_split_desc vd = {
         .level = f->lod.mesh_level,
@@ -243,7 +244,8 @@ static bool view_split(pelt_renderer *r, const pelt__pass_frame *f)
     pelt__mat4_mul(view_proj, f->view->proj, f->view->view);
     vd.shell_spacing = f->lod.shell_view[0];
     for (int c = 0; c < 4; c++) vd.w_row[c] = view_proj[4 * c + 3];
-    f->stats->upload_bytes += pelt__gpu_mesh_update_view(&r->mesh, r->fur, &vd);
+    f->stats->upload_bytes += wet ? pelt__gpu_mesh_update_view_wet(&r->mesh, r->fur, &vd)
+                                  : pelt__gpu_mesh_update_view(&r->mesh, r->fur, &vd);
     return r->mesh.view_ok;
 }
 

@@ -171,6 +171,13 @@ static bool any_sub_shells(const pelt__pass_frame *f, const float shells[4], con
     return false;
 }
 
+/* One part of the triangles draw_split draws: a program, the first
+ * triangle (bytes into the element buffer) and how many. */
+typedef struct shell_part {
+    const pelt__shell_program *sp;
+    size_t offset, triangles;
+} shell_part;
+
 /* Wet and dry drawn apart, a shell at a time: the dry triangles' shell i
  * with the dry shader, then the wet ones' with the wet shader, from the
  * inside out. The shells blend in the order one draw of every triangle
@@ -178,38 +185,47 @@ static bool any_sub_shells(const pelt__pass_frame *f, const float shells[4], con
  * laid a wet patch's inner shells over the dry fur in front of it (dark
  * patches where fur is seen at a grazing angle). The wet shells of a
  * layer where tufts gather their hairs are its sub shells, one instanced
- * draw. With no dry triangles (dry 0, dry_sp NULL), the wet shells alone. */
-static void draw_split(const pelt__shell_program *dry_sp, const pelt__shell_program *wet_sp,
-                       const pelt__pass_frame *f, const float shells[4], const float next[2], size_t offset,
-                       size_t dry, size_t wet, unsigned count)
+ * draw. Each of dry and wet comes in up to two parts (the view split's
+ * face-on part without the read across the gap, then the rest; a part
+ * of no triangles is not drawn): dry[0], dry[1], wet[0], wet[1]. */
+static void draw_split(const shell_part dry[2], const shell_part wet[2], const pelt__pass_frame *f,
+                       const float shells[4], const float next[2], unsigned count)
 {
-    const size_t wet_offset = offset + dry * 3 * sizeof(uint32_t);
-    use_program(wet_sp, f, shells, next);
-    if (dry) use_program(dry_sp, f, shells, next);
     const unsigned close = close_up_shells(f);
-    if (dry) glUniform1f(dry_sp->sub_shells, (float)close);
+    for (int k = 0; k < 2; k++) {
+        if (wet[k].triangles) use_program(wet[k].sp, f, shells, next);
+        if (dry[k].triangles) {
+            use_program(dry[k].sp, f, shells, next);
+            glUniform1f(dry[k].sp->sub_shells, (float)close);
+        }
+    }
     for (unsigned i = 0; i < count; i++) {
-        if (dry) {
-            glUseProgram(dry_sp->program);
-            glUniform1f(dry_sp->instance_base, (float)i);
-            draw_instanced(f, offset, dry, close);
+        for (int k = 0; k < 2; k++) {
+            if (!dry[k].triangles) continue;
+            glUseProgram(dry[k].sp->program);
+            glUniform1f(dry[k].sp->instance_base, (float)i);
+            draw_instanced(f, dry[k].offset, dry[k].triangles, close);
         }
         bool tufts;
         unsigned sub = layer_sub_shells(f, shells, next, i, &tufts);
-        glUseProgram(wet_sp->program);
-        glUniform1f(wet_sp->instance_base, (float)i);
-        glUniform1f(wet_sp->sub_shells, (float)sub);
-        glUniform2f(wet_sp->sub_view, f->lod.sub_side, tufts ? 0.0f : 1.0f); /* the tufts': everywhere */
-        draw_instanced(f, wet_offset, wet, sub);
+        for (int k = 0; k < 2; k++) {
+            if (!wet[k].triangles) continue;
+            const pelt__shell_program *sp = wet[k].sp;
+            glUseProgram(sp->program);
+            glUniform1f(sp->instance_base, (float)i);
+            glUniform1f(sp->sub_shells, (float)sub);
+            glUniform2f(sp->sub_view, f->lod.sub_side, tufts ? 0.0f : 1.0f); /* the tufts': everywhere */
+            draw_instanced(f, wet[k].offset, wet[k].triangles, sub);
+        }
         f->stats->sub_shells += sub - close;
     }
-    glUniform1f(wet_sp->instance_base, 0.0f);
-    glUniform1f(wet_sp->sub_shells, 1.0f);
-    glUniform2f(wet_sp->sub_view, f->lod.sub_side, 1.0f);
-    if (dry) {
-        glUseProgram(dry_sp->program);
-        glUniform1f(dry_sp->instance_base, 0.0f);
-        glUniform1f(dry_sp->sub_shells, 1.0f);
+    for (int k = 0; k < 4; k++) {
+        const shell_part *part = k < 2 ? &dry[k] : &wet[k - 2];
+        if (!part->triangles) continue;
+        glUseProgram(part->sp->program);
+        glUniform1f(part->sp->instance_base, 0.0f);
+        glUniform1f(part->sp->sub_shells, 1.0f);
+        glUniform2f(part->sp->sub_view, f->lod.sub_side, 1.0f);
     }
 }
 
@@ -242,6 +258,16 @@ static void draw_apart(const pelt__shell_program *face_sp, const pelt__shell_pro
         glUniform1f(sps[k]->instance_base, 0.0f);
         glUniform1f(sps[k]->sub_shells, 1.0f);
     }
+}
+
+bool pelt__shell_pass_wet_apart(const pelt__pass_frame *f)
+{
+    const pelt__gpu_mesh *m = f->mesh;
+    const pelt__frame_lod *lod = &f->lod;
+    size_t triangles = lod->full_mesh ? m->triangle_count : m->level_triangles[lod->mesh_level];
+    return (f->shell_features & PELT__SHELL_WET) && m->split_ok && !f->draw->debug.no_wet_split &&
+           !f->draw->debug.floor_shader && !f->draw->debug.plain_shells && triangles == m->triangle_count &&
+           3 * m->split.dry_count >= triangles;
 }
 
 void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
@@ -287,16 +313,36 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
      * a third of them is dry: pelt bench measured the default torus 58%
      * dry at 0.83x the frame drawn all wet, a bunny 17% dry at 1.05x. */
     const unsigned wet_bits = PELT__SHELL_WET;
-    if (sp != &p->floor && (f->shell_features & PELT__SHELL_WET) && m->split_ok && !f->draw->debug.no_wet_split &&
-        triangles == m->triangle_count && 3 * m->split.dry_count >= triangles) {
-        size_t dry = m->split.dry_count;
-        const pelt__shell_program *dry_sp = pelt__shell_pass_program(p, f->shell_features & ~wet_bits);
-        if (dry == triangles)
-            draw_part(dry_sp, f, shells, next, m->split_offset, dry, count);
-        else
-            draw_split(dry_sp, sp, f, shells, next, m->split_offset, dry, triangles - dry, count);
+    if (sp != &p->floor && pelt__shell_pass_wet_apart(f)) {
+        const size_t dry = m->split.dry_count, wet = triangles - dry, tri = 3 * sizeof(uint32_t);
+        const unsigned dry_bits = f->shell_features & ~wet_bits;
+        const pelt__shell_program *dry_sp = pelt__shell_pass_program(p, dry_bits);
+        shell_part dry_parts[2] = {{dry_sp, m->split_offset, 0}, {dry_sp, m->split_offset, dry}};
+        shell_part wet_parts[2] = {{sp, m->split_offset + dry * tri, 0}, {sp, m->split_offset + dry * tri, wet}};
+        /* Each part's face-on triangles without the read across the gap
+         * (the view split of both parts, as a dry frame's). */
+        if (f->view_split && m->view_wet && m->view_total == dry && m->view_wet_total == wet) {
+            const size_t face = m->view_face, wet_face = m->view_wet_face, wet_view = m->view_offset + dry * tri;
+            dry_parts[0] = (shell_part){pelt__shell_pass_program(p, dry_bits | PELT__SHELL_NO_GAP), m->view_offset,
+                                        face};
+            dry_parts[1] = (shell_part){dry_sp, m->view_offset + face * tri, dry - face};
+            wet_parts[0] = (shell_part){pelt__shell_pass_program(p, f->shell_features | PELT__SHELL_NO_GAP), wet_view,
+                                        wet_face};
+            wet_parts[1] = (shell_part){sp, wet_view + wet_face * tri, wet - wet_face};
+            f->stats->face_on_triangles = face + wet_face;
+        }
+        if (wet)
+            draw_split(dry_parts, wet_parts, f, shells, next, count);
+        else if (dry_parts[0].triangles && dry_parts[1].triangles)
+            draw_apart(dry_parts[0].sp, dry_sp, f, shells, next, dry_parts[0].offset, dry_parts[0].triangles,
+                       dry_parts[1].triangles, count);
+        else /* one part: one instanced draw */
+            draw_part(dry_parts[0].triangles ? dry_parts[0].sp : dry_sp, f, shells, next,
+                      dry_parts[0].triangles ? dry_parts[0].offset : dry_parts[1].offset, dry, count);
     } else if (sp != &p->floor && (f->shell_features & PELT__SHELL_WET) && any_sub_shells(f, shells, next, count)) {
-        draw_split(NULL, sp, f, shells, next, offset, 0, triangles, count);
+        const shell_part none[2] = {{NULL, 0, 0}, {NULL, 0, 0}};
+        const shell_part wet_parts[2] = {{sp, offset, 0}, {sp, offset, triangles}};
+        draw_split(none, wet_parts, f, shells, next, count);
     } else if (sp != &p->floor && f->view_split && m->view_total == triangles && m->view_face > 0) {
         /* The view split: the face-on triangles without the read across
          * the gap, which llvmpipe would run on every fragment (docs/lod.md). */

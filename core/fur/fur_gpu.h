@@ -163,6 +163,11 @@ typedef struct pelt__view_split_desc {
      * projection (column-major: w = dot(w_row, (world, 1))). */
     float shell_spacing;
     float w_row[4];
+    /* The triangles to split (3 indices each, triangle_count of them), of
+     * the level's or the mesh's own (the wet split's dry or wet part); NULL:
+     * all of the level's. */
+    const uint32_t *triangles;
+    size_t triangle_count;
 } pelt__view_split_desc;
 
 /* The margin the renderer takes: the vertex stage's normal and ray, in

@@ -69,6 +69,7 @@ size_t pelt__fur_gpu_view_split(const pelt_fur *f, const pelt__view_split_desc *
         count = l->triangle_count;
         fit = l->fit_normals;
     }
+    if (d->triangles) tris = d->triangles, count = d->triangle_count;
     for (size_t i = 0; i < m.vertex_count; i++) vertex_side[i] = 0;
     for (size_t t = 0; t < 3 * count; t++) {
         uint32_t i = tris[t];

@@ -216,6 +216,44 @@ static void face_on_and_side_on_drawn_apart(void)
     pelt_fur_destroy(fur);
 }
 
+/* A wet frame drawn apart is split by the view too: the dry part's and
+ * the wet part's face-on triangles each without the read across the gap
+ * (four shell draws a shell), and the picture is the one the wet split
+ * alone gives, from the torus's camera and from nearly edge-on. */
+static void wet_and_dry_each_drawn_apart_by_the_view(void)
+{
+    pelt_fur_desc d = {0};
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
+    if (fur) wet_left_half(fur, NULL);
+    CHECK(fur && pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    uint8_t *apart = malloc((size_t)W * H * 4), *together = malloc((size_t)W * H * 4);
+    for (int view = 0; view < 2 && r && apart && together; view++) {
+        pelt_camera cam = torus_cam;
+        if (view == 1) cam.pitch = 4.0f; /* degrees: nearly edge-on */
+        pelt_view v;
+        memset(&v, 0, sizeof v);
+        pelt_camera_to_view(&cam, (float)W / H, &v);
+        pelt_draw_desc split = {0}, wet_only = {.debug.no_view_split = true};
+        draw_and_read(r, &v, &split, apart);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        printf("  view %d: %zu of %zu triangles face-on, %u shell draws for %u shells\n", view,
+               st.face_on_triangles, st.mesh_triangles, st.shell_draw_calls, st.shell_instances);
+        CHECK(st.face_on_triangles > 0 && st.face_on_triangles < st.mesh_triangles);
+        CHECK(st.shell_instances > 1 && st.shell_draw_calls > 2 * st.shell_instances &&
+              st.shell_draw_calls <= 4 * st.shell_instances);
+        draw_and_read(r, &v, &wet_only, together);
+        st = pelt_renderer_get_stats(r);
+        CHECK(st.shell_draw_calls == 2 * st.shell_instances && st.face_on_triangles == 0);
+        check_apart_matches_together(apart, together, "apart by the view against the wet split alone");
+    }
+    free(apart);
+    free(together);
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+}
+
 /* Wet and dry drawn apart: a torus wet on one half draws its dry triangles
  * with the dry shader (two shell draws a shell, dry then wet), its fins
  * with both ends dry with the dry fin shader (two fin draws), and the
@@ -1334,6 +1372,7 @@ int main(void)
         RUN(shells_are_one_instanced_draw);
         RUN(plain_renderer_draws_every_shell);
         RUN(wet_and_dry_drawn_apart);
+        RUN(wet_and_dry_each_drawn_apart_by_the_view);
         RUN(face_on_and_side_on_drawn_apart);
         RUN(wet_and_dry_drawn_apart_at_a_grazing_angle);
         RUN(sub_shells_join_a_tufts_hairs);
