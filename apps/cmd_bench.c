@@ -310,11 +310,12 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
  * without the inter-fur shadows, every shell everywhere (no view budget),
  * the floor shader, the plain shell renderer, the frame as fur.lod = off
  * draws it, the shells blended without writing their depth, and with the
- * light's shadows on: without them and the light pass alone. */
+ * light's shadows on: without them and the light pass alone; with water,
+ * the wet frame drawn with the dry shaders. */
 static int bench_variants(cli_session *s, unsigned frames, const cli_options *o, bool wet, double step_ms)
 {
     enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, PLAIN, WET_WHOLE, NO_LIGHT, LIGHT_ONLY,
-           SKIN_ONLY, LOD_OFF, NO_DEPTH, ONE_A_LAYER, ONE_PROGRAM, VARIANTS };
+           SKIN_ONLY, LOD_OFF, NO_DEPTH, ONE_A_LAYER, ONE_PROGRAM, AS_DRY, VARIANTS };
     const bool with_floor = o->bench_floor, with_plain = o->bench_plain, with_lod_off = o->bench_lod_off;
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
@@ -357,6 +358,9 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     /* Every triangle's shells with the program that reads across the gap:
      * what the view split saves. */
     v[ONE_PROGRAM].debug.no_view_split = true;
+    /* The wet fur drawn with the dry shaders: the wet frame against the
+     * dry one in the same run, alternated. */
+    v[AS_DRY].debug.as_dry = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
     (void)timed_draw(s, &v[FULL]);
@@ -364,7 +368,7 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     const bool sub = drawn.layer_shells > 1 || drawn.sub_shells > 0;
     const bool view_split = drawn.face_on_triangles > 0;
     bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, with_plain, wet, light, light, true,
-                           with_lod_off, true, sub, view_split};
+                           with_lod_off, true, sub, view_split, wet};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -390,6 +394,7 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     if (with_lod_off) print_stats("lod off", st[LOD_OFF]);
     if (sub) print_stats("one a layer", st[ONE_A_LAYER]);
     if (view_split) print_stats("one program", st[ONE_PROGRAM]);
+    if (wet) print_stats("drawn dry", st[AS_DRY]);
     print_fragments(s, &v[FULL], &v[NO_FINS], &v[SKIN_ONLY], st[FULL].median, st[NO_FINS].median,
                     st[SKIN_ONLY].median, with_floor ? st[FLOOR].median : 0.0);
     if (fins)
@@ -414,9 +419,12 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
         printf("  face-on and side-on drawn apart (%zu of %zu triangles face-on, no read across the gap): the "
                "frame takes %.2fx as long as with one program\n",
                drawn.face_on_triangles, drawn.mesh_triangles, st[FULL].median / st[ONE_PROGRAM].median);
-    if (wet)
+    if (wet) {
         printf("  wet and dry drawn apart: the frame takes %.2fx as long as with every triangle drawn wet\n",
                st[FULL].median / st[WET_WHOLE].median);
+        printf("  the wet frame takes %.2fx as long as the same frame drawn dry (alternated)\n",
+               st[FULL].median / st[AS_DRY].median);
+    }
     if (with_plain)
         printf("  the frame takes %.2fx the plain shell renderer (every shell along the normal, one fetch, "
                "blended, no fins)\n",

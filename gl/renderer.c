@@ -293,6 +293,7 @@ void pelt_renderer_draw(pelt_renderer *r, const pelt_view *view, const pelt_draw
         .flat_shells = draw->debug.flat_shells,
         .lod_off = draw->debug.lod_off,
         .sub_shells = !draw->debug.no_sub_shells,
+        .as_dry = draw->debug.as_dry,
         .gpu_skin = draw->debug.skin_in_vertex_stage,
         .strands = draw->mode == PELT_DRAW_STRANDS,
     };

@@ -225,7 +225,7 @@ static unsigned shell_features(const pelt_fur *fur, const pelt_fur_desc *fd, con
     pelt__fur_snapshot fs;
     pelt__fur_gpu_snapshot(fur, &fs);
     unsigned f = 0;
-    if (fs.any_wet) f |= PELT__SHELL_WET;
+    if (fs.any_wet && !sw->as_dry) f |= PELT__SHELL_WET;
     /* Curly hair lit along its curl: ringlets, or the texture's own curl. */
     if (fs.ringlet_levels > 1 || fd->look.strand_curl > 0.0f) f |= PELT__SHELL_RINGLETS;
     if (fd->look.inter_shadow && sw->inter_shadow) f |= PELT__SHELL_INTER_SHADOW;

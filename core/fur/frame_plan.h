@@ -106,6 +106,7 @@ typedef struct pelt__frame_switches {
     bool flat_shells;   /* no view budget: the level's shells everywhere */
     bool lod_off;       /* as fur.lod = off, whatever the fur's mode */
     bool sub_shells;    /* wet layers in sub shells where tufts gather (pelt__clump_sub_shells) */
+    bool as_dry;        /* wet fur drawn with the dry shaders (pelt_draw_debug.as_dry) */
 } pelt__frame_switches;
 
 /* The renderer's state the plan reads. */

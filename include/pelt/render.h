@@ -105,6 +105,10 @@ typedef struct pelt_draw_debug {
        over the fur in front of it (docs/reference.md, The near lip: fur
        in front hides fur behind), for measuring what the depth costs. */
     bool no_shell_depth;
+    /* Wet fur drawn as if it were dry: the dry shaders everywhere, no
+       tufts, the same geometry and state (pelt bench --clumps: the wet
+       frame against the dry one, alternated in one run). */
+    bool as_dry;
 } pelt_draw_debug;
 
 typedef struct pelt_draw_desc {

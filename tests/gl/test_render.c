@@ -254,6 +254,48 @@ static void wet_and_dry_each_drawn_apart_by_the_view(void)
     pelt_fur_destroy(fur);
 }
 
+/* pelt bench's dry frame in a wet run (pelt_draw_debug.as_dry): the wet
+ * fur drawn with the dry shaders (no wet program, no wet fins) is the
+ * picture of the same fur towelled dry (nothing stepped between: the same
+ * strands), and far from the wet one. */
+static void wet_fur_drawn_as_dry_is_the_towelled_picture(void)
+{
+    pelt_fur_desc d = {0};
+    pelt_fur *fur = NULL;
+    pelt_renderer *r = NULL;
+    CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
+    const pelt_rain soak = {0.0f, 0.05f, 0.08f, 1.0f, 1.0f, 11};
+    if (fur) pelt_fur_add_random_droplets(fur, &soak, 1500);
+    CHECK(fur && pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    uint8_t *as_dry = malloc((size_t)W * H * 4), *other = malloc((size_t)W * H * 4);
+    if (r && as_dry && other) {
+        pelt_view v;
+        memset(&v, 0, sizeof v);
+        pelt_camera_to_view(&torus_cam, (float)W / H, &v);
+        pelt_draw_desc dry = {.debug.as_dry = true}, drawn = {0};
+        draw_and_read(r, &v, &dry, as_dry);
+        pelt_render_stats st = pelt_renderer_get_stats(r);
+        /* The dry frame's view split, two draws a shell; soaked, the wet
+         * frame is one program in one draw. */
+        CHECK(st.shell_draw_calls == 2 * st.shell_instances && st.face_on_triangles > 0);
+        draw_and_read(r, &v, &drawn, other);
+        CHECK(pelt_renderer_get_stats(r).shell_draw_calls == 1);
+        double wet_mean, towelled_mean, frac;
+        gl_test_compare(as_dry, other, (size_t)W * H, &wet_mean, &frac);
+        pelt_fur_clear_wetness(fur);
+        draw_and_read(r, &v, &drawn, other);
+        gl_test_compare(as_dry, other, (size_t)W * H, &towelled_mean, &frac);
+        printf("  drawn dry against drawn wet: mean %.3f; against towelled dry: mean %.3f\n", wet_mean,
+               towelled_mean);
+        CHECK(towelled_mean < 0.5 * wet_mean);
+        check_apart_matches_together(as_dry, other, "drawn dry against towelled dry");
+    }
+    free(as_dry);
+    free(other);
+    pelt_renderer_destroy(r);
+    pelt_fur_destroy(fur);
+}
+
 /* Wet and dry drawn apart: a torus wet on one half draws its dry triangles
  * with the dry shader (two shell draws a shell, dry then wet), its fins
  * with both ends dry with the dry fin shader (two fin draws), and the
@@ -1373,6 +1415,7 @@ int main(void)
         RUN(plain_renderer_draws_every_shell);
         RUN(wet_and_dry_drawn_apart);
         RUN(wet_and_dry_each_drawn_apart_by_the_view);
+        RUN(wet_fur_drawn_as_dry_is_the_towelled_picture);
         RUN(face_on_and_side_on_drawn_apart);
         RUN(wet_and_dry_drawn_apart_at_a_grazing_angle);
         RUN(sub_shells_join_a_tufts_hairs);
