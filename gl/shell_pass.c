@@ -187,7 +187,8 @@ typedef struct shell_part {
  * layer where tufts gather their hairs are its sub shells, one instanced
  * draw. Each of dry and wet comes in up to two parts (the view split's
  * face-on part without the read across the gap, then the rest; a part
- * of no triangles is not drawn): dry[0], dry[1], wet[0], wet[1]. */
+ * of no triangles is not drawn): dry[0], dry[1], wet[0], wet[1]. A dry
+ * frame's view split is dry's two parts alone. */
 static void draw_split(const shell_part dry[2], const shell_part wet[2], const pelt__pass_frame *f,
                        const float shells[4], const float next[2], unsigned count)
 {
@@ -217,7 +218,7 @@ static void draw_split(const shell_part dry[2], const shell_part wet[2], const p
             glUniform2f(sp->sub_view, f->lod.sub_side, tufts ? 0.0f : 1.0f); /* the tufts': everywhere */
             draw_instanced(f, wet[k].offset, wet[k].triangles, sub);
         }
-        f->stats->sub_shells += sub - close;
+        if (wet[0].triangles || wet[1].triangles) f->stats->sub_shells += sub - close;
     }
     for (int k = 0; k < 4; k++) {
         const shell_part *part = k < 2 ? &dry[k] : &wet[k - 2];
@@ -229,35 +230,22 @@ static void draw_split(const shell_part dry[2], const shell_part wet[2], const p
     }
 }
 
-/* Face-on and side-on triangles drawn apart (the view split,
- * pelt__fur_gpu_view_split), a shell at a time: the face-on part's shell
- * i with face_sp, which does not read the fur texture across the gap,
- * then the side-on part's with side_sp, which does, so the shells blend in
- * the order one draw of every triangle gives them (as draw_split). */
-static void draw_apart(const pelt__shell_program *face_sp, const pelt__shell_program *side_sp,
-                       const pelt__pass_frame *f, const float shells[4], const float next[2], size_t offset,
-                       size_t face, size_t side, unsigned count)
+/* draw_split, or one instanced draw where only one part has triangles
+ * and no wet layer takes its own sub shells (any_sub_shells). */
+static void draw_parts(const shell_part dry[2], const shell_part wet[2], const pelt__pass_frame *f,
+                       const float shells[4], const float next[2], unsigned count)
 {
-    const size_t side_offset = offset + face * 3 * sizeof(uint32_t);
-    const unsigned close = close_up_shells(f);
-    const pelt__shell_program *sps[2] = {face_sp, side_sp};
-    for (int k = 0; k < 2; k++) {
-        use_program(sps[k], f, shells, next);
-        glUniform1f(sps[k]->sub_shells, (float)close);
+    const shell_part *only = NULL;
+    int parts = 0;
+    for (int k = 0; k < 4; k++) {
+        const shell_part *part = k < 2 ? &dry[k] : &wet[k - 2];
+        if (part->triangles) only = part, parts++;
     }
-    for (unsigned i = 0; i < count; i++) {
-        glUseProgram(face_sp->program);
-        glUniform1f(face_sp->instance_base, (float)i);
-        draw_instanced(f, offset, face, close);
-        glUseProgram(side_sp->program);
-        glUniform1f(side_sp->instance_base, (float)i);
-        draw_instanced(f, side_offset, side, close);
-    }
-    for (int k = 0; k < 2; k++) {
-        glUseProgram(sps[k]->program);
-        glUniform1f(sps[k]->instance_base, 0.0f);
-        glUniform1f(sps[k]->sub_shells, 1.0f);
-    }
+    bool wet_only = parts == 1 && (wet[0].triangles || wet[1].triangles);
+    if (parts == 1 && !(wet_only && any_sub_shells(f, shells, next, count)))
+        draw_part(only->sp, f, shells, next, only->offset, only->triangles, count);
+    else if (parts > 0)
+        draw_split(dry, wet, f, shells, next, count);
 }
 
 bool pelt__shell_pass_wet_apart(const pelt__pass_frame *f)
@@ -331,14 +319,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
             wet_parts[1] = (shell_part){sp, wet_view + wet_face * tri, wet - wet_face};
             f->stats->face_on_triangles = face + wet_face;
         }
-        if (wet)
-            draw_split(dry_parts, wet_parts, f, shells, next, count);
-        else if (dry_parts[0].triangles && dry_parts[1].triangles)
-            draw_apart(dry_parts[0].sp, dry_sp, f, shells, next, dry_parts[0].offset, dry_parts[0].triangles,
-                       dry_parts[1].triangles, count);
-        else /* one part: one instanced draw */
-            draw_part(dry_parts[0].triangles ? dry_parts[0].sp : dry_sp, f, shells, next,
-                      dry_parts[0].triangles ? dry_parts[0].offset : dry_parts[1].offset, dry, count);
+        draw_parts(dry_parts, wet_parts, f, shells, next, count);
     } else if (sp != &p->floor && (f->shell_features & PELT__SHELL_WET) && any_sub_shells(f, shells, next, count)) {
         const shell_part none[2] = {{NULL, 0, 0}, {NULL, 0, 0}};
         const shell_part wet_parts[2] = {{sp, offset, 0}, {sp, offset, triangles}};
@@ -346,13 +327,12 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
     } else if (sp != &p->floor && f->view_split && m->view_total == triangles && m->view_face > 0) {
         /* The view split: the face-on triangles without the read across
          * the gap, which llvmpipe would run on every fragment (docs/lod.md). */
-        const pelt__shell_program *face_sp = pelt__shell_pass_program(p, f->shell_features | PELT__SHELL_NO_GAP);
-        size_t side = triangles - m->view_face;
+        const shell_part none[2] = {{NULL, 0, 0}, {NULL, 0, 0}};
+        const shell_part parts[2] = {
+            {pelt__shell_pass_program(p, f->shell_features | PELT__SHELL_NO_GAP), m->view_offset, m->view_face},
+            {sp, m->view_offset + m->view_face * 3 * sizeof(uint32_t), triangles - m->view_face}};
         f->stats->face_on_triangles = m->view_face;
-        if (side == 0)
-            draw_part(face_sp, f, shells, next, m->view_offset, triangles, count);
-        else
-            draw_apart(face_sp, sp, f, shells, next, m->view_offset, m->view_face, side, count);
+        draw_parts(parts, none, f, shells, next, count);
     } else {
         draw_part(sp, f, shells, next, offset, triangles, count);
     }
