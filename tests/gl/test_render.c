@@ -157,6 +157,27 @@ static void wet_left_half(pelt_fur *fur, void *user)
     }
 }
 
+/* The torus's default fur, wet by `wet` (NULL: dry) before its renderer
+ * is made (*fur NULL, and NULL returned, where either fails). */
+static pelt_renderer *torus_renderer(void (*wet)(pelt_fur *, void *), pelt_fur **fur)
+{
+    pelt_fur_desc d = {0};
+    pelt_renderer *r = NULL;
+    *fur = NULL;
+    CHECK(pelt_fur_create(torus, &d, fur, NULL) == PELT_OK);
+    if (*fur && wet) wet(*fur, NULL);
+    CHECK(*fur && pelt_renderer_create(torus, *fur, NULL, &r, NULL) == PELT_OK);
+    return r;
+}
+
+/* The torus soaked all over: 1500 drops of 0.05-0.08 (mask uv). */
+static void soak(pelt_fur *fur, void *user)
+{
+    (void)user;
+    const pelt_rain rain = {0.0f, 0.05f, 0.08f, 1.0f, 1.0f, 11};
+    pelt_fur_add_random_droplets(fur, &rain, 1500);
+}
+
 /* One frame of r from v with d over the test background, read into px. */
 static void draw_and_read(pelt_renderer *r, const pelt_view *v, const pelt_draw_desc *d, uint8_t *px)
 {
@@ -187,12 +208,8 @@ static void check_apart_matches_together(const uint8_t *apart, const uint8_t *to
  * the reference `reference_per_shell` (0: one draw). */
 static void view_split_matches(bool wet, unsigned per_shell, unsigned reference_per_shell, const char *what)
 {
-    pelt_fur_desc d = {0};
-    pelt_fur *fur = NULL;
-    pelt_renderer *r = NULL;
-    CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
-    if (fur && wet) wet_left_half(fur, NULL);
-    CHECK(fur && pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    pelt_fur *fur;
+    pelt_renderer *r = torus_renderer(wet ? wet_left_half : NULL, &fur);
     uint8_t *apart = malloc((size_t)W * H * 4), *together = malloc((size_t)W * H * 4);
     for (int view = 0; view < 2 && r && apart && together; view++) {
         pelt_camera cam = torus_cam;
@@ -249,13 +266,8 @@ static void wet_and_dry_each_drawn_apart_by_the_view(void)
  * strands), and far from the wet one. */
 static void wet_fur_drawn_as_dry_is_the_towelled_picture(void)
 {
-    pelt_fur_desc d = {0};
-    pelt_fur *fur = NULL;
-    pelt_renderer *r = NULL;
-    CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
-    const pelt_rain soak = {0.0f, 0.05f, 0.08f, 1.0f, 1.0f, 11};
-    if (fur) pelt_fur_add_random_droplets(fur, &soak, 1500);
-    CHECK(fur && pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    pelt_fur *fur;
+    pelt_renderer *r = torus_renderer(soak, &fur);
     uint8_t *as_dry = malloc((size_t)W * H * 4), *other = malloc((size_t)W * H * 4);
     if (r && as_dry && other) {
         pelt_view v;
@@ -295,12 +307,8 @@ static void wet_fur_drawn_as_dry_is_the_towelled_picture(void)
  * Towelled dry, one draw; wet again elsewhere, the triangles follow. */
 static void wet_and_dry_drawn_apart(void)
 {
-    pelt_fur_desc d = {0};
-    pelt_fur *fur = NULL;
-    pelt_renderer *r = NULL;
-    CHECK(pelt_fur_create(torus, &d, &fur, NULL) == PELT_OK);
-    if (fur) wet_left_half(fur, NULL);
-    CHECK(fur && pelt_renderer_create(torus, fur, NULL, &r, NULL) == PELT_OK);
+    pelt_fur *fur;
+    pelt_renderer *r = torus_renderer(wet_left_half, &fur);
     uint8_t *apart = malloc((size_t)W * H * 4), *together = malloc((size_t)W * H * 4);
     if (r && apart && together) {
         pelt_view v;
