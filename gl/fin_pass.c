@@ -325,7 +325,7 @@ void pelt__fin_pass_draw(pelt__fin_pass *p, const pelt__pass_frame *f)
 
 void pelt__fin_pass_destroy(pelt__fin_pass *p)
 {
-    for (int k = 0; k < PELT__SHELL_VARIANTS; k++)
+    for (int k = 0; k < PELT__FIN_VARIANTS; k++)
         if (p->variants[k]) glDeleteProgram(p->variants[k]);
     for (int k = 0; k <= PELT__OUTLINE_FEATURES; k++)
         if (p->outline[k]) glDeleteProgram(p->outline[k]);

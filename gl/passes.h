@@ -38,6 +38,7 @@ void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFIN
 #define PELT__FIN_FEATURES                                                                                \
     (PELT__SHELL_WET | PELT__SHELL_COLOR_TEXTURE | PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE |    \
      PELT__SHELL_SHADOW_MAP | PELT__SHELL_RINGLETS)
+#define PELT__FIN_VARIANTS (PELT__FIN_FEATURES + 1)
 
 /* The outline's hairs, lit per vertex, use the light's. */
 #define PELT__OUTLINE_FEATURES (PELT__SHELL_KAJIYA_KAY | PELT__SHELL_LIGHT_TABLE | PELT__SHELL_SHADOW_MAP)
@@ -66,13 +67,13 @@ void pelt__skin_pass_destroy(pelt__skin_pass *p);
  * PELT_FIN_CHUNK strips of up to PELT_FIN_ROWS quads per instance. Owns
  * the fin texture, the tables and the chunks' index buffer. */
 typedef struct pelt__fin_pass {
-    GLuint variants[PELT__SHELL_VARIANTS]; /* by the PELT__FIN_FEATURES bits */
-    bool failed[PELT__SHELL_VARIANTS];
-    GLint fin_count[PELT__SHELL_VARIANTS]; /* u_fin_count */
-    GLint fin_rows[PELT__SHELL_VARIANTS];  /* u_fin_rows */
-    GLint fin_first[PELT__SHELL_VARIANTS]; /* u_fin_first */
-    GLint fin_hairs[PELT__SHELL_VARIANTS]; /* u_outline_on: the outline's hairs take over from the quads */
-    GLint fin_viewport[PELT__SHELL_VARIANTS]; /* u_viewport */
+    GLuint variants[PELT__FIN_VARIANTS]; /* by the PELT__FIN_FEATURES bits */
+    bool failed[PELT__FIN_VARIANTS];
+    GLint fin_count[PELT__FIN_VARIANTS]; /* u_fin_count */
+    GLint fin_rows[PELT__FIN_VARIANTS];  /* u_fin_rows */
+    GLint fin_first[PELT__FIN_VARIANTS]; /* u_fin_first */
+    GLint fin_hairs[PELT__FIN_VARIANTS]; /* u_outline_on: the outline's hairs take over from the quads */
+    GLint fin_viewport[PELT__FIN_VARIANTS]; /* u_viewport */
     /* The outline's hairs (outline_vs.glsl), by the PELT__OUTLINE_FEATURES bits. */
     GLuint outline[PELT__OUTLINE_FEATURES + 1];
     bool outline_failed[PELT__OUTLINE_FEATURES + 1];

@@ -12,7 +12,7 @@
 static const char *const feature_defines[] = {"PELT_WET", "PELT_INTER_SHADOW", "PELT_LOD_BLEND",
                                               "PELT_COLOR_TEXTURE", "PELT_SHADING_KK", "PELT_SHADING_TABLE",
                                               "PELT_SHADOW_MAP", "PELT_RINGLETS", "PELT_FUR_TAPS", "PELT_LIGHT_PASS",
-                                              "PELT_GPU_SKIN", "PELT_NO_GAP"};
+                                              "PELT_GPU_SKIN", "PELT_NO_GAP", "PELT_TUFT_BASE"};
 
 void pelt__shell_feature_defines(unsigned features, char out[PELT__FEATURE_DEFINES_MAX])
 {
@@ -176,7 +176,24 @@ static bool any_sub_shells(const pelt__pass_frame *f, const float shells[4], con
 typedef struct shell_part {
     const pelt__shell_program *sp;
     size_t offset, triangles;
+    /* A wet part's layers below the tufts' base (tuft_base_shells): the
+     * program without the clump lookup, or NULL where sp draws them. */
+    const pelt__shell_program *base_sp;
 } shell_part;
+
+/* How many of the `count` shells from the inside stand below the tufts'
+ * base (pelt__clump_below_tufts): a wet layer there keeps its hair where
+ * it grew, so the lean wet program draws it (PELT__SHELL_TUFT_BASE). */
+static unsigned tuft_base_shells(const pelt__pass_frame *f, const float shells[4], const float next[2],
+                                 unsigned count)
+{
+    float slices[3], alpha, n = (float)f->layers;
+    unsigned below = 0;
+    while (below < count &&
+           pelt__clump_below_tufts((1.0f + pelt__lod_shell_instance(shells, next, n, (float)below, slices, &alpha)) / n, n))
+        below++;
+    return below;
+}
 
 /* Wet and dry drawn apart, a shell at a time: the dry triangles' shell i
  * with the dry shader, then the wet ones' with the wet shader, from the
@@ -193,8 +210,10 @@ static void draw_split(const shell_part dry[2], const shell_part wet[2], const p
                        const float shells[4], const float next[2], unsigned count)
 {
     const unsigned close = close_up_shells(f);
+    const unsigned below = tuft_base_shells(f, shells, next, count);
     for (int k = 0; k < 2; k++) {
         if (wet[k].triangles) use_program(wet[k].sp, f, shells, next);
+        if (wet[k].triangles && wet[k].base_sp) use_program(wet[k].base_sp, f, shells, next);
         if (dry[k].triangles) {
             use_program(dry[k].sp, f, shells, next);
             glUniform1f(dry[k].sp->sub_shells, (float)close);
@@ -211,7 +230,7 @@ static void draw_split(const shell_part dry[2], const shell_part wet[2], const p
         unsigned sub = layer_sub_shells(f, shells, next, i, &tufts);
         for (int k = 0; k < 2; k++) {
             if (!wet[k].triangles) continue;
-            const pelt__shell_program *sp = wet[k].sp;
+            const pelt__shell_program *sp = i < below && wet[k].base_sp ? wet[k].base_sp : wet[k].sp;
             glUseProgram(sp->program);
             glUniform1f(sp->instance_base, (float)i);
             glUniform1f(sp->sub_shells, (float)sub);
@@ -220,13 +239,35 @@ static void draw_split(const shell_part dry[2], const shell_part wet[2], const p
         }
         if (wet[0].triangles || wet[1].triangles) f->stats->sub_shells += sub - close;
     }
-    for (int k = 0; k < 4; k++) {
-        const shell_part *part = k < 2 ? &dry[k] : &wet[k - 2];
-        if (!part->triangles) continue;
-        glUseProgram(part->sp->program);
-        glUniform1f(part->sp->instance_base, 0.0f);
-        glUniform1f(part->sp->sub_shells, 1.0f);
-        glUniform2f(part->sp->sub_view, f->lod.sub_side, 1.0f);
+    for (int k = 0; k < 6; k++) {
+        const shell_part *part = k < 2 ? &dry[k] : &wet[(k - 2) % 2];
+        const pelt__shell_program *sp = k < 4 ? part->sp : part->base_sp;
+        if (!part->triangles || !sp) continue;
+        glUseProgram(sp->program);
+        glUniform1f(sp->instance_base, 0.0f);
+        glUniform1f(sp->sub_shells, 1.0f);
+        glUniform2f(sp->sub_view, f->lod.sub_side, 1.0f);
+    }
+}
+
+/* One wet part's shells in two instanced draws: those below the tufts'
+ * base with its base program, then the rest (inside out, as one draw
+ * would). Close up, each layer's k shells are instances k i .. k i + k - 1. */
+static void draw_wet_part(const shell_part *part, const pelt__pass_frame *f, const float shells[4],
+                          const float next[2], unsigned count)
+{
+    const unsigned below = part->base_sp ? tuft_base_shells(f, shells, next, count) : 0;
+    const unsigned k = close_up_shells(f);
+    const pelt__shell_program *sp[2] = {part->base_sp, part->sp};
+    const unsigned first[2] = {0, below}, shells_drawn[2] = {below, count - below};
+    for (int j = 0; j < 2; j++) {
+        if (shells_drawn[j] == 0) continue;
+        use_program(sp[j], f, shells, next);
+        glUniform1f(sp[j]->instance_base, (float)first[j]);
+        glUniform1f(sp[j]->sub_shells, (float)k);
+        draw_instanced(f, part->offset, part->triangles, shells_drawn[j] * k);
+        glUniform1f(sp[j]->instance_base, 0.0f);
+        glUniform1f(sp[j]->sub_shells, 1.0f);
     }
 }
 
@@ -242,7 +283,9 @@ static void draw_parts(const shell_part dry[2], const shell_part wet[2], const p
         if (part->triangles) only = part, parts++;
     }
     bool wet_only = parts == 1 && (wet[0].triangles || wet[1].triangles);
-    if (parts == 1 && !(wet_only && any_sub_shells(f, shells, next, count)))
+    if (wet_only && !any_sub_shells(f, shells, next, count))
+        draw_wet_part(only, f, shells, next, count);
+    else if (parts == 1 && !wet_only)
         draw_part(only->sp, f, shells, next, only->offset, only->triangles, count);
     else if (parts > 0)
         draw_split(dry, wet, f, shells, next, count);
@@ -301,36 +344,44 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
      * a third of them is dry: pelt bench measured the default torus 58%
      * dry at 0.83x the frame drawn all wet, a bunny 17% dry at 1.05x. */
     const unsigned wet_bits = PELT__SHELL_WET;
-    if (sp != &p->floor && pelt__shell_pass_wet_apart(f)) {
-        const size_t dry = m->split.dry_count, wet = triangles - dry, tri = 3 * sizeof(uint32_t);
+    /* A wet frame's layers below the tufts' base with the lean wet program
+     * (tuft_base_shells), face-on without the read across the gap too. */
+    const bool wet = sp != &p->floor && (f->shell_features & wet_bits);
+    const bool base = wet && !f->draw->debug.no_tuft_base;
+    const unsigned base_bits = f->shell_features | PELT__SHELL_TUFT_BASE;
+    const pelt__shell_program *base_sp = base ? pelt__shell_pass_program(p, base_bits) : NULL;
+    const shell_part none[2] = {{NULL, 0, 0, NULL}, {NULL, 0, 0, NULL}};
+    if (wet && pelt__shell_pass_wet_apart(f)) {
+        const size_t dry = m->split.dry_count, wet_count = triangles - dry, tri = 3 * sizeof(uint32_t);
         const unsigned dry_bits = f->shell_features & ~wet_bits;
         const pelt__shell_program *dry_sp = pelt__shell_pass_program(p, dry_bits);
-        shell_part dry_parts[2] = {{dry_sp, m->split_offset, 0}, {dry_sp, m->split_offset, dry}};
-        shell_part wet_parts[2] = {{sp, m->split_offset + dry * tri, 0}, {sp, m->split_offset + dry * tri, wet}};
+        shell_part dry_parts[2] = {{dry_sp, m->split_offset, 0, NULL}, {dry_sp, m->split_offset, dry, NULL}};
+        shell_part wet_parts[2] = {{sp, m->split_offset + dry * tri, 0, NULL},
+                                   {sp, m->split_offset + dry * tri, wet_count, base_sp}};
         /* Each part's face-on triangles without the read across the gap
          * (the view split of both parts, as a dry frame's). */
-        if (f->view_split && m->view_wet && m->view_total == dry && m->view_wet_total == wet) {
+        if (f->view_split && m->view_wet && m->view_total == dry && m->view_wet_total == wet_count) {
             const size_t face = m->view_face, wet_face = m->view_wet_face, wet_view = m->view_offset + dry * tri;
             dry_parts[0] = (shell_part){pelt__shell_pass_program(p, dry_bits | PELT__SHELL_NO_GAP), m->view_offset,
-                                        face};
-            dry_parts[1] = (shell_part){dry_sp, m->view_offset + face * tri, dry - face};
+                                        face, NULL};
+            dry_parts[1] = (shell_part){dry_sp, m->view_offset + face * tri, dry - face, NULL};
             wet_parts[0] = (shell_part){pelt__shell_pass_program(p, f->shell_features | PELT__SHELL_NO_GAP), wet_view,
-                                        wet_face};
-            wet_parts[1] = (shell_part){sp, wet_view + wet_face * tri, wet - wet_face};
+                                        wet_face,
+                                        base ? pelt__shell_pass_program(p, base_bits | PELT__SHELL_NO_GAP) : NULL};
+            wet_parts[1] = (shell_part){sp, wet_view + wet_face * tri, wet_count - wet_face, base_sp};
             f->stats->face_on_triangles = face + wet_face;
         }
         draw_parts(dry_parts, wet_parts, f, shells, next, count);
-    } else if (sp != &p->floor && (f->shell_features & PELT__SHELL_WET) && any_sub_shells(f, shells, next, count)) {
-        const shell_part none[2] = {{NULL, 0, 0}, {NULL, 0, 0}};
-        const shell_part wet_parts[2] = {{sp, offset, 0}, {sp, offset, triangles}};
-        draw_split(none, wet_parts, f, shells, next, count);
+    } else if (wet) {
+        /* Wet all over, or not on the full mesh: one wet part. */
+        const shell_part wet_parts[2] = {{sp, offset, 0, NULL}, {sp, offset, triangles, base_sp}};
+        draw_parts(none, wet_parts, f, shells, next, count);
     } else if (sp != &p->floor && f->view_split && m->view_total == triangles && m->view_face > 0) {
         /* The view split: the face-on triangles without the read across
          * the gap, which llvmpipe would run on every fragment (docs/lod.md). */
-        const shell_part none[2] = {{NULL, 0, 0}, {NULL, 0, 0}};
         const shell_part parts[2] = {
-            {pelt__shell_pass_program(p, f->shell_features | PELT__SHELL_NO_GAP), m->view_offset, m->view_face},
-            {sp, m->view_offset + m->view_face * 3 * sizeof(uint32_t), triangles - m->view_face}};
+            {pelt__shell_pass_program(p, f->shell_features | PELT__SHELL_NO_GAP), m->view_offset, m->view_face, NULL},
+            {sp, m->view_offset + m->view_face * 3 * sizeof(uint32_t), triangles - m->view_face, NULL}};
         f->stats->face_on_triangles = m->view_face;
         draw_parts(parts, none, f, shells, next, count);
     } else {

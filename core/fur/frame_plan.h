@@ -91,7 +91,10 @@ enum {
     PELT__SHELL_GPU_SKIN = 1 << 10,     /* skinned in the vertex stage (for measuring) */
     PELT__SHELL_NO_GAP = 1 << 11,       /* no second read across the gap: the triangles the
                                            view split finds face-on (pelt__fur_gpu_view_split) */
-    PELT__SHELL_VARIANTS = 1 << 12
+    PELT__SHELL_TUFT_BASE = 1 << 12,    /* with _WET: a wet layer below the tufts' base
+                                           (pelt__clump_below_tufts): darkened, its
+                                           hair where it grew, no clump lookup */
+    PELT__SHELL_VARIANTS = 1 << 13
 };
 
 /* What the caller asks of this frame (pelt_draw_desc, read by the renderer). */

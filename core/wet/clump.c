@@ -45,6 +45,11 @@ float pelt__clump_tuft_slope(float h, float w, float n_layers)
            (2.0f * half_step);
 }
 
+bool pelt__clump_below_tufts(float h, float n_layers)
+{
+    return h + 0.5f / fmaxf(n_layers, 1.0f) <= PELT__CLUMP_BASE;
+}
+
 unsigned pelt__clump_sub_shells(float h_below, float h, float w, float n_layers, float sweep_px)
 {
     float px = sweep_px * (pelt__clump_tuft_profile(h, w, n_layers) - pelt__clump_tuft_profile(h_below, w, n_layers));

@@ -49,6 +49,13 @@ float pelt__clump_tuft_profile(float h, float w, float n_layers);
  * over one layer spacing 1/N centred on h, times N. */
 float pelt__clump_tuft_slope(float h, float w, float n_layers);
 
+/* Whether a layer at h stands wholly below the tufts' base: its profile
+ * and its slope (over the half spacing above it) are 0 for any blend w,
+ * so a clump leaves its hairs where they grew and lights them as free
+ * hairs. The shells draw such wet layers with a program that does no
+ * clump lookup (PELT__SHELL_TUFT_BASE, gl/shell_pass.c). */
+bool pelt__clump_below_tufts(float h, float n_layers);
+
 /* The unit tangent of a hair in a tuft (docs/wetness.md, Tuft light): the
  * hair's own unit tangent t plus du to_centre[0] + dv to_centre[1] times
  * slope, where to_centre = c - q in mask uv, du and dv are the world

@@ -3,6 +3,13 @@
 // the renderer concatenates this into the shell fragment shader. Valid as
 // GLSL 3.30 core and GLSL ES 3.00 (needs a float precision in scope on ES).
 
+// The wet shells' tufts: the wet programs look up the clumps, but for the
+// layers below the tufts' base (PELT_TUFT_BASE, pelt__clump_below_tufts),
+// where a clump leaves its hairs where they grew: darkened, no lookup.
+#if defined(PELT_WET) && !defined(PELT_TUFT_BASE)
+#define PELT_TUFTS 1
+#endif
+
 const int CLUMP_KEEP = 0;      // dry texel: draw at p, undisplaced
 const int CLUMP_DISPLACED = 1; // draw the hair rooted at q (d = q - p)
 const int CLUMP_DISCARD = 2;   // another clump's texel, or q is dry

@@ -26,13 +26,11 @@ in vec3 v_ring_l;   // a ringlet's, from dots
 in vec3 v_ring_e;
 in vec3 v_ring_g;
 #endif
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+#if defined(PELT_TUFTS) && !defined(PELT_LIGHT_PASS)
 in vec3 v_hair_t;   // a tuft's, from vectors
 in vec3 v_tuft_u;
 in vec3 v_tuft_v;
 in vec3 v_world;
-#endif
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
 flat in float v_clump_slope;
 #endif
 #if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
@@ -120,7 +118,7 @@ vec4 wet_hair(vec2 fur_uv, float rho)
 #endif
 }
 
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+#if defined(PELT_TUFTS) && !defined(PELT_LIGHT_PASS)
 // The dots (T.L, T.E) of a tuft's hair along its tangent T in the tuft.
 vec2 tuft_dots(vec2 to_centre, float rho)
 {
@@ -189,11 +187,13 @@ void main()
     vec2 d = vec2(0.0);
     float rho = 0.0;
 #ifdef PELT_WET
+    vec4 t = clump_texel(u_mask, v_uv);
+    rho = t.a;
+#endif
+#ifdef PELT_TUFTS
     // Clumps (Silva Eq. 5, Alg. 2 as docs/wetness.md reads them): sample the hair
     // rooted at q; colour and fur coordinates move together.
     vec2 q;
-    vec4 t = clump_texel(u_mask, v_uv);
-    rho = t.a;
     vec2 lean = clump_lean(t, u_clump_lean);
     int clump = clump_lookup_texel(u_mask, t, v_uv, v_clump_profile, u_clump_tightness, lean, q);
     // The clump squeezes its strands towards the centre by k (squeeze): the
@@ -208,25 +208,39 @@ void main()
 #endif
     vec2 fur_uv = v_fur_uv + d * u_fur_per_uv;
     vec4 hair = wet_hair(fur_uv, rho);
+    // One more read at most: seen from the side, this shell holds the hair
+    // down to the next one, the union with the hair half a gap back
+    // (pelt__lod_shell_gap); in a tuft, whose hairs the clump moves, the
+    // hair growing here instead, which stands if it is a stray
+    // (clump_stray_hair). The two never meet, so one fetch serves both.
+    vec2 second_uv = v_fur_uv;
+    float gap_weight = 0.0;
 #if !defined(PELT_LIGHT_PASS) && !defined(PELT_NO_GAP)
-    // Seen from the side, this shell holds the hair down to the next one:
-    // the union with the hair half a gap back (pelt__lod_shell_gap). Not in
-    // a tuft, whose hairs the clump moves.
-    bool gap_read = v_gap.z > 0.0;
-#ifdef PELT_WET
-    gap_read = gap_read && clump == CLUMP_KEEP;
+    second_uv = fur_uv - 0.5 * v_gap.xy;
+    gap_weight = v_gap.z;
 #endif
-    if (gap_read) hair += wet_hair(fur_uv - 0.5 * v_gap.xy, rho) * (v_gap.z * (1.0 - hair.a));
+#ifdef PELT_TUFTS
+    bool moved = clump != CLUMP_KEEP;
+    if (moved) {
+        second_uv = v_fur_uv;
+        gap_weight = 0.0;
+    }
+#else
+    const bool moved = false;
 #endif
-#ifdef PELT_WET
-    if (clump != CLUMP_KEEP) {
-        if (clump_stray_hair(clump, hair, wet_hair(v_fur_uv, rho), u_wet_strays)) {
+    if (gap_weight > 0.0 || moved) {
+        vec4 second = wet_hair(second_uv, rho);
+        if (!moved) hair += second * (gap_weight * (1.0 - hair.a));
+#ifdef PELT_TUFTS
+        if (moved && clump_stray_hair(clump, hair, second, u_wet_strays)) {
             d = vec2(0.0);
             fur_uv = v_fur_uv;
             clump = CLUMP_KEEP;
         }
-        if (!(hair.a > 0.0)) discard;
+#endif
     }
+#ifdef PELT_TUFTS
+    if (moved && !(hair.a > 0.0)) discard;
 #endif
     hair = shell_view_texel(v_view, fur_edge(hair, fur_gain)) * v_alpha;
     hair.rgb /= max(hair.a, 1e-3);  // the volume is premultiplied
@@ -238,7 +252,7 @@ void main()
     // layer_share.
     float clear_log = coverage_log(hair.a);
     float tuft_e = 1.0;
-#ifdef PELT_WET
+#ifdef PELT_TUFTS
     // The bundle is 1/k times as dense where the read averages its
     // hairs (see docs/wetness.md): clump_coverage's exponent.
     if (clump == CLUMP_DISPLACED) tuft_e = 1.0 / clump_bundle_squeeze(squeeze, fur_lod);
@@ -273,7 +287,7 @@ void main()
 #endif
     base = wet_color(base, rho, u_wet_darken); // darker, more saturated
     float spec = v_spec;
-#if defined(PELT_WET) && defined(PELT_RINGLETS)
+#if defined(PELT_TUFTS) && defined(PELT_RINGLETS)
     // A tuft's hair along its tuft, the others along their ringlet: one
     // light for either (a fragment's block works out both ways where its
     // pixels split, so the light's own work is done once). The free
@@ -281,7 +295,7 @@ void main()
     vec2 own = clump == CLUMP_DISPLACED ? tuft_dots(t.xy + lean - q, rho)
                                         : ringlet_own(sharp_id(fur_uv, hair.b), rho, v_h, v_ring_l, v_ring_e, v_ring_g);
     own_light_dots(own, v_light, free_light_inverse_dots(v_ring_l.x, v_ring_e.x, rho, v_light), rho, base, spec);
-#elif defined(PELT_WET)
+#elif defined(PELT_TUFTS)
     if (clump == CLUMP_DISPLACED) tuft_light(t.xy + lean - q, rho, base, spec);
 #elif defined(PELT_RINGLETS)
     shell_ringlet_light(sharp_id(fur_uv, hair.b), rho, base, spec);

@@ -59,14 +59,12 @@ out vec3 v_ring_l;      // (t.L, u.L, v.L)
 out vec3 v_ring_e;      // (t.E, u.E, v.E)
 out vec3 v_ring_g;      // (t.u, t.v, u.v)
 #endif
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
+#if defined(PELT_TUFTS) && !defined(PELT_LIGHT_PASS)
 // A tuft's, from the vectors (a tuft bends the hair towards its centre).
 out vec3 v_hair_t;      // the hair's unit tangent, world
 out vec3 v_tuft_u;      // world vectors of one mask-uv unit over the hair's length
 out vec3 v_tuft_v;      // (along the tangent frame's u and v)
 out vec3 v_world;       // the point, world
-#endif
-#if defined(PELT_WET) && !defined(PELT_LIGHT_PASS)
 flat out float v_clump_slope; // clump_tuft_slope(h): the same for the whole layer
 #endif
 out float v_alpha;      // the shell's opacity: fades as its level leaves, and
@@ -206,7 +204,7 @@ void main()
                        v_ring_e, v_ring_g);
     light_mul = ringlet_light_mul(light_mul, fur_light_reach.z);
 #endif
-#ifdef PELT_WET
+#ifdef PELT_TUFTS
     // The mask's uv runs along the fur uv, which tiles u_fur_per_uv tiles
     // per uv unit and u_tiling per world unit along the tangent frame.
     v_hair_t = world_t;
@@ -214,8 +212,6 @@ void main()
     v_tuft_u = mat3(u_model) * u * world_per_uv.x;
     v_tuft_v = mat3(u_model) * v * world_per_uv.y;
     v_world = world.xyz;
-#endif
-#ifdef PELT_WET
     v_clump_slope = clump_tuft_slope(h, u_clump_blend, u_layers);
 #endif
     v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),

@@ -109,6 +109,10 @@ typedef struct pelt_draw_debug {
        tufts, the same geometry and state (pelt bench --clumps: the wet
        frame against the dry one, alternated in one run). */
     bool as_dry;
+    /* Every wet layer drawn with the tufts' program, even below the tufts'
+       base where a clump leaves its hairs in place (docs/lod.md, the
+       tufts' base), for measuring what the lean program there saves. */
+    bool no_tuft_base;
 } pelt_draw_debug;
 
 typedef struct pelt_draw_desc {
