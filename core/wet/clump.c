@@ -68,16 +68,15 @@ float pelt__sub_shell_alpha(float a, float k)
     return k > 1.0f ? 1.0f - powf(fmaxf(1.0f - a, 0.0f), 1.0f / k) : a;
 }
 
-void pelt__tuft_tangent(const float t[3], const float du[3], const float dv[3], const float to_centre[2],
-                        float slope, float out[3])
+void pelt__tuft_dots(const float l[3], const float e[3], const float g[4], float m, const float to_centre[2],
+                     float slope, float out[2])
 {
-    float d[3], len2 = 0.0f;
-    for (int k = 0; k < 3; k++) {
-        d[k] = t[k] + (du[k] * to_centre[0] + dv[k] * to_centre[1]) * slope;
-        len2 += d[k] * d[k];
-    }
+    float cx = to_centre[0] * slope, cy = to_centre[1] * slope;
+    float tl = l[0] + cx * l[1] + cy * l[2], te = e[0] + cx * e[1] + cy * e[2];
+    float len2 = 1.0f + 2.0f * (cx * g[0] + cy * g[1]) + cx * cx * g[2] + cy * cy * g[3] + 2.0f * cx * cy * m;
     float inv = len2 > 1e-30f ? 1.0f / sqrtf(len2) : 0.0f;
-    for (int k = 0; k < 3; k++) out[k] = inv > 0.0f ? d[k] * inv : t[k];
+    out[0] = inv > 0.0f ? tl * inv : l[0];
+    out[1] = inv > 0.0f ? te * inv : e[0];
 }
 
 bool pelt__clump_stray(float id, float share)

@@ -56,13 +56,15 @@ float pelt__clump_tuft_slope(float h, float w, float n_layers);
  * clump lookup (PELT__SHELL_TUFT_BASE, gl/shell_pass.c). */
 bool pelt__clump_below_tufts(float h, float n_layers);
 
-/* The unit tangent of a hair in a tuft (docs/wetness.md, Tuft light): the
- * hair's own unit tangent t plus du to_centre[0] + dv to_centre[1] times
- * slope, where to_centre = c - q in mask uv, du and dv are the world
- * vectors of one mask-uv unit divided by the hair's length, and slope is
- * d(pull)/dh = s rho pelt__clump_tuft_slope. t where the sum vanishes. */
-void pelt__tuft_tangent(const float t[3], const float du[3], const float dv[3], const float to_centre[2],
-                        float slope, float out[3]);
+/* The dots (T.L, T.E) of a hair in a tuft (docs/wetness.md, Tuft light),
+ * T the hair's own unit tangent t plus du to_centre[0] + dv to_centre[1]
+ * times slope, normalised, where to_centre = c - q in mask uv, du and dv
+ * are the world vectors of one mask-uv unit divided by the hair's length,
+ * and slope is d(pull)/dh = s rho pelt__clump_tuft_slope; from the dots
+ * l = (t.L, du.L, dv.L), e = (t.E, du.E, dv.E), g = (t.du, t.dv, du.du,
+ * dv.dv) and m = du.dv. t's dots (l[0], e[0]) where the sum vanishes. */
+void pelt__tuft_dots(const float l[3], const float e[3], const float g[4], float m, const float to_centre[2],
+                     float slope, float out[2]);
 
 /* Strays (docs/wetness.md, Tufts): a share of the hairs, picked by the
  * strand's id in [0, 1] (the fur texture's blue channel), stays out of

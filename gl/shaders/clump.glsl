@@ -59,15 +59,20 @@ float clump_tuft_slope(float h, float w, float N)
     return (clump_tuft_profile(h + half_step, w, N) - clump_tuft_profile(h - half_step, w, N)) / (2.0 * half_step);
 }
 
-// The tangent of a hair in a tuft (docs/wetness.md, Tuft light): its own
-// unit tangent t plus the tuft's pull along the height, the way to the
-// clump centre (mask uv) times d(pull)/dh, carried to world units per unit
-// of the hair's length by du and dv. Mirrors pelt__tuft_tangent.
-vec3 tuft_tangent(vec3 t, vec3 du, vec3 dv, vec2 to_centre, float slope)
+// The dots (T.L, T.E) of a hair in a tuft (docs/wetness.md, Tuft light):
+// its tangent T is the hair's own unit tangent t plus the tuft's pull
+// along the height, the way to the clump centre (mask uv) times d(pull)/dh,
+// carried to world units per unit of the hair's length by du and dv,
+// normalised. Worked out from the dots the vertex stage interpolates:
+// l = (t.L, du.L, dv.L), e = (t.E, du.E, dv.E), g = (t.du, t.dv, du.du,
+// dv.dv), m = du.dv. t's dots where the sum vanishes. Mirrors
+// pelt__tuft_dots.
+vec2 tuft_dots(vec3 l, vec3 e, vec4 g, float m, vec2 to_centre, float slope)
 {
-    vec3 d = t + (du * to_centre.x + dv * to_centre.y) * slope;
-    float len2 = dot(d, d);
-    return len2 > 1e-30 ? d * inversesqrt(len2) : t;
+    vec2 c = to_centre * slope;
+    vec2 d = vec2(l.x + c.x * l.y + c.y * l.z, e.x + c.x * e.y + c.y * e.z);
+    float len2 = 1.0 + 2.0 * (c.x * g.x + c.y * g.y) + c.x * c.x * g.z + c.y * c.y * g.w + 2.0 * c.x * c.y * m;
+    return len2 > 1e-30 ? d * inversesqrt(len2) : vec2(l.x, e.x);
 }
 
 // Strays: a share of the hairs, picked by the strand's id (the fur

@@ -27,10 +27,10 @@ in vec3 v_ring_e;
 in vec3 v_ring_g;
 #endif
 #if defined(PELT_TUFTS) && !defined(PELT_LIGHT_PASS)
-in vec3 v_hair_t;   // a tuft's, from vectors
-in vec3 v_tuft_u;
-in vec3 v_tuft_v;
-in vec3 v_world;
+in vec3 v_tuft_l;   // a tuft's, from dots (tuft_dots)
+in vec3 v_tuft_e;
+in vec4 v_tuft_g;
+in float v_tuft_m;
 flat in float v_clump_slope;
 #endif
 #if defined(PELT_RINGLETS) && !defined(PELT_LIGHT_PASS)
@@ -120,20 +120,17 @@ vec4 wet_hair(vec2 fur_uv, float rho)
 
 #if defined(PELT_TUFTS) && !defined(PELT_LIGHT_PASS)
 // The dots (T.L, T.E) of a tuft's hair along its tangent T in the tuft.
-vec2 tuft_dots(vec2 to_centre, float rho)
+vec2 shell_tuft_dots(vec2 to_centre, float rho)
 {
-    vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
-    vec3 T = tuft_tangent(v_hair_t, v_tuft_u, v_tuft_v, to_centre, u_clump_tightness * rho * v_clump_slope);
-    return vec2(dot(T, L), dot(T, E));
+    return tuft_dots(v_tuft_l, v_tuft_e, v_tuft_g, v_tuft_m, to_centre, u_clump_tightness * rho * v_clump_slope);
 }
 
-// A tuft's hair lit along its tuft (own_light.glsl).
+// A tuft's hair lit along its tuft (own_light.glsl), the free hair's light
+// from its dots.
 void tuft_light(vec2 to_centre, float rho, inout vec3 base, inout float spec)
 {
-    vec3 L = normalize(u_light_dir), E = normalize(v_world - u_eye);
-    vec2 shine = wet_shine(rho, u_shininess, u_wet_sharpness, u_wet_gloss);
-    float free_hair = kajiya_kay(normalize(v_hair_t), L, E, shine.x).x;
-    own_light_dots(tuft_dots(to_centre, rho), v_light, free_light_inverse(free_hair, v_light), rho, base, spec);
+    own_light_dots(shell_tuft_dots(to_centre, rho), v_light, free_light_inverse_dots(v_tuft_l.x, v_tuft_e.x, rho, v_light),
+                   rho, base, spec);
 }
 #endif
 
@@ -292,7 +289,7 @@ void main()
     // light for either (a fragment's block works out both ways where its
     // pixels split, so the light's own work is done once). The free
     // hair's light from the dots the ringlets' frame carries.
-    vec2 own = clump == CLUMP_DISPLACED ? tuft_dots(t.xy + lean - q, rho)
+    vec2 own = clump == CLUMP_DISPLACED ? shell_tuft_dots(t.xy + lean - q, rho)
                                         : ringlet_own(sharp_id(fur_uv, hair.b), rho, v_h, v_ring_l, v_ring_e, v_ring_g);
     own_light_dots(own, v_light, free_light_inverse_dots(v_ring_l.x, v_ring_e.x, rho, v_light), rho, base, spec);
 #elif defined(PELT_TUFTS)

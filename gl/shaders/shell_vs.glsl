@@ -60,11 +60,14 @@ out vec3 v_ring_e;      // (t.E, u.E, v.E)
 out vec3 v_ring_g;      // (t.u, t.v, u.v)
 #endif
 #if defined(PELT_TUFTS) && !defined(PELT_LIGHT_PASS)
-// A tuft's, from the vectors (a tuft bends the hair towards its centre).
-out vec3 v_hair_t;      // the hair's unit tangent, world
-out vec3 v_tuft_u;      // world vectors of one mask-uv unit over the hair's length
-out vec3 v_tuft_v;      // (along the tangent frame's u and v)
-out vec3 v_world;       // the point, world
+// A tuft's, from dots (a tuft bends the hair towards its centre; tuft_dots):
+// the hair's unit tangent t and the world vectors du, dv of one mask-uv
+// unit over the hair's length (along the tangent frame's u and v), dotted
+// with the direction towards the light L, the eye's E and each other.
+out vec3 v_tuft_l;      // (t.L, du.L, dv.L)
+out vec3 v_tuft_e;      // (t.E, du.E, dv.E)
+out vec4 v_tuft_g;      // (t.du, t.dv, du.du, dv.dv)
+out float v_tuft_m;     // du.dv
 flat out float v_clump_slope; // clump_tuft_slope(h): the same for the whole layer
 #endif
 out float v_alpha;      // the shell's opacity: fades as its level leaves, and
@@ -207,11 +210,13 @@ void main()
 #ifdef PELT_TUFTS
     // The mask's uv runs along the fur uv, which tiles u_fur_per_uv tiles
     // per uv unit and u_tiling per world unit along the tangent frame.
-    v_hair_t = world_t;
     vec2 world_per_uv = u_fur_per_uv / (u_tiling * max(L, 1e-6));
-    v_tuft_u = mat3(u_model) * u * world_per_uv.x;
-    v_tuft_v = mat3(u_model) * v * world_per_uv.y;
-    v_world = world.xyz;
+    vec3 tuft_u = mat3(u_model) * u * world_per_uv.x, tuft_v = mat3(u_model) * v * world_per_uv.y;
+    vec3 to_light = normalize(u_light_dir), from_eye = normalize(world.xyz - u_eye);
+    v_tuft_l = vec3(dot(world_t, to_light), dot(tuft_u, to_light), dot(tuft_v, to_light));
+    v_tuft_e = vec3(dot(world_t, from_eye), dot(tuft_u, from_eye), dot(tuft_v, from_eye));
+    v_tuft_g = vec4(dot(world_t, tuft_u), dot(world_t, tuft_v), dot(tuft_u, tuft_u), dot(tuft_v, tuft_v));
+    v_tuft_m = dot(tuft_u, tuft_v);
     v_clump_slope = clump_tuft_slope(h, u_clump_blend, u_layers);
 #endif
     v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),

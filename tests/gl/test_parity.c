@@ -397,17 +397,31 @@ static const char tuft_main[] =
     "  vec3 n, t, tip; float h, s;\n"
     "  cell_inputs(floor(gl_FragCoord.xy), n, t, tip, h, s);\n"
     "  float slope = clump_tuft_slope(h, s, 16.0);\n"
-    "  vec3 T = tuft_tangent(t, 3.0 * n, 2.0 * tip, vec2(s - 0.5, 0.3 - h), 0.9 * slope);\n"
-    "  o = vec4(T, slope);\n"
+    "  vec3 du = 3.0 * n, dv = 2.0 * tip;\n"
+    "  vec3 L = normalize(vec3(0.3, 0.8, 0.5)), E = normalize(vec3(-0.2, -0.4, -0.9));\n"
+    "  vec2 d = tuft_dots(vec3(dot(t, L), dot(du, L), dot(dv, L)), vec3(dot(t, E), dot(du, E), dot(dv, E)),\n"
+    "                     vec4(dot(t, du), dot(t, dv), dot(du, du), dot(dv, dv)), dot(du, dv),\n"
+    "                     vec2(s - 0.5, 0.3 - h), 0.9 * slope);\n"
+    "  o = vec4(d, slope, 0.0);\n"
     "}\n";
 
-/* A tuft's own tangent and the slope of its profile, in GLSL as in C. */
-static void tuft_tangent_glsl_matches_c(void)
+static float dot3(const float a[3], const float b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* A tuft's hair's dots with the light and the eye and the slope of its
+ * profile, in GLSL as in C; and the dots are those of the tuft's tangent
+ * (t plus the pull's way to the centre, normalised) worked out as vectors. */
+static void tuft_dots_glsl_match_c(void)
 {
     const char *fs[] = {pelt__shader_clump, inputs_glsl, tuft_main, NULL};
     CHECK(gl_test_eval(gl, fs, W, H, out));
-    double worst = 0.0;
+    double worst = 0.0, worst_vectors = 0.0;
     int bent = 0;
+    const float L0[3] = {0.3f, 0.8f, 0.5f}, E0[3] = {-0.2f, -0.4f, -0.9f};
+    float L[3], E[3], nl = sqrtf(dot3(L0, L0)), ne = sqrtf(dot3(E0, E0));
+    for (int k = 0; k < 3; k++) L[k] = L0[k] / nl, E[k] = E0[k] / ne;
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++) {
             pelt_vec3 n, t, tip;
@@ -415,16 +429,28 @@ static void tuft_tangent_glsl_matches_c(void)
             cell_inputs((float)x, (float)y, &n, &t, &tip, &h, &s);
             float slope = pelt__clump_tuft_slope(h, s, 16.0f);
             float tv[3] = {t.x, t.y, t.z}, du[3] = {3.0f * n.x, 3.0f * n.y, 3.0f * n.z};
-            float dv[3] = {2.0f * tip.x, 2.0f * tip.y, 2.0f * tip.z}, to[2] = {s - 0.5f, 0.3f - h}, T[3];
-            pelt__tuft_tangent(tv, du, dv, to, 0.9f * slope, T);
+            float dv[3] = {2.0f * tip.x, 2.0f * tip.y, 2.0f * tip.z}, to[2] = {s - 0.5f, 0.3f - h};
+            float l[3] = {dot3(tv, L), dot3(du, L), dot3(dv, L)}, e[3] = {dot3(tv, E), dot3(du, E), dot3(dv, E)};
+            float g4[4] = {dot3(tv, du), dot3(tv, dv), dot3(du, du), dot3(dv, dv)}, d[2];
+            pelt__tuft_dots(l, e, g4, dot3(du, dv), to, 0.9f * slope, d);
             const float *g = out + 4 * (y * W + x);
-            for (int k = 0; k < 3; k++) worst = fmax(worst, fabs(g[k] - T[k]));
-            worst = fmax(worst, fabs(g[3] - slope) / fmax(1.0, slope));
-            bent += T[0] * t.x + T[1] * t.y + T[2] * t.z < 0.99f;
+            worst = fmax(worst, fmax(fabs(g[0] - d[0]), fabs(g[1] - d[1])));
+            worst = fmax(worst, fabs(g[2] - slope) / fmax(1.0, slope));
+            /* The tangent as vectors. */
+            float T[3], len2 = 0.0f;
+            for (int k = 0; k < 3; k++) {
+                T[k] = tv[k] + (du[k] * to[0] + dv[k] * to[1]) * 0.9f * slope;
+                len2 += T[k] * T[k];
+            }
+            for (int k = 0; k < 3; k++) T[k] /= sqrtf(len2);
+            worst_vectors = fmax(worst_vectors, fmax(fabs(dot3(T, L) - d[0]), fabs(dot3(T, E) - d[1])));
+            bent += dot3(T, tv) < 0.99f;
         }
-    printf("  %d of %d tangents bent towards their tuft; worst |GLSL - C| = %.3g\n", bent, W * H, worst);
+    printf("  %d of %d tangents bent towards their tuft; worst |GLSL - C| = %.3g, |dots - vectors| = %.3g\n", bent,
+           W * H, worst, worst_vectors);
     CHECK(bent > W * H / 4);
     CHECK(worst < 2e-4);
+    CHECK(worst_vectors < 1e-4);
 }
 
 static const char ringlet_tangent_main[] =
@@ -1332,7 +1358,7 @@ int main(void)
     RUN(kajiya_kay_glsl_matches_c);
     RUN(wet_shine_glsl_matches_c);
     RUN(wet_color_glsl_matches_c);
-    RUN(tuft_tangent_glsl_matches_c);
+    RUN(tuft_dots_glsl_match_c);
     RUN(fur_shape_glsl_matches_c);
     RUN(level_fit_normal_glsl_matches_c);
     RUN(shell_gap_glsl_matches_c);
