@@ -315,7 +315,7 @@ static void print_fragments(cli_session *s, const pelt_draw_desc *full, const pe
 static int bench_variants(cli_session *s, unsigned frames, const cli_options *o, bool wet, double step_ms)
 {
     enum { FULL, NO_FINS, BACK_SHELLS, NO_INTER, FLAT, FLOOR, FLOOR_FINS, PLAIN, WET_WHOLE, NO_LIGHT, LIGHT_ONLY,
-           SKIN_ONLY, LOD_OFF, NO_DEPTH, ONE_A_LAYER, ONE_PROGRAM, AS_DRY, VARIANTS };
+           SKIN_ONLY, LOD_OFF, NO_DEPTH, ONE_A_LAYER, ONE_PROGRAM, AS_DRY, NO_TUFT_BASE, VARIANTS };
     const bool with_floor = o->bench_floor, with_plain = o->bench_plain, with_lod_off = o->bench_lod_off;
     double *t = calloc((size_t)frames * VARIANTS, sizeof *t);
     if (!t) return 1;
@@ -361,6 +361,8 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     /* The wet fur drawn with the dry shaders: the wet frame against the
      * dry one in the same run, alternated. */
     v[AS_DRY].debug.as_dry = true;
+    /* Every wet layer with the tufts' program, even below their base. */
+    v[NO_TUFT_BASE].debug.no_tuft_base = true;
     bool light = cli_session_has_shadows(s);
     bool fins = !s->draw.no_fins;
     (void)timed_draw(s, &v[FULL]);
@@ -368,7 +370,7 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     const bool sub = drawn.layer_shells > 1 || drawn.sub_shells > 0;
     const bool view_split = drawn.face_on_triangles > 0;
     bool run[VARIANTS] = {true, true, true, true, true, with_floor, with_floor && fins, with_plain, wet, light, light, true,
-                           with_lod_off, true, sub, view_split, wet};
+                           with_lod_off, true, sub, view_split, wet, wet};
     for (unsigned i = 0; i < frames; i++)
         for (int k = 0; k < VARIANTS; k++)
             if (run[k]) t[(size_t)k * frames + i] = timed_draw(s, &v[k]);
@@ -395,6 +397,7 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     if (sub) print_stats("one a layer", st[ONE_A_LAYER]);
     if (view_split) print_stats("one program", st[ONE_PROGRAM]);
     if (wet) print_stats("drawn dry", st[AS_DRY]);
+    if (wet) print_stats("tufts' base", st[NO_TUFT_BASE]);
     print_fragments(s, &v[FULL], &v[NO_FINS], &v[SKIN_ONLY], st[FULL].median, st[NO_FINS].median,
                     st[SKIN_ONLY].median, with_floor ? st[FLOOR].median : 0.0);
     if (fins)
@@ -422,6 +425,9 @@ static int bench_variants(cli_session *s, unsigned frames, const cli_options *o,
     if (wet) {
         printf("  wet and dry drawn apart: the frame takes %.2fx as long as with every triangle drawn wet\n",
                st[FULL].median / st[WET_WHOLE].median);
+        printf("  the wet layers below the tufts' base drawn without the tufts: the frame takes %.2fx as long as "
+               "with the tufts' program on every wet layer\n",
+               st[FULL].median / st[NO_TUFT_BASE].median);
         printf("  the wet frame takes %.2fx as long as the same frame drawn dry (alternated)\n",
                st[FULL].median / st[AS_DRY].median);
     }
