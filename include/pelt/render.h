@@ -110,8 +110,8 @@ typedef struct pelt_draw_debug {
        frame against the dry one, alternated in one run). */
     bool as_dry;
     /* Every wet layer drawn with the tufts' program, even below the tufts'
-       base where a clump leaves its hairs in place (docs/lod.md, the
-       tufts' base), for measuring what the lean program there saves. */
+       base where a clump leaves its hairs in place (docs/wetness.md, Tuft
+       light), for measuring what the lean program there saves. */
     bool no_tuft_base;
 } pelt_draw_debug;
 

@@ -133,7 +133,10 @@ def angle_between(a, b):
 # ---- the page ----------------------------------------------------------------
 
 def open_page(b, base, query, timeout=240):
-    b.navigate(base + "/pelt.html?" + query)
+    # The load event waits for the page before to unload, and a zoomed-in
+    # frame of it on a software GPU can take a minute on a slow machine: the
+    # navigation gets the page's whole timeout, not cdp's 60 s.
+    b.navigate(base + "/pelt.html?" + query, timeout)
     b.wait_for("window.pelt && (window.pelt.ready || window.pelt.error)", timeout=timeout)
     err = b.evaluate("window.pelt.error")
     if err:
