@@ -130,17 +130,20 @@ static unsigned close_up_shells(const pelt__pass_frame *f)
     return f->lod.sub_shells > 1 ? f->lod.sub_shells : 1;
 }
 
-/* draw_instanced with sp and the shell pass's uniforms. */
+/* draw_instanced with sp and the shell pass's uniforms: `count` shells
+ * from shell `first` (u_instance_base). */
 static void draw_part(const pelt__shell_program *sp, const pelt__pass_frame *f, const float shells[4],
-                      const float next[2], size_t offset, size_t triangles, unsigned count)
+                      const float next[2], size_t offset, size_t triangles, unsigned first, unsigned count)
 {
-    if (triangles == 0) return;
+    if (triangles == 0 || count == 0) return;
     use_program(sp, f, shells, next);
     /* Close up, each layer's k shells are instances k i .. k i + k - 1. */
     const unsigned k = close_up_shells(f);
     glUniform1f(sp->sub_shells, (float)k);
+    glUniform1f(sp->instance_base, (float)first);
     draw_instanced(f, offset, triangles, count * k);
     glUniform1f(sp->sub_shells, 1.0f);
+    glUniform1f(sp->instance_base, 0.0f);
 }
 
 /* The sub shells the wet shells of draw instance i are drawn in
@@ -252,23 +255,13 @@ static void draw_split(const shell_part dry[2], const shell_part wet[2], const p
 
 /* One wet part's shells in two instanced draws: those below the tufts'
  * base with its base program, then the rest (inside out, as one draw
- * would). Close up, each layer's k shells are instances k i .. k i + k - 1. */
+ * would). */
 static void draw_wet_part(const shell_part *part, const pelt__pass_frame *f, const float shells[4],
                           const float next[2], unsigned count)
 {
     const unsigned below = part->base_sp ? tuft_base_shells(f, shells, next, count) : 0;
-    const unsigned k = close_up_shells(f);
-    const pelt__shell_program *sp[2] = {part->base_sp, part->sp};
-    const unsigned first[2] = {0, below}, shells_drawn[2] = {below, count - below};
-    for (int j = 0; j < 2; j++) {
-        if (shells_drawn[j] == 0) continue;
-        use_program(sp[j], f, shells, next);
-        glUniform1f(sp[j]->instance_base, (float)first[j]);
-        glUniform1f(sp[j]->sub_shells, (float)k);
-        draw_instanced(f, part->offset, part->triangles, shells_drawn[j] * k);
-        glUniform1f(sp[j]->instance_base, 0.0f);
-        glUniform1f(sp[j]->sub_shells, 1.0f);
-    }
+    if (below) draw_part(part->base_sp, f, shells, next, part->offset, part->triangles, 0, below);
+    draw_part(part->sp, f, shells, next, part->offset, part->triangles, below, count - below);
 }
 
 /* draw_split, or one instanced draw where only one part has triangles
@@ -286,7 +279,7 @@ static void draw_parts(const shell_part dry[2], const shell_part wet[2], const p
     if (wet_only && !any_sub_shells(f, shells, next, count))
         draw_wet_part(only, f, shells, next, count);
     else if (parts == 1 && !wet_only)
-        draw_part(only->sp, f, shells, next, only->offset, only->triangles, count);
+        draw_part(only->sp, f, shells, next, only->offset, only->triangles, 0, count);
     else if (parts > 0)
         draw_split(dry, wet, f, shells, next, count);
 }
@@ -385,7 +378,7 @@ void pelt__shell_pass_draw(pelt__shell_pass *p, const pelt__pass_frame *f)
         f->stats->face_on_triangles = m->view_face;
         draw_parts(parts, none, f, shells, next, count);
     } else {
-        draw_part(sp, f, shells, next, offset, triangles, count);
+        draw_part(sp, f, shells, next, offset, triangles, 0, count);
     }
     f->stats->shell_instances += count; /* the shells each triangle drew */
     f->stats->layer_shells = close_up_shells(f);
