@@ -69,6 +69,7 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("fur.curl_frequency", "look.curl_frequency"),
     PARAM("fur.curl_radius", "look.curl_radius"),
     PARAM("fur.curl_phase", "look.curl_phase"),
+    PARAM("fur.curl_lock", "look.curl_lock"),
     PARAM("fur.slant", "comb.slant"),
     PARAM("fur.skin_color", "look.skin_color"),
     PARAM("fur.inter_shadow", "look.inter_shadow"),

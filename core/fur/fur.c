@@ -66,7 +66,7 @@ unsigned pelt__fur_curl_layers(const pelt_fur_desc *d)
 
 bool pelt__fur_has_ringlets(const pelt_fur_desc *d)
 {
-    return d->look.curl_phase == PELT_CURL_RINGLETS && d->look.curl_radius > 0.0f;
+    return d->look.curl_phase != PELT_CURL_COHERENT && d->look.curl_radius > 0.0f;
 }
 
 float pelt__fur_vertex_curl_radius(const pelt_fur_desc *d)
@@ -154,6 +154,7 @@ pelt__furtex_desc pelt__fur_texture_desc(const pelt_fur_desc *d)
     if (pelt__fur_has_ringlets(d)) {
         td.ringlet_radius = d->look.curl_radius * d->look.tiling * (float)d->look.texture_size;
         td.ringlet_omega = d->look.curl_frequency;
+        if (d->look.curl_phase == PELT_CURL_RINGLETS) td.ringlet_lock = d->look.curl_lock;
     }
     return td;
 }

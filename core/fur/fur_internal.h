@@ -62,7 +62,8 @@ void pelt__fur_desc_defaults(pelt_fur_desc *d, const pelt_mesh *mesh);
  * moving the shells. */
 #define PELT__RINGLET_LEVELS 3u
 
-/* Whether d's curl is ringlets: a curl radius and PELT_CURL_RINGLETS. */
+/* Whether d's curl is ringlets: a curl radius and PELT_CURL_RINGLETS or
+ * PELT_CURL_STRANDS. */
 bool pelt__fur_has_ringlets(const pelt_fur_desc *d);
 /* The turns the hair's curl makes over its length: Silva's (look.curl_*)
  * and the texture's own (look.strand_curl_*) added. */

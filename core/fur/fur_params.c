@@ -18,7 +18,7 @@
 #define ENUM(n, f, names) {n, PELT_PARAM_ENUM, OFF(f), 1, 0, 0, 0, {0, 0, 0}, NULL, names}
 
 static const char *const strand_curl_shapes[] = {"helix", "wave", NULL};
-static const char *const curl_phases[] = {"ringlets", "coherent", NULL};
+static const char *const curl_phases[] = {"ringlets", "coherent", "strands", NULL};
 static const char *const shadings[] = {"kajiya-kay", "lengyel-table", "marschner", NULL};
 static const char *const lod_modes[] = {"auto", "off", "fixed", NULL};
 static const char *const wet_clumps[] = {"natural", "droplet", NULL};
@@ -49,6 +49,7 @@ static const pelt_param fur_params[] = {
     FLT("look.curl_frequency", look.curl_frequency, -FMAX, FMAX, 0, 0),
     FLT("look.curl_radius", look.curl_radius, 0, FMAX, 0, 0),
     ENUM("look.curl_phase", look.curl_phase, curl_phases),
+    FLT("look.curl_lock", look.curl_lock, 0, 64, OPEN, 2),
     {"look.inter_shadow", PELT_PARAM_BOOL, OFF(look.inter_shadow), 1, 0, 1, 0, {0, 0, 0}, NULL, NULL},
     FLT("look.inter_shadow_offset", look.inter_shadow_offset, 0, 64, OPEN, 4),
     FLT("look.inter_shadow_darkness", look.inter_shadow_darkness, 0, 1, OPEN, 0.8),

@@ -29,12 +29,50 @@ enum { SUBSAMPLES = 4 };
 typedef struct strand_stream {
     pelt__rng shape, id;
     float size, radius;
+    int locks;        /* lock cells along a side, 0 = no locks */
+    uint32_t lock_key;
 } strand_stream;
+
+/* Curly hair gathers in locks (docs/method.md, Ringlets): neighbours
+ * curl in step, a lock a few curl radii across, so a few large curls make
+ * large locks and many small ones small locks. The locks are the cells of
+ * a toroidal grid (so the texture still tiles), each with one jittered
+ * seed; a strand belongs to the seed nearest its root. */
+int pelt__furtex_lock_cells(const pelt__furtex_desc *d)
+{
+    if (!(d->ringlet_radius > 0.0f) || !(d->ringlet_lock > 0.0f)) return 0;
+    float n = floorf((float)d->size / (d->ringlet_lock * d->ringlet_radius) + 0.5f);
+    return n < 1.0f ? 1 : n > 4096.0f ? 4096 : (int)n;
+}
+
+static uint32_t lock_hash(const strand_stream *s, int cx, int cy)
+{
+    int n = s->locks;
+    cx = ((cx % n) + n) % n, cy = ((cy % n) + n) % n;
+    return pelt__hash_axis(pelt__hash_axis(s->lock_key, cx, 0x9e3779b1u), cy, 0x85ebca77u);
+}
+
+/* The lock of a root at (x, y) texels: its phase fraction in [0, 1). */
+static float lock_phase(const strand_stream *s, float x, float y)
+{
+    float cs = s->size / (float)s->locks;
+    int cx = (int)floorf(x / cs), cy = (int)floorf(y / cs);
+    float best = 1e30f, f = 0.0f;
+    for (int j = -1; j <= 1; j++)
+        for (int i = -1; i <= 1; i++) {
+            uint32_t h = lock_hash(s, cx + i, cy + j);
+            float sx = ((float)(cx + i) + (float)(h & 0xffffu) / 65536.0f) * cs;
+            float sy = ((float)(cy + j) + (float)(h >> 16) / 65536.0f) * cs;
+            float d2 = (sx - x) * (sx - x) + (sy - y) * (sy - y);
+            if (d2 < best) best = d2, f = (float)(pelt__hash32(h) >> 8) / 16777216.0f;
+        }
+    return f;
+}
 
 static strand_stream strands_begin(const pelt__furtex_desc *d)
 {
     strand_stream s = {pelt__rng_seed(d->seed, 0x73747261ULL), pelt__rng_seed(d->seed, 0x69647321ULL),
-                       (float)d->size, d->strand_radius};
+                       (float)d->size, d->strand_radius, pelt__furtex_lock_cells(d), (uint32_t)(d->seed * 0x2545f491u + 0x6c6f636bu)};
     return s;
 }
 
@@ -55,6 +93,15 @@ static strand strands_next(strand_stream *s)
     st.length = pelt__rng_range(&s->shape, 0.6f, 1.0f);
     st.shade = pelt__rng_range(&s->shape, 0.4f, 1.0f);
     st.id = pelt__rng_float(&s->id);
+    if (s->locks) {
+        /* In a lock: the lock's phase, a little of the strand's own, and
+         * one of the id's three cycles (pelt__ringlet_phase) at random, so
+         * the ids stay spread over [0, 1] for grooming's density. */
+        float own = (st.id - 0.5f) * 0.08f;
+        float cycle = floorf(pelt__rng_float(&s->id) * 3.0f);
+        float f = lock_phase(s, st.x, st.y) + own + cycle + 3.0f;
+        st.id = (f - 3.0f * floorf(f / 3.0f)) / 3.0f;
+    }
     /* The phase of its curl follows the id as the texture stores it (a
      * byte), so the shells can light the curl (pelt__ringlet_phase). */
     st.phase = pelt__ringlet_phase(floorf(st.id * 255.0f + 0.5f) / 255.0f);

@@ -28,6 +28,10 @@ typedef struct pelt__furtex_desc {
        the same phase psi. */
     float ringlet_radius; /* texels at the full height, 0 = none */
     float ringlet_omega;  /* radians over the full height */
+    /* Ringlets in locks: a lock of strands about ringlet_lock *
+       ringlet_radius texels across turns in step; 0 = every strand its
+       own phase. */
+    float ringlet_lock;
 } pelt__furtex_desc;
 
 /* One simulated strand of the tile, as the volume and the fin texture draw
@@ -47,6 +51,10 @@ typedef struct pelt__furtex_strand {
  * `out` (may be NULL); returns how many the tile holds. Deterministic for
  * the seed; the same strands for every curl. */
 size_t pelt__furtex_strands(const pelt__furtex_desc *d, pelt__furtex_strand *out, size_t cap);
+
+/* The locks along a side of the tile (the ringlets' locks: a lock's
+ * strands share their phase up to a little of their own); 0 = none. */
+int pelt__furtex_lock_cells(const pelt__furtex_desc *d);
 
 /* The centre (texels, unwrapped) of strand s at height z in [0, 1] of the
  * full height: root, lean, curl and ringlet. */

@@ -40,15 +40,19 @@ typedef enum pelt_strand_curl_shape {
 
 /* Whose phase Silva's curl phi(h) (Eq. 4) turns with. */
 typedef enum pelt_curl_phase {
-    /* Ringlets (beyond Silva, docs/method.md): every strand of the fur
-       texture turns with its own phase, so neighbouring strands are out of
-       step. The curl is drawn into the texture strand by strand, at full,
-       half and no amplitude; the shells blend the two levels around
+    /* Ringlets (beyond Silva, docs/method.md): the strands of the fur
+       texture gather in locks a few curl radii across (look.curl_lock);
+       a lock's strands turn in step, out of step with the next lock's.
+       The curl is drawn into the texture strand by strand, at full, half
+       and no amplitude; the shells blend the two levels around
        1 - wetness, so water still takes the curl out. Default. */
     PELT_CURL_RINGLETS = 0,
     /* Eq. 4 as printed: one phase for all, the shells move as a whole at
        each vertex, so curls read as waves across a region. */
-    PELT_CURL_COHERENT
+    PELT_CURL_COHERENT,
+    /* Ringlets without locks: every strand turns with its own phase, out
+       of step with its neighbours. */
+    PELT_CURL_STRANDS
 } pelt_curl_phase;
 
 /* How the fur looks: the synthesized hair volume (Lengyel et al. 2001
@@ -81,6 +85,7 @@ typedef struct pelt_fur_look {
     float curl_frequency;    /* omega of Silva Eq. 4 (radians over the length), default 0 */
     float curl_radius;       /* K_alpha of Silva Eq. 4 in world units, default 0 */
     pelt_curl_phase curl_phase; /* default PELT_CURL_RINGLETS */
+    float curl_lock;         /* ringlets' locks across, in curl radii, default 2 */
     /* Kenwright's inter-fur shadows: where a shell has no hair but the hair
        a small step towards the light does, that hair's shadow darkens what
        lies below. Off by default. */

@@ -349,6 +349,89 @@ static void ringlets_turn_neighbouring_strands_out_of_step(void)
     free(v);
 }
 
+/* The correlation of the curl offsets (h = 1/4 .. 1) of the strand pairs
+ * whose roots lie lo to hi texels apart (toroidal), as
+ * neighbour_correlation takes it. */
+static double band_correlation(const pelt__furtex_desc *d, const pelt__furtex_strand *st, size_t n, float lo,
+                               float hi)
+{
+    pelt__furtex_desc flat = *d;
+    flat.ringlet_radius = 0.0f;
+    double ab = 0.0, aa = 0.0, bb = 0.0;
+    float size = (float)d->size;
+    for (size_t i = 0; i < n; i++)
+        for (size_t j = i + 1; j < n; j++) {
+            float dx = fabsf(st[i].x - st[j].x), dy = fabsf(st[i].y - st[j].y);
+            dx = fminf(dx, size - dx), dy = fminf(dy, size - dy);
+            float r = sqrtf(dx * dx + dy * dy);
+            if (r < lo || r >= hi) continue;
+            for (int k = 1; k <= 4; k++) {
+                float h = 0.25f * (float)k, a[2], a0[2], b[2], b0[2];
+                pelt__furtex_strand_center(d, &st[i], h, a);
+                pelt__furtex_strand_center(&flat, &st[i], h, a0);
+                pelt__furtex_strand_center(d, &st[j], h, b);
+                pelt__furtex_strand_center(&flat, &st[j], h, b0);
+                double ax = a[0] - a0[0], ay = a[1] - a0[1], bx = b[0] - b0[0], by = b[1] - b0[1];
+                ab += ax * bx + ay * by, aa += ax * ax + ay * ay, bb += bx * bx + by * by;
+            }
+        }
+    return aa > 0.0 && bb > 0.0 ? ab / sqrt(aa * bb) : 0.0;
+}
+
+/* Ringlets in locks (docs/method.md): strands a lock's width apart or
+ * less curl in step, strands several locks apart do not, and the lock
+ * follows the curl's radius, so a few large curls make wide locks and
+ * many small ones narrow locks (Silva Fig. 7 c, d tell apart). The ids
+ * stay uniform, so grooming's density still thins by id. */
+static void ringlets_gather_in_locks(void)
+{
+    enum { MAX = 2000 };
+    const float omega = 12.566371f;
+    static pelt__furtex_strand st[MAX];
+    /* Large curls: K 12 texels, locks about 24 across; small: K 4, about 8. */
+    pelt__furtex_desc large = {256, 16, 5, 2000.0f, 1.6f, 0.8f, 0.0f, 2.0f, false, 12.0f, omega, 2.0f};
+    pelt__furtex_desc small = large;
+    small.ringlet_radius = 4.0f;
+    pelt__furtex_desc loose = large;
+    loose.ringlet_lock = 0.0f;
+    size_t n = pelt__furtex_strands(&large, st, MAX);
+    CHECK(n == 2000);
+    int cells_large = pelt__furtex_lock_cells(&large), cells_small = pelt__furtex_lock_cells(&small);
+    printf("  locks a side: %d with K 12 texels, %d with K 4, %d without locks\n", cells_large, cells_small,
+           pelt__furtex_lock_cells(&loose));
+    CHECK(cells_large == 11 && cells_small == 32 && pelt__furtex_lock_cells(&loose) == 0);
+
+    double near_large = band_correlation(&large, st, n, 0.0f, 4.0f);
+    double far_large = band_correlation(&large, st, n, 72.0f, 96.0f);
+    double mid_large = band_correlation(&large, st, n, 8.0f, 12.0f);
+    size_t ns = pelt__furtex_strands(&small, st, MAX);
+    CHECK(ns == n);
+    double near_small = band_correlation(&small, st, n, 0.0f, 4.0f);
+    double mid_small = band_correlation(&small, st, n, 8.0f, 12.0f);
+    (void)pelt__furtex_strands(&loose, st, MAX);
+    double near_loose = band_correlation(&loose, st, n, 0.0f, 4.0f);
+    printf("  curl offsets' correlation: large curls %.3f within 4 texels, %.3f at 8-12, %.3f at 72-96; "
+           "small curls %.3f within 4, %.3f at 8-12; without locks %.3f within 4\n",
+           near_large, mid_large, far_large, near_small, mid_small, near_loose);
+    CHECK(near_large > 0.6);         /* a lock curls in step */
+    CHECK(fabs(far_large) < 0.2);    /* locks apart do not */
+    CHECK(mid_large > 0.3);          /* a wide lock spans 8-12 texels */
+    CHECK(mid_small < 0.5 * mid_large); /* a narrow one does not */
+    CHECK(near_small > 0.3);
+    CHECK(fabs(near_loose) < 0.2);   /* "strands": every strand its own */
+
+    /* Grooming's density keeps the strands whose id is below it: the
+     * share it keeps stays the density (within 0.05). */
+    (void)pelt__furtex_strands(&large, st, MAX);
+    for (int q = 1; q <= 3; q++) {
+        float density = 0.25f * (float)q;
+        size_t kept = 0;
+        for (size_t i = 0; i < n; i++) kept += st[i].id < density;
+        printf("  density %.2f keeps %.3f of the strands\n", density, (double)kept / (double)n);
+        CHECK(fabs((double)kept / (double)n - density) < 0.05);
+    }
+}
+
 /* A hair is opaque however it runs. A curled strand sweeps across many
  * texels within one slice's slab, each covered by only a few of the
  * slice's sub-samples: its slices must still hold it as opaque as a
@@ -503,6 +586,7 @@ int main(void)
     RUN(furtex_size_resolves_the_same_hairs);
     RUN(furtex_rejects_sizes_that_overflow);
     RUN(furtex_curly_strands_circle_out_of_step);
+    RUN(ringlets_gather_in_locks);
     RUN(furtex_wave_moves_strands_along_u_only);
     RUN(furtex_mip_chain_keeps_a_real_hair_id);
     RUN(ringlets_turn_neighbouring_strands_out_of_step);
