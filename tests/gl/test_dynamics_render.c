@@ -357,6 +357,87 @@ static void curl_presets_differ(void)
     for (int i = 0; i < 4; i++) free(img[i]);
 }
 
+/* How far the fur's luminance stays alike along the rows of a w-wide
+ * picture: the sum over lags of 1..LAGS pixels of the rows' normalised
+ * autocorrelation where it is positive, over rows y0..y1 and the middle
+ * 5/6 of the width. Seen from the side, a lock of curls lies over in a
+ * swirl and lengthens it. */
+static double luminance(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
+static double row_correlation_length(const uint8_t *px, int w, int y0, int y1)
+{
+    enum { LAGS = 32 };
+    const int x0 = w / 12, x1 = w - w / 12;
+    double mean = 0.0, var = 0.0;
+    size_t n = 0;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++, n++) mean += luminance(px + ((size_t)y * (size_t)w + (size_t)x) * 4);
+    mean /= (double)n;
+    for (int y = y0; y < y1; y++)
+        for (int x = x0; x < x1; x++) {
+            double d = luminance(px + ((size_t)y * (size_t)w + (size_t)x) * 4) - mean;
+            var += d * d;
+        }
+    var /= (double)n;
+    if (!(var > 0.0)) return 0.0;
+    double sum = 0.0;
+    for (int lag = 1; lag <= LAGS; lag++) {
+        double c = 0.0;
+        size_t k = 0;
+        for (int y = y0; y < y1; y++)
+            for (int x = x0; x + lag < x1; x++, k++) {
+                const uint8_t *p = px + ((size_t)y * (size_t)w + (size_t)x) * 4;
+                c += (luminance(p) - mean) * (luminance(p + 4 * lag) - mean);
+            }
+        c /= (double)k * var;
+        if (c > 0.0) sum += c;
+    }
+    return sum;
+}
+
+/* Curly hair gathers in locks whose size follows the curl's
+ * (docs/method.md, Ringlets): seen from the side as in Silva Fig. 7's
+ * gallery (docs/gallery-papers.md: 480 x 360, 12 degrees above a square
+ * of long sparse fur), a few large curls lie over in swirls that stretch
+ * the rows' features further than many small curls do, and further than
+ * the same curls with every strand its own phase (no locks). */
+static void curl_locks_follow_the_curls_scale(void)
+{
+    enum { BW = 480, BH = 360 };
+    static const char *names[2] = {"few-large-curls", "many-small-curls"};
+    const pelt_camera side = {0.0f, 12.0f, 2.2f, 40.0f, {0, 0, 0}};
+    pelt_headless *big = gl_test_open(BW, BH, false);
+    CHECK(big != NULL);
+    if (!big) return;
+    double len[2][2] = {{0}};
+    for (int phase = 0; phase < 2; phase++)
+        for (int i = 0; i < 2; i++) {
+            pelt_fur_desc d = {.layers = 48, .length = 0.3f};
+            d.look.density = 500.0f, d.look.strand_radius = 2.5f, d.look.taper = 0.3f;
+            d.look.curl_phase = phase == 0 ? PELT_CURL_RINGLETS : PELT_CURL_STRANDS;
+            pelt_error err = {0};
+            CHECK(pelt_fur_desc_curl_preset(&d, square, names[i], &err) == PELT_OK);
+            uint8_t *img = gl_test_render(big, square, &d, &side, NULL, NULL, NULL);
+            CHECK(img != NULL);
+            /* The fur's top face, above its front edge's columns of hair
+             * (which start near row 200). */
+            if (img) len[phase][i] = row_correlation_length(img, BW, 140, 200);
+            if (img) {
+                char path[1024];
+                snprintf(path, sizeof path, "%s/curl_%s_%s.png", PELT_TEST_OUT, phase == 0 ? "locks" : "strands",
+                         names[i]);
+                stbi_write_png(path, BW, BH, 4, img, BW * 4);
+            }
+            free(img);
+        }
+    pelt_headless_destroy(big);
+    printf("  the rows' correlation length (px): in locks few large %.2f, many small %.2f; every strand its "
+           "own phase few large %.2f, many small %.2f\n",
+           len[0][0], len[0][1], len[1][0], len[1][1]);
+    CHECK(len[0][0] > 1.4 * len[0][1]); /* the presets differ by the curls' scale */
+    CHECK(len[0][0] > 1.4 * len[1][0]); /* the locks make it */
+}
+
 int main(void)
 {
     gl = gl_test_open(W, H, false);
@@ -366,6 +447,7 @@ int main(void)
         RUN(no_cracks_under_strong_wind);
         RUN(turntable_fur_lags_behind_motion);
         RUN(curl_presets_differ);
+        RUN(curl_locks_follow_the_curls_scale);
     }
     pelt_mesh_destroy(torus);
     pelt_mesh_destroy(square);
