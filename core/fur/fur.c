@@ -154,7 +154,9 @@ pelt__furtex_desc pelt__fur_texture_desc(const pelt_fur_desc *d)
     if (pelt__fur_has_ringlets(d)) {
         td.ringlet_radius = d->look.curl_radius * d->look.tiling * (float)d->look.texture_size;
         td.ringlet_omega = d->look.curl_frequency;
-        if (d->look.curl_phase == PELT_CURL_RINGLETS) td.ringlet_lock = d->look.curl_lock;
+        /* Locks a few curl radii across, in texels of the full curl for
+         * every curl level. */
+        if (d->look.curl_phase == PELT_CURL_RINGLETS) td.ringlet_lock = d->look.curl_lock * td.ringlet_radius;
     }
     return td;
 }

@@ -40,8 +40,8 @@ typedef struct strand_stream {
  * seed; a strand belongs to the seed nearest its root. */
 int pelt__furtex_lock_cells(const pelt__furtex_desc *d)
 {
-    if (!(d->ringlet_radius > 0.0f) || !(d->ringlet_lock > 0.0f)) return 0;
-    float n = floorf((float)d->size / (d->ringlet_lock * d->ringlet_radius) + 0.5f);
+    if (!(d->ringlet_lock > 0.0f)) return 0;
+    float n = floorf((float)d->size / d->ringlet_lock + 0.5f);
     return n < 1.0f ? 1 : n > 4096.0f ? 4096 : (int)n;
 }
 

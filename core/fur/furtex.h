@@ -28,9 +28,10 @@ typedef struct pelt__furtex_desc {
        the same phase psi. */
     float ringlet_radius; /* texels at the full height, 0 = none */
     float ringlet_omega;  /* radians over the full height */
-    /* Ringlets in locks: a lock of strands about ringlet_lock *
-       ringlet_radius texels across turns in step; 0 = every strand its
-       own phase. */
+    /* Ringlets in locks: a lock of strands about ringlet_lock texels
+       across turns in step; 0 = every strand its own phase. In texels,
+       not radii, so the curl levels drawn for wet fur (smaller radii)
+       keep the same locks and ids. */
     float ringlet_lock;
 } pelt__furtex_desc;
 

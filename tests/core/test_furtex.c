@@ -389,9 +389,9 @@ static void ringlets_gather_in_locks(void)
     const float omega = 12.566371f;
     static pelt__furtex_strand st[MAX];
     /* Large curls: K 12 texels, locks about 24 across; small: K 4, about 8. */
-    pelt__furtex_desc large = {256, 16, 5, 2000.0f, 1.6f, 0.8f, 0.0f, 2.0f, false, 12.0f, omega, 2.0f};
+    pelt__furtex_desc large = {256, 16, 5, 2000.0f, 1.6f, 0.8f, 0.0f, 2.0f, false, 12.0f, omega, 24.0f};
     pelt__furtex_desc small = large;
-    small.ringlet_radius = 4.0f;
+    small.ringlet_radius = 4.0f, small.ringlet_lock = 8.0f;
     pelt__furtex_desc loose = large;
     loose.ringlet_lock = 0.0f;
     size_t n = pelt__furtex_strands(&large, st, MAX);
@@ -400,6 +400,17 @@ static void ringlets_gather_in_locks(void)
     printf("  locks a side: %d with K 12 texels, %d with K 4, %d without locks\n", cells_large, cells_small,
            pelt__furtex_lock_cells(&loose));
     CHECK(cells_large == 11 && cells_small == 32 && pelt__furtex_lock_cells(&loose) == 0);
+    /* Wet fur's curl levels (smaller radii, the same locks) keep every
+     * strand's id, so a hair stays the same hair as the curl comes out. */
+    static pelt__furtex_strand half[MAX];
+    pelt__furtex_desc half_curl = large, no_curl = large;
+    half_curl.ringlet_radius = 6.0f, no_curl.ringlet_radius = 0.0f;
+    (void)pelt__furtex_strands(&large, st, MAX);
+    bool same_ids = pelt__furtex_strands(&half_curl, half, MAX) == n;
+    for (size_t i = 0; i < n && same_ids; i++) same_ids = half[i].id == st[i].id;
+    (void)pelt__furtex_strands(&no_curl, half, MAX);
+    for (size_t i = 0; i < n && same_ids; i++) same_ids = half[i].id == st[i].id;
+    CHECK(same_ids);
 
     double near_large = band_correlation(&large, st, n, 0.0f, 4.0f);
     double far_large = band_correlation(&large, st, n, 72.0f, 96.0f);
