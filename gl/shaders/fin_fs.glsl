@@ -71,8 +71,10 @@ void main()
     vec4 hair = fin_hair(fin_uv, rho);
 #ifdef PELT_WET
     if (clump != CLUMP_KEEP) {
-        // Strays stay out of the tufts and stand where they grew.
-        if (clump_stray_hair(clump, hair, fin_hair(v_fin_uv, rho), u_wet_strays)) clump = CLUMP_KEEP;
+        // Strays stay out of the tufts and stand where they grew. Between
+        // the tufts the read above was already the hair growing here.
+        vec4 own = clump == CLUMP_DISPLACED ? fin_hair(v_fin_uv, rho) : hair;
+        if (clump_stray_hair(clump, hair, own, u_wet_strays)) clump = CLUMP_KEEP;
         if (!(hair.a > 0.0)) discard;
     }
 #endif
