@@ -72,7 +72,8 @@ static float lock_phase(const strand_stream *s, float x, float y)
 static strand_stream strands_begin(const pelt__furtex_desc *d)
 {
     strand_stream s = {pelt__rng_seed(d->seed, 0x73747261ULL), pelt__rng_seed(d->seed, 0x69647321ULL),
-                       (float)d->size, d->strand_radius, pelt__furtex_lock_cells(d), (uint32_t)(d->seed * 0x2545f491u + 0x6c6f636bu)};
+                       (float)d->size, d->strand_radius, pelt__furtex_lock_cells(d),
+                       (uint32_t)(d->seed * 0x2545f491u + 0x6c6f636bu)};
     return s;
 }
 

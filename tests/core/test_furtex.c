@@ -424,12 +424,12 @@ static void ringlets_gather_in_locks(void)
     printf("  curl offsets' correlation: large curls %.3f within 4 texels, %.3f at 8-12, %.3f at 72-96; "
            "small curls %.3f within 4, %.3f at 8-12; without locks %.3f within 4\n",
            near_large, mid_large, far_large, near_small, mid_small, near_loose);
-    CHECK(near_large > 0.6);         /* a lock curls in step */
-    CHECK(fabs(far_large) < 0.2);    /* locks apart do not */
-    CHECK(mid_large > 0.3);          /* a wide lock spans 8-12 texels */
+    CHECK(near_large > 0.6);            /* a lock curls in step */
+    CHECK(fabs(far_large) < 0.2);       /* locks apart do not */
+    CHECK(mid_large > 0.3);             /* a wide lock spans 8-12 texels */
     CHECK(mid_small < 0.5 * mid_large); /* a narrow one does not */
     CHECK(near_small > 0.3);
-    CHECK(fabs(near_loose) < 0.2);   /* "strands": every strand its own */
+    CHECK(fabs(near_loose) < 0.2); /* "strands": every strand its own */
 
     /* Grooming's density keeps the strands whose id is below it: the
      * share it keeps stays the density (within 0.05). */
