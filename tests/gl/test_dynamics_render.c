@@ -362,36 +362,36 @@ static void curl_presets_differ(void)
  * autocorrelation where it is positive, over rows y0..y1 and the middle
  * 5/6 of the width. Seen from the side, a lock of curls lies over in a
  * swirl and lengthens it. */
-static double luminance(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
-
 static double row_correlation_length(const uint8_t *px, int w, int y0, int y1)
 {
     enum { LAGS = 32 };
-    const int x0 = w / 12, x1 = w - w / 12;
+    const int x0 = w / 12, x1 = w - w / 12, cw = x1 - x0, ch = y1 - y0;
+    double *l = malloc((size_t)cw * (size_t)ch * sizeof *l);
+    if (!l) return 0.0;
     double mean = 0.0, var = 0.0;
-    size_t n = 0;
-    for (int y = y0; y < y1; y++)
-        for (int x = x0; x < x1; x++, n++) mean += luminance(px + ((size_t)y * (size_t)w + (size_t)x) * 4);
-    mean /= (double)n;
-    for (int y = y0; y < y1; y++)
-        for (int x = x0; x < x1; x++) {
-            double d = luminance(px + ((size_t)y * (size_t)w + (size_t)x) * 4) - mean;
-            var += d * d;
+    const size_t n = (size_t)cw * (size_t)ch;
+    for (int y = 0; y < ch; y++)
+        for (int x = 0; x < cw; x++) {
+            double v = gl_test_luma(px + ((size_t)(y0 + y) * (size_t)w + (size_t)(x0 + x)) * 4);
+            l[(size_t)y * (size_t)cw + (size_t)x] = v;
+            mean += v;
         }
+    mean /= (double)n;
+    for (size_t i = 0; i < n; i++) var += (l[i] - mean) * (l[i] - mean);
     var /= (double)n;
-    if (!(var > 0.0)) return 0.0;
     double sum = 0.0;
-    for (int lag = 1; lag <= LAGS; lag++) {
+    for (int lag = 1; lag <= LAGS && var > 0.0; lag++) {
         double c = 0.0;
         size_t k = 0;
-        for (int y = y0; y < y1; y++)
-            for (int x = x0; x + lag < x1; x++, k++) {
-                const uint8_t *p = px + ((size_t)y * (size_t)w + (size_t)x) * 4;
-                c += (luminance(p) - mean) * (luminance(p + 4 * lag) - mean);
+        for (int y = 0; y < ch; y++)
+            for (int x = 0; x + lag < cw; x++, k++) {
+                const double *row = l + (size_t)y * (size_t)cw;
+                c += (row[x] - mean) * (row[x + lag] - mean);
             }
         c /= (double)k * var;
         if (c > 0.0) sum += c;
     }
+    free(l);
     return sum;
 }
 

@@ -255,7 +255,7 @@ static double luminance_sd(const uint8_t *px, const uint8_t *mask)
     size_t n = 0;
     for (size_t i = 0; i < NPX; i++) {
         if (!covered(mask, i)) continue;
-        double l = 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
+        double l = gl_test_luma(px + 4 * i);
         sum += l, sum2 += l * l, n++;
     }
     if (n < 2) return 0.0;

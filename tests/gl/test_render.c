@@ -386,8 +386,6 @@ static void wet_and_dry_drawn_apart(void)
     pelt_fur_destroy(fur);
 }
 
-static double luma(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
-
 static int cmp_double(const void *a, const void *b)
 {
     double x = *(const double *)a, y = *(const double *)b;
@@ -402,7 +400,7 @@ static double luma_percentile(const uint8_t *px, int x0, int x1, double frac)
     for (int y = 0; y < H; y++)
         for (int x = x0; x < x1; x++) {
             const uint8_t *p = px + 4 * ((size_t)y * W + (size_t)x);
-            if (gl_test_coverage(p, 1)) v[n++] = luma(p);
+            if (gl_test_coverage(p, 1)) v[n++] = gl_test_luma(p);
         }
     if (n == 0) return 0.0;
     qsort(v, n, sizeof v[0], cmp_double);
@@ -418,7 +416,7 @@ static double dark_fraction(const uint8_t *px, int x0, int x1, double level)
             const uint8_t *p = px + 4 * ((size_t)y * W + (size_t)x);
             if (!gl_test_coverage(p, 1)) continue;
             n++;
-            if (luma(p) < level) dark++;
+            if (gl_test_luma(p) < level) dark++;
         }
     return n ? (double)dark / (double)n : 0.0;
 }
@@ -745,8 +743,9 @@ static void sub_shells_join_a_tufts_hairs(void)
                 n++;
                 for (int k = 0; k < 2; k++) {
                     const uint8_t *p = px[k] + 4 * i;
-                    lum[k] += luma(p);
-                    step[k] += fabs(luma(p) - luma(p + 4)) + fabs(luma(p) - luma(p + 4 * W));
+                    double l = gl_test_luma(p);
+                    lum[k] += l;
+                    step[k] += fabs(l - gl_test_luma(p + 4)) + fabs(l - gl_test_luma(p + 4 * W));
                 }
             }
         for (int k = 0; k < 2; k++) lum[k] /= (double)(n ? n : 1), step[k] /= (double)(n ? n : 1);

@@ -154,10 +154,7 @@ static void project(const pelt_view *v, const float p[3], int *col, int *row)
     *row = (int)((0.5f - q[1] / q[3] * 0.5f) * H);
 }
 
-static double luminance(const uint8_t *px, size_t i)
-{
-    return 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
-}
+static double luminance(const uint8_t *px, size_t i) { return gl_test_luma(px + 4 * i); }
 
 /* The luminance in linear light of a pixel drawn without a tone curve. */
 static double linear_luminance(const uint8_t *px, size_t i)

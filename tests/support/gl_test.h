@@ -112,6 +112,9 @@ static inline int gl_test_off_background(const uint8_t *px)
     return d;
 }
 
+/* A pixel's luminance (BT.709 weights on its encoded RGBA8 values). */
+static inline double gl_test_luma(const uint8_t *p) { return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]; }
+
 /* Pixels that differ from the background by more than a small margin. */
 static inline size_t gl_test_coverage(const uint8_t *px, size_t n)
 {
