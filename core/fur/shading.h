@@ -37,7 +37,7 @@ float pelt__wet_skin_sheen(float n_dot_h, float rho, float p, float sharpness, f
  * clamp(rho, 0, 1) and m the largest channel of c, each channel becomes
  * m (c / m)^(1 + PELT__WET_SATURATION r) (1 - darken r): darker and more
  * saturated, the brightest channel keeping its share. GLSL: wet_color. */
-#define PELT__WET_SATURATION 0.4f
+#define PELT__WET_SATURATION 0.8f
 pelt_vec3 pelt__wet_color(pelt_vec3 c, float rho, float darken);
 
 /* Silva et al. Eq. 6 shadow factor gamma = (K - 1 + h) / K, K >= 1. */

@@ -37,7 +37,7 @@ float wet_skin_sheen(float n_dot_h, float rho, float p, float sharpness, float g
 // rho), and what does has passed through more hair (more saturated: each
 // channel's share of the brightest raised to 1 + WET_SATURATION rho).
 // Mirrors pelt__wet_color.
-const float WET_SATURATION = 0.4;
+const float WET_SATURATION = 0.8;
 vec3 wet_color(vec3 c, float rho, float darken)
 {
     float r = clamp(rho, 0.0, 1.0);

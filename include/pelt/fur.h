@@ -142,7 +142,7 @@ typedef struct pelt_fur_wet {
     float gloss;             /* specular strength of fully wet fur, a multiple
                                 of look.specular in [1, 16], default 2 */
     float gloss_sharpness;   /* Kajiya-Kay exponent of fully wet fur, a multiple
-                                of look.shininess in [1, 64], default 4 */
+                                of look.shininess in [1, 64], default 8 */
     /* Water is heavy (docs/dynamics.md, Wet fur hangs): a strand at
        wetness rho carries weight * rho times its tip's mass in water, so
        wet fur hangs further under gravity and swings slower. */
