@@ -69,7 +69,7 @@ static const pelt_param fur_params[] = {
             "the fur's length, kept between 20 and 100 hairs a tuft"),
     FLT("wet.gloss", wet.gloss, 1, 16, 0, 2),
     FLT("wet.gloss_sharpness", wet.gloss_sharpness, 1, 64, 0, 8),
-    FLT("wet.weight", wet.weight, 0, 16, 0, 0),
+    FLT("wet.weight", wet.weight, 0, 16, 0, 1),
     FLT("wet.clump_lean", wet.clump_lean, 0, 1, 0, 0.3),
     FLT("comb.slant", comb.slant, 0, 60, 0, 0),
     FLT("fins.length", fins.length, 0, 8, OPEN, 1),

@@ -150,7 +150,8 @@ typedef struct pelt_fur_wet {
                                 its centre by up to this share of its radius
                                 along each axis, [0, 1], default 0.3 */
     float weight;            /* water on soaked fur, a multiple of
-                                dynamics.mass in [0, 16], default 0: the
+                                dynamics.mass in [0, 16], default 1: a
+                                soaked strand is twice as heavy; 0: the
                                 water weighs nothing */
 } pelt_fur_wet;
 

@@ -204,7 +204,7 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK_REL(d.wet.clump_size, fminf(fmaxf(d.length, sqrtf(20.0f / hairs)), sqrtf(100.0f / hairs)));
     CHECK_REL(d.wet.gloss, 2.0f);
     CHECK_REL(d.wet.gloss_sharpness, 8.0f);
-    CHECK(d.wet.weight == 0.0f);
+    CHECK_REL(d.wet.weight, 1.0f);
     CHECK_REL(d.wet.clump_lean, 0.3f);
 
     CHECK(d.comb.slant == 0.0f);
