@@ -28,7 +28,7 @@ static const char *const wet_clumps[] = {"natural", "droplet", NULL};
  * seen face-on: 32 drawn edge-on, where 16 alias into stripes). */
 static const pelt_param fur_params[] = {
     UINT_("layers", layers, 1, 256, 32),
-    FLT("layers_per_turn", layers_per_turn, 0, 256, OPEN, 12),
+    FLT("layers_per_turn", layers_per_turn, 0, 256, OPEN, 13),
     DERIVED("length", length, 0, FMAX, OPEN, "3% of the mesh's bounding-box diagonal"),
     {"seed", PELT_PARAM_SEED, OFF(seed), 1, 0, 4294967295.0, 0, {1, 0, 0}, NULL, NULL},
     UINT_("look.texture_size", look.texture_size, 8, 4096, 256),

@@ -261,7 +261,7 @@ typedef struct pelt_fur_desc {
                                 curl of T turns over the length gets
                                 max(layers, ceil(T layers_per_turn)) shells,
                                 at most 256. Fewer draw a helix as flat rings
-                                (docs/method.md). Default 12; 1 keeps
+                                (docs/method.md). Default 13; 1 keeps
                                 `layers` for any curl of fewer turns */
     float length;            /* fur length L0 in world units, default 3% of
                                 the mesh's bounding-box diagonal */

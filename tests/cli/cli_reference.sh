@@ -174,7 +174,7 @@ check curls_level_the_outline $? "$seen (bound: straight at least 1.6x either cu
 # the ringlets' light came out in blotches; the id read at the finest
 # level lights the hair the pixel shows. SSIM against the strands 0.619
 # before, 0.640 after; bound 0.63. At 48 shells, as it was measured
-# (fur.layers_per_turn=1; the preset's six turns take 72 by default).
+# (fur.layers_per_turn=1; the preset's six turns take 78 by default).
 fig7d="--mesh square --set fur.density=500 --set fur.strand_radius=2.5 --set fur.length=0.3 --set fur.layers=48
   --set fur.layers_per_turn=1
   --set fur.taper=0.3 --gravity 0,0,0 --yaw 0 --pitch 12 --distance 2.2 --light 0.3,0.8,1
@@ -187,7 +187,7 @@ check curls_lit_hair_by_hair $? "SSIM against the strands $ss (bound 0.63)"
 # Curly fur drawn with its shells a turn (scenes/reference/curly.json, six
 # turns over the length): 32 shells give each a 67-degree arc of every
 # hair, drawn flat at one height, and the helix reads as printed rings;
-# 12 a turn (72 shells) draw it as the hairs' helix, and the view's
+# 13 a turn (78 shells) draw it as the hairs' helix, and the view's
 # budget keeps them where the fur is seen face-on, where a curl's step
 # from shell to shell shows whole. SSIM against the strands 0.616 at 32
 # (0.621 kept face-on), 0.669 at 72 halved face-on, 0.687 kept. Bounds:

@@ -156,7 +156,7 @@ static void zero_desc_gets_every_documented_default(void)
     pelt_fur_desc d = pelt_fur_get_desc(fur);
 
     CHECK(d.layers == 32); /* straight hair: no curl to add shells for */
-    CHECK_REL(d.layers_per_turn, 12.0f);
+    CHECK_REL(d.layers_per_turn, 13.0f);
     CHECK_REL(d.length, 0.03f * diag); /* 3% of the bounding-box diagonal */
     CHECK(d.seed == 1);
 
@@ -275,7 +275,7 @@ static void curled_hair_takes_its_shells_a_turn(void)
     const struct {
         const char *preset;
         unsigned layers;
-    } looks[] = {{"straight", 32}, {"wavy", 32}, {"few-large-curls", 32}, {"many-small-curls", 72}};
+    } looks[] = {{"straight", 32}, {"wavy", 32}, {"few-large-curls", 32}, {"many-small-curls", 78}};
     for (size_t i = 0; i < sizeof looks / sizeof looks[0]; i++) {
         pelt_fur_desc d = in;
         CHECK(pelt_fur_desc_curl_preset(&d, m, looks[i].preset, NULL) == PELT_OK);
@@ -297,10 +297,10 @@ static void curled_hair_takes_its_shells_a_turn(void)
     d = in;
     d.look.strand_curl = 6.0f;
     d.look.strand_curl_turns = 3.0f;
-    CHECK(layers_of(m, &d) == 36);
+    CHECK(layers_of(m, &d) == 39);
     d.look.curl_frequency = 6.2831853f * 2.5f; /* coherent or ringlets alike */
     d.look.curl_radius = 0.01f;
-    CHECK(layers_of(m, &d) == 66);
+    CHECK(layers_of(m, &d) == 72);
     /* Never past the 256 a fur may have. */
     d.look.strand_curl_turns = 32.0f;
     CHECK(layers_of(m, &d) == 256);
