@@ -176,7 +176,7 @@ typedef struct pelt__fur_block {
     float fin_length, inter_shadow, inter_shadow_step, shading_model;
     float ringlets[2], occlusion, wet_strays;
     float ringlet_radius, strand_curl_radius, strand_curl_omega, strand_curl_wave;
-    float clump_lean, hair_width, taper, pad;
+    float clump_lean, hair_width, taper, wet_lie;
 } pelt__fur_block;
 
 

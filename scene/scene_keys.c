@@ -190,6 +190,7 @@ static const pelt__scene_key scene_keys[] = {
     PARAM("wetness.gloss", "wet.gloss"),
     PARAM("wetness.gloss_sharpness", "wet.gloss_sharpness"),
     PARAM("wetness.weight", "wet.weight"),
+    PARAM("wetness.lie", "wet.lie"),
     PARAM("wetness.clump_lean", "wet.clump_lean"),
     PATH("wetness.mask_image", wetness.mask_image),
     FLT("wetness.mask_image_wetness", wetness.mask_image_wetness, -1, 1, 0),

@@ -329,6 +329,7 @@ img_papers() {
   C13="--mesh $M/bunny00.off --size 480x360 --yaw 30 --pitch 25 --distance 0.55
        --set camera.target=[0.05,0.05,0.1] --set fur.layers=32"
   pelt render $C13 $W -o papers_fig13.png
+  pelt render $C13 $W --set wetness.lie=40 -o papers_fig13_lie.png
   # The figures beside the strand reference: shells | strands | difference.
   pelt compare --mesh $M/bunny00.off --size 480x360 -o papers_fig1a_compare.png
   pelt compare --mesh $M/bunny00.off --size 480x360 --set fur.preset=many-small-curls --set fur.length=0.06 \
@@ -341,7 +342,7 @@ img_papers() {
   B="--mesh $M/bear.off --size 480x360 --set fur.strand_curl=6 --set fur.strand_curl_turns=3 --set fur.layers=32"
   pelt render $B -o papers_lengyel_fig5.png
   pelt render $B --yaw 30 --pitch 20 --distance 1.0 --set camera.target=[0,0.3,0.2] -o papers_lengyel_fig5_closeup.png
-  for F in fig1a fig1b fig1c fig1d fig11b fig11b_mask fig11b_alg1 fig12a fig12b fig13 lengyel_fig5 \
+  for F in fig1a fig1b fig1c fig1d fig11b fig11b_mask fig11b_alg1 fig12a fig12b fig13 fig13_lie lengyel_fig5 \
            lengyel_fig5_closeup fig1a_compare fig1b_compare fig1c_compare fig1d_compare fig11b_compare \
            fig12b_compare fig13_compare; do
     collect papers_$F.png papers_$F.png

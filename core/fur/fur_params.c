@@ -71,6 +71,7 @@ static const pelt_param fur_params[] = {
     FLT("wet.gloss_sharpness", wet.gloss_sharpness, 1, 64, 0, 8),
     FLT("wet.weight", wet.weight, 0, 16, 0, 1),
     FLT("wet.clump_lean", wet.clump_lean, 0, 1, 0, 0.3),
+    FLT("wet.lie", wet.lie, 0, 60, 0, 0),
     FLT("comb.slant", comb.slant, 0, 60, 0, 0),
     FLT("fins.length", fins.length, 0, 8, OPEN, 1),
     DERIVED("fins.density", fins.density, 0, 4096, OPEN, "look.texture_size / 16, at most look.texture_size"),

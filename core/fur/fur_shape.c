@@ -80,6 +80,13 @@ pelt_vec3 pelt__fur_comb(pelt_vec3 u, float L0, float slant, float h)
     return v3_scale(u, h * L0 * slant);
 }
 
+float pelt__fur_wet_slant(float slant, float lie, float rho)
+{
+    float add = lie * rho;
+    if (!(add > 0.0f)) return slant;
+    return tanf(fminf(atanf(slant) + add, PELT__WET_LIE_MAX));
+}
+
 pelt_vec3 pelt__fur_groom_shear(pelt_vec3 comb, float slant, pelt_vec3 u, pelt_vec3 v,
                                 const float lean[2])
 {

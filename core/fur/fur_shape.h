@@ -94,6 +94,13 @@ pelt_vec3 pelt__fur_tangent_combed(pelt_vec3 n, float L0, pelt_vec3 tip, pelt_ve
 pelt_vec3 pelt__fur_groom_shear(pelt_vec3 comb, float slant, pelt_vec3 u, pelt_vec3 v,
                                 const float lean[2]);
 
+/* Wet fur lies along its grain (docs/wetness.md, Wet fur lies down): the
+ * comb's slant (tan of its angle) at wetness rho, its angle raised by
+ * lie * rho radians, at most PELT__WET_LIE_MAX; the slant itself where
+ * lie * rho is 0. Mirrors wet_slant. */
+#define PELT__WET_LIE_MAX 1.3089969f /* 75 degrees */
+float pelt__fur_wet_slant(float slant, float lie, float rho);
+
 /* The four looks of Silva Fig. 7 by name: "straight", "wavy",
  * "few-large-curls", "many-small-curls".
  * omega in radians over the full length, radius as a fraction of L0

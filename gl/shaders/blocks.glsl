@@ -56,4 +56,5 @@ layout(std140) uniform pelt_fur_block {
     float u_clump_lean;         // a tuft's lean at its tip, share of its radius (clump_lean)
     float u_hair_width;         // the hair's width at the root, world units (shell_overcount)
     float u_taper;              // its taper towards the tip
+    float u_wet_lie;            // wet fur lies down: radians added to the comb at full wetness (wet_slant)
 };

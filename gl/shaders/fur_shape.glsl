@@ -72,6 +72,16 @@ vec3 fur_comb(vec3 u, float L0, float slant, float h)
     return u * (h * L0 * slant);
 }
 
+// Wet fur lies along its grain (docs/wetness.md, Wet fur lies down): the
+// comb's slant at wetness rho, its angle raised by lie rho radians, at most
+// 75 degrees. Mirrors pelt__fur_wet_slant.
+float wet_slant(float slant, float lie, float rho)
+{
+    float add = lie * rho;
+    if (!(add > 0.0)) return slant;
+    return tan(min(atan(slant) + add, 1.3089969));
+}
+
 // Lengyel et al. §3 grooming: shear per unit length, the comb direction
 // times the global slant plus the groomed lean in the tangent frame (u, v).
 // Mirrors pelt__fur_groom_shear.

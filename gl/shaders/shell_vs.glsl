@@ -125,7 +125,7 @@ void main()
     tip += (fitted - n) * L;
     n = fitted;
     float K = u_curl_radius * s;
-    vec3 shear = fur_groom_shear(a_comb, u_slant, u, v, a_groom.xy);
+    vec3 shear = fur_groom_shear(a_comb, wet_slant(u_slant, u_wet_lie, rho), u, v, a_groom.xy);
     vec3 offset = fur_bend(n, L, tip, h)
                 + fur_curl(u, v, u_curl_frequency, K, rho, h)
                 + fur_comb(shear, L, 1.0, h);

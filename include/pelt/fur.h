@@ -153,6 +153,12 @@ typedef struct pelt_fur_wet {
                                 dynamics.mass in [0, 16], default 1: a
                                 soaked strand is twice as heavy; 0: the
                                 water weighs nothing */
+    float lie;               /* wet fur lies along its grain: soaked fur is
+                                combed this many more degrees along the comb
+                                direction (the atlas's direction field, or
+                                the fur texture's u) than dry fur, the angle
+                                growing with the wetness, [0, 60], default 0
+                                (docs/wetness.md, Wet fur lies down) */
 } pelt_fur_wet;
 
 /* Combing (Lengyel et al. §3). */

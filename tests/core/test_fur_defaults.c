@@ -206,6 +206,7 @@ static void zero_desc_gets_every_documented_default(void)
     CHECK_REL(d.wet.gloss_sharpness, 8.0f);
     CHECK_REL(d.wet.weight, 1.0f);
     CHECK_REL(d.wet.clump_lean, 0.3f);
+    CHECK(d.wet.lie == 0.0f); /* wet fur keeps its comb unless asked (docs/wetness.md) */
 
     CHECK(d.comb.slant == 0.0f);
 

@@ -194,6 +194,25 @@ static void ringlet_dots_are_the_tangent_dotted(void)
     CHECK(worst < 1e-5);
 }
 
+static void wet_fur_lies_further_along_its_comb(void)
+{
+    /* Dry fur keeps its comb exactly; water raises the comb's angle by
+     * lie * rho, growing with the wetness, up to 75 degrees. */
+    const float deg = 3.14159265f / 180.0f, t20 = tanf(20.0f * deg);
+    CHECK(pelt__fur_wet_slant(t20, 40.0f * deg, 0.0f) == t20);
+    CHECK(pelt__fur_wet_slant(t20, 0.0f, 1.0f) == t20);
+    CHECK_NEAR(pelt__fur_wet_slant(0.0f, 40.0f * deg, 1.0f), tanf(40.0f * deg), 1e-5);
+    CHECK_NEAR(pelt__fur_wet_slant(t20, 40.0f * deg, 0.5f), tanf(40.0f * deg), 1e-5);
+    CHECK_NEAR(pelt__fur_wet_slant(tanf(50.0f * deg), 40.0f * deg, 1.0f), tanf(75.0f * deg), 1e-4);
+    float last = 0.0f;
+    for (int i = 0; i <= 10; i++) {
+        float s = pelt__fur_wet_slant(0.0f, 60.0f * deg, 0.1f * (float)i);
+        CHECK(s >= last);
+        last = s;
+    }
+    CHECK(last > 1.7f); /* soaked: 60 degrees */
+}
+
 int main(void)
 {
     RUN(fur_bend_at_rest_spaces_layers_evenly);
@@ -206,5 +225,6 @@ int main(void)
     RUN(fur_tangent_of_straight_rest_fur_is_normal);
     RUN(curl_presets_cover_fig7_and_differ);
     RUN(ringlet_dots_are_the_tangent_dotted);
+    RUN(wet_fur_lies_further_along_its_comb);
     return check_summary();
 }

@@ -177,6 +177,86 @@ static void wet_hairs_follow_their_tuft(void)
     pelt_mesh_destroy(m);
 }
 
+/* Straight fur on the unit square with `lie` degrees of wet lie (wet.lie),
+ * soaked by one droplet in the middle; NULL with nothing left to free. */
+static pelt_fur *soaked_square(const pelt_mesh *m, float lie)
+{
+    pelt_fur_desc d = {0};
+    d.length = 0.3f;
+    d.look.density = 200.0f;
+    d.wet.lie = lie;
+    pelt_fur *fur = NULL;
+    pelt_error err;
+    if (pelt_fur_create(m, &d, &fur, &err) != PELT_OK) return NULL;
+    const pelt_droplet drop = {{0.5f, 0.5f}, 0.2f, 1.0f};
+    if (pelt_fur_add_droplet(fur, &drop, &err) != PELT_OK) {
+        pelt_fur_destroy(fur);
+        return NULL;
+    }
+    return fur;
+}
+
+/* Wet fur lies along its grain (docs/wetness.md, Wet fur lies down): with
+ * wet.lie 40, the reference's soaked hairs reach further along one
+ * direction, the comb's, than with none, every one the same way, and the
+ * dry hairs stay where they were. */
+static void wet_hairs_lie_along_the_comb(void)
+{
+    pelt_mesh *m = NULL;
+    CHECK(pelt_mesh_square(1.0f, 16, &m, NULL) == PELT_OK);
+    if (!m) return;
+    pelt_fur *upright = soaked_square(m, 0.0f), *lying = soaked_square(m, 40.0f);
+    CHECK(upright && lying);
+    if (upright && lying) {
+        unsigned seg = pelt__strand_ref_segments(upright);
+        CHECK(seg == pelt__strand_ref_segments(lying));
+        size_t n = 0, n_lie = 0;
+        float *a = build_hairs(upright, seg, &n), *b = build_hairs(lying, seg, &n_lie);
+        CHECK(n == n_lie && n > 100);
+        const size_t stride = 4 * (size_t)PELT__STRAND_TEXELS(seg);
+        pelt_vec3 mean = v3(0, 0, 0), centre = v3(0, 0, 0);
+        double dry_moved = 0.0;
+        size_t wet = 0, dry = 0;
+        for (size_t i = 0; i < n && n == n_lie; i++)
+            centre = v3_add(centre, v3_scale(v3_load(a + i * stride), 1.0f / (float)n));
+        for (size_t i = 0; i < n && n == n_lie; i++) {
+            const float *ha = a + i * stride, *hb = b + i * stride;
+            pelt_vec3 shift = v3(hb[8 * seg] - ha[8 * seg], hb[8 * seg + 1] - ha[8 * seg + 1],
+                                 hb[8 * seg + 2] - ha[8 * seg + 2]);
+            if (ha[8 * (seg + 1) + 4] > 0.0f) {
+                mean = v3_add(mean, shift);
+                wet++;
+            } else if (v3_len(v3_sub(v3_load(ha), centre)) > 0.3f) {
+                /* Dry and two cells clear of the droplet's 0.2: no wet vertex
+                 * of the 16 x 16 cells shears it. */
+                dry_moved = fmax(dry_moved, (double)v3_len(shift));
+                dry++;
+            }
+        }
+        mean = v3_scale(mean, wet ? 1.0f / (float)wet : 0.0f);
+        double agree = 0.0;
+        for (size_t i = 0; i < n && n == n_lie; i++) {
+            const float *ha = a + i * stride, *hb = b + i * stride;
+            if (!(ha[8 * (seg + 1) + 4] > 0.0f)) continue;
+            pelt_vec3 shift = v3(hb[8 * seg] - ha[8 * seg], hb[8 * seg + 1] - ha[8 * seg + 1],
+                                 hb[8 * seg + 2] - ha[8 * seg + 2]);
+            agree += v3_dot(v3_norm_or(shift, v3(0, 0, 0)), v3_norm_or(mean, v3(0, 0, 0)));
+        }
+        agree = wet ? agree / (double)wet : 0.0;
+        fprintf(stderr, "  %zu wet hairs' tips move %.3f (fur 0.3) one way (mean cosine %.3f); %zu dry hairs %.2g\n",
+                wet, (double)v3_len(mean), agree, dry, dry_moved);
+        CHECK(wet > 100 && dry > 100);
+        CHECK(v3_len(mean) > 0.1f); /* a third of the fur's length or more */
+        CHECK(agree > 0.9);
+        CHECK(dry_moved < 1e-5);
+        free(a);
+        free(b);
+    }
+    if (upright) pelt_fur_destroy(upright);
+    if (lying) pelt_fur_destroy(lying);
+    pelt_mesh_destroy(m);
+}
+
 /* The shells light a hair at its layer's height in the fur, h of the full
  * length (Silva Eq. 6's gamma darkens the lower part of the fur), and a
  * short hair's tip lies in a low layer. So each hair carries its length
@@ -220,6 +300,7 @@ int main(void)
 {
     RUN(curly_hairs_get_enough_pieces_to_stay_round);
     RUN(wet_hairs_follow_their_tuft);
+    RUN(wet_hairs_lie_along_the_comb);
     RUN(hairs_carry_their_height_in_the_fur);
     return check_summary();
 }

@@ -194,6 +194,7 @@ static void fur_shape_glsl_matches_c(void)
                                                                       K, rho, slant, h);
                 const float *g = out + 4 * (y * W + x);
                 double err = fmax(fabs(g[0] - r.x), fmax(fabs(g[1] - r.y), fabs(g[2] - r.z)));
+                if (which == 4) err /= fmax(1.0, fabs(r.x)); /* tan grows steep: relative above 1 */
                 if (err > worst) worst = err;
             }
         printf("  %s: worst |GLSL - C| = %.3g\n", which_names[which], worst);
@@ -730,17 +731,19 @@ static const char groom_main[] =
     "  vec3 r = u_which == 0 ? fur_groom_shear(tip, 1.3 * s, u, v, vec2(h - 0.5, s * 1.2 - 0.4))\n"
     "         : u_which == 1 ? groom_root_color(color, c)\n"
     "         : u_which == 2 ? groom_tip_color(color, tipc, c)\n"
+    "         : u_which == 4 ? vec3(wet_slant(tip.x * 1.5, 1.2 * s, h), 0.0, 0.0)\n"
     "         : vec3(groom_keeps(fract(s * 5.3), h) ? 1.0 : 0.0, 0.0, 0.0);\n"
     "  o = vec4(r, 0.0);\n"
     "}\n";
 
 /* Grooming (Lengyel et al. §3): the shear of a groomed strand in the
  * vertex shader, the hair colour and the density test in the fragment
- * shaders, against pelt__fur_groom_shear and core/fur/shading.c. */
+ * shaders, against pelt__fur_groom_shear and core/fur/shading.c; and wet
+ * fur's slant (wet_slant, pelt__fur_wet_slant). */
 static void groom_glsl_matches_c(void)
 {
-    const char *names[] = {"fur_groom_shear", "groom_root_color", "groom_tip_color", "groom_keeps"};
-    for (int which = 0; which < 4; which++) {
+    const char *names[] = {"fur_groom_shear", "groom_root_color", "groom_tip_color", "groom_keeps", "wet_slant"};
+    for (int which = 0; which < 5; which++) {
         char define[64];
         snprintf(define, sizeof define, "#define u_which %d\n", which);
         const char *fs[] = {pelt__shader_fur_shape, pelt__shader_shading, inputs_glsl, define,
@@ -768,12 +771,14 @@ static void groom_glsl_matches_c(void)
                 pelt_vec3 r = which == 0   ? pelt__fur_groom_shear(tip, 1.3f * s, u, v, lean)
                               : which == 1 ? pelt__groom_root_color(color, c)
                               : which == 2 ? pelt__groom_tip_color(color, tipc, c)
+                              : which == 4 ? v3(pelt__fur_wet_slant(tip.x * 1.5f, 1.2f * s, h), 0, 0)
                                            : v3(pelt__groom_keeps(id, h) ? 1.0f : 0.0f, 0, 0);
                 /* A threshold test: cells within rounding of it can go either way. */
                 if (which == 3 && fabsf(id - h) < 1e-4f) continue;
                 kept += which == 3 && r.x > 0.5f;
                 const float *g = out + 4 * (y * W + x);
                 double err = fmax(fabs(g[0] - r.x), fmax(fabs(g[1] - r.y), fabs(g[2] - r.z)));
+                if (which == 4) err /= fmax(1.0, fabs(r.x)); /* tan grows steep: relative above 1 */
                 if (err > worst) worst = err;
             }
         printf("  %s: worst |GLSL - C| = %.3g\n", names[which], worst);
