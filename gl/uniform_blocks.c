@@ -149,7 +149,7 @@ size_t pelt__gpu_blocks_set_fur(pelt__gpu_blocks *b, const pelt_fur *fur, const 
     float texels_per_unit = (float)d.look.texture_size * d.look.tiling;
     k.hair_width = texels_per_unit > 0.0f ? 2.0f * d.look.strand_radius / texels_per_unit : 0.0f;
     k.taper = d.look.taper;
-    k.wet_lie = d.wet.lie * 3.14159265f / 180.0f; /* degrees -> radians */
+    k.wet_lie = fs->wet_lie;
     if (b->fur_valid && !memcmp(&k, &b->fur_sent, sizeof k)) return 0;
     send(b->fur, &k, sizeof k);
     b->fur_sent = k;

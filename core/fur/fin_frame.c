@@ -42,8 +42,8 @@ fin_strand pelt__fur_vertex_strand(const pelt_fur *f, const pelt_mesh_data *m, c
     st.omega = fd->look.curl_frequency;
     st.tip = v3_scale(v3_load(f->tips + 3 * i), s);
     /* Wet fur lies further along the comb (wet_slant in shell_vs.glsl). */
-    float lie = fd->wet.lie * 3.14159265f / 180.0f;
-    st.shear = pelt__fur_groom_shear(comb, pelt__fur_wet_slant(slant, lie, st.rho), st.u, st.v, g->lean);
+    st.shear = pelt__fur_groom_shear(comb, pelt__fur_wet_slant(slant, pelt__fur_wet_lie(fd), st.rho), st.u, st.v,
+                                     g->lean);
     return st;
 }
 

@@ -79,6 +79,11 @@ float pelt__fur_clump_lean(const pelt_fur_desc *d)
     return d->wet.clumps == PELT_CLUMPS_NATURAL ? d->wet.clump_lean : 0.0f;
 }
 
+float pelt__fur_wet_lie(const pelt_fur_desc *d)
+{
+    return d->wet.lie * 3.14159265f / 180.0f;
+}
+
 /* Every field in its row's range (core/fur/fur_params.c), then what one
  * row cannot say alone. */
 static pelt_status check_desc(const pelt_fur_desc *d, pelt_error *err)

@@ -22,6 +22,7 @@ void pelt__fur_gpu_snapshot(const pelt_fur *f, pelt__fur_snapshot *out)
                                                  f->desc.look.texture_size),
         .vertex_curl_radius = pelt__fur_vertex_curl_radius(&f->desc),
         .clump_lean = pelt__fur_clump_lean(&f->desc),
+        .wet_lie = pelt__fur_wet_lie(&f->desc),
         .fur_uvs = f->fur_uvs,
         .fur_per_uv = {f->fur_per_uv[0], f->fur_per_uv[1]},
         .tips = f->tips,

@@ -52,6 +52,7 @@ typedef struct pelt__fur_snapshot {
     float occlusion_depth;    /* the fur's optical depth for the hair model's
                                  occlusion (pelt__occlusion_depth) */
     float clump_lean;         /* how far the tufts lean (pelt__fur_clump_lean) */
+    float wet_lie;            /* wet.lie in radians (pelt__fur_wet_lie) */
     float vertex_curl_radius; /* Silva's K_alpha for the shells' vertex stage,
                                  0 when the texture holds the curl */
     const float *fur_uvs;     /* fur-texture coordinates in tiles, 2 a vertex */

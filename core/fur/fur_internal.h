@@ -81,4 +81,7 @@ float pelt__fur_vertex_curl_radius(const pelt_fur_desc *d);
  * per droplet. */
 float pelt__fur_clump_lean(const pelt_fur_desc *d);
 
+/* wet.lie in radians: pelt__fur_wet_slant's `lie`, the shells' u_wet_lie. */
+float pelt__fur_wet_lie(const pelt_fur_desc *d);
+
 #endif
