@@ -196,6 +196,12 @@ static pelt_fur *soaked_square(const pelt_mesh *m, float lie)
     return fur;
 }
 
+/* How far hair b's tip stands from hair a's (polylines of `seg` pieces). */
+static pelt_vec3 tip_shift(const float *ha, const float *hb, unsigned seg)
+{
+    return v3_sub(v3_load(hb + 8 * seg), v3_load(ha + 8 * seg));
+}
+
 /* Wet fur lies along its grain (docs/wetness.md, Wet fur lies down): with
  * wet.lie 40, the reference's soaked hairs reach further along one
  * direction, the comb's, than with none, every one the same way, and the
@@ -221,8 +227,7 @@ static void wet_hairs_lie_along_the_comb(void)
             centre = v3_add(centre, v3_scale(v3_load(a + i * stride), 1.0f / (float)n));
         for (size_t i = 0; i < n && n == n_lie; i++) {
             const float *ha = a + i * stride, *hb = b + i * stride;
-            pelt_vec3 shift = v3(hb[8 * seg] - ha[8 * seg], hb[8 * seg + 1] - ha[8 * seg + 1],
-                                 hb[8 * seg + 2] - ha[8 * seg + 2]);
+            pelt_vec3 shift = tip_shift(ha, hb, seg);
             if (ha[8 * (seg + 1) + 4] > 0.0f) {
                 mean = v3_add(mean, shift);
                 wet++;
@@ -238,8 +243,7 @@ static void wet_hairs_lie_along_the_comb(void)
         for (size_t i = 0; i < n && n == n_lie; i++) {
             const float *ha = a + i * stride, *hb = b + i * stride;
             if (!(ha[8 * (seg + 1) + 4] > 0.0f)) continue;
-            pelt_vec3 shift = v3(hb[8 * seg] - ha[8 * seg], hb[8 * seg + 1] - ha[8 * seg + 1],
-                                 hb[8 * seg + 2] - ha[8 * seg + 2]);
+            pelt_vec3 shift = tip_shift(ha, hb, seg);
             agree += v3_dot(v3_norm_or(shift, v3(0, 0, 0)), v3_norm_or(mean, v3(0, 0, 0)));
         }
         agree = wet ? agree / (double)wet : 0.0;
