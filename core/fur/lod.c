@@ -482,6 +482,15 @@ float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float 
     return fminf(fmaxf(k, least), cap);
 }
 
+float pelt__lod_shell_stack_cos(const float t[3], const float V[3], const float n[3])
+{
+    float tn = t[0] * n[0] + t[1] * n[1] + t[2] * n[2], vn = V[0] * n[0] + V[1] * n[1] + V[2] * n[2];
+    float along = fabsf(tn * vn), across = 0.0f;
+    for (int k = 0; k < 3; k++) across += (t[k] * vn - V[k] * tn) * (t[k] * vn - V[k] * tn);
+    float len = sqrtf(along * along + across);
+    return len > 1e-12f ? along / len : 0.0f;
+}
+
 /* GLSL's smoothstep(e0, e1, x). */
 static float smooth_step(float e0, float e1, float x)
 {

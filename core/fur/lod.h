@@ -281,6 +281,18 @@ void pelt__lod_fur_edge(float rgba[4], float gain);
  * the hair. Mirrors shell_overcount() in gl/shaders/shell_lod.glsl. */
 float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float drift, float least, float cap);
 
+/* The cos_view pelt__lod_shell_overcount takes, for a hair of unit tangent
+ * t seen along the unit ray V over a surface of unit normal n: the shells
+ * are planes along n, so from one shell to the next the hair moves t/(t.n)
+ * and the ray V/(V.n), and the ray moves sideways against the hair by
+ * |t/(t.n) - V/(V.n)| per unit of height. Its cosine, (t.n)(V.n) over
+ * |(t.n)(V.n)| and that, is |T.V| for a hair standing along n, and less
+ * for a leaning one seen across its lean: the ray leaves a combed or
+ * hanging hair sooner than the angle between the two says (docs/reference.md,
+ * A leaning hair in the shells' stack). 0 where the hair or the ray lies
+ * in the shells' plane. Mirrors shell_stack_cos() in shell_lod.glsl. */
+float pelt__lod_shell_stack_cos(const float t[3], const float V[3], const float n[3]);
+
 /* A hair seen from the side between two shells (docs/reference.md, Hairs
  * seen from the side, not beads). Each shell holds the hair's
  * cross-section; seen at a grazing angle, the section of a hair standing

@@ -168,6 +168,18 @@ float shell_overcount(float width_over_spacing, float cos_view, float drift, flo
     return clamp(k, least, cap);
 }
 
+// pelt__lod_shell_stack_cos (core/fur/lod.c): shell_overcount's cos_view
+// for a hair along t seen along V over a surface of normal n: the ray
+// moves sideways against the hair by |t/(t.n) - V/(V.n)| a unit of height.
+float shell_stack_cos(vec3 t, vec3 V, vec3 n)
+{
+    float tn = dot(t, n), vn = dot(V, n);
+    float along = abs(tn * vn);
+    vec3 across = t * vn - V * tn;
+    float len = sqrt(along * along + dot(across, across));
+    return len > 1e-12 ? along / len : 0.0;
+}
+
 // pelt__lod_shell_gap (core/fur/lod.c): the gap between this shell's
 // section of a hair and the next shell's, seen from V, in fur-texture
 // tiles (xy), and the weight of the read across it (z), where the shells

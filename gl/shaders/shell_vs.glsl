@@ -175,9 +175,19 @@ void main()
 #else
     float least = shell_edge_least(n_dot_v, u_edge_depth);
 #endif
+    // The ray's drift against the hair from one shell to the next (docs/
+    // reference.md, A leaning hair in the shells' stack). Kenwright's
+    // shadows keep the angle between the two: their shadow of each shell's
+    // hair, drawn a step towards the light, turns to rows at the outline
+    // under the crisper hair.
+    vec3 to_eye = normalize(u_eye - world.xyz);
+#ifdef PELT_INTER_SHADOW
+    float cos_view = dot(world_t, to_eye);
+#else
+    float cos_view = shell_stack_cos(world_t, to_eye, normalize(mat3(u_model) * n));
+#endif
     v_overcount = u_no_overcount != 0 ? 1.0
-                : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L),
-                                  dot(world_t, normalize(u_eye - world.xyz)), drift, least,
+                : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L), cos_view, drift, least,
                                   shell_overcount_cap(u_layers));
 #if !defined(PELT_LIGHT_PASS) && defined(PELT_NO_GAP)
     v_gap = vec3(0.0); // a face-on triangle of the view split: no read across the gap

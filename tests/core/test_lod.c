@@ -308,6 +308,45 @@ static void lod_fur_edge_keeps_a_hair_its_width(void)
     CHECK_NEAR(hair_width_seen(r, 1.0f, 8, true), hair_width_seen(r, 1.0f, 8, false), 1e-4); /* a pixel a texel */
 }
 
+/* The shells are planes along n: a ray meets a hair in as many of them as
+ * its sideways drift against the hair from one plane to the next allows.
+ * Shearing hair and ray alike (a combed hair seen by an eye that moves
+ * with the comb) changes nothing; upright hair keeps |T.V|; a hair
+ * leaning 60 degrees seen 40 degrees off the normal across its lean
+ * drifts sideways by sqrt(tan60^2 + tan40^2) = 1.92 a unit of height,
+ * where the angle between the two (|T.V| = 0.38) says 2.41. */
+static void lod_shell_stack_cos_follows_the_stack(void)
+{
+    const float n[3] = {0.0f, 0.0f, 1.0f};
+    for (int i = 0; i <= 8; i++) {
+        float b = 0.15f * (float)i, sheared[2] = {0.2f * (float)i, -0.1f * (float)i};
+        float t[3] = {sinf(b), 0.0f, cosf(b)}, v[3] = {0.0f, sinf(0.7f), -cosf(0.7f)};
+        /* The same hair and ray, both sheared along the plane. */
+        float ts[3] = {t[0] + sheared[0] * t[2], t[1] + sheared[1] * t[2], t[2]};
+        float vs[3] = {v[0] + sheared[0] * v[2], v[1] + sheared[1] * v[2], v[2]};
+        float tl = sqrtf(ts[0] * ts[0] + ts[1] * ts[1] + ts[2] * ts[2]);
+        float vl = sqrtf(vs[0] * vs[0] + vs[1] * vs[1] + vs[2] * vs[2]);
+        for (int k = 0; k < 3; k++) ts[k] /= tl, vs[k] /= vl;
+        CHECK_NEAR(pelt__lod_shell_stack_cos(ts, vs, n), pelt__lod_shell_stack_cos(t, v, n), 1e-5);
+    }
+    /* Upright hair: |T.V|. */
+    const float up[3] = {0.0f, 0.0f, 1.0f};
+    for (int i = 0; i <= 10; i++) {
+        float e = 0.15f * (float)i, v[3] = {sinf(e), 0.0f, -cosf(e)};
+        CHECK_NEAR(pelt__lod_shell_stack_cos(up, v, n), cosf(e), 1e-6);
+    }
+    /* A hair leaning 60 degrees along x, the ray 40 degrees off -n along y. */
+    const float lean = 1.0471976f, off = 0.6981317f;
+    float t[3] = {sinf(lean), 0.0f, cosf(lean)}, v[3] = {0.0f, sinf(off), -cosf(off)};
+    float drift = sqrtf(tanf(lean) * tanf(lean) + tanf(off) * tanf(off));
+    CHECK_NEAR(pelt__lod_shell_stack_cos(t, v, n), 1.0f / sqrtf(1.0f + drift * drift), 1e-5);
+    CHECK(pelt__lod_shell_stack_cos(t, v, n) > fabsf(t[0] * v[0] + t[1] * v[1] + t[2] * v[2]) + 0.05f);
+    /* Along the hair: the ray never leaves it; in the plane: at once. */
+    float along[3] = {-t[0], -t[1], -t[2]}, flat[3] = {1.0f, 0.0f, 0.0f};
+    CHECK_NEAR(pelt__lod_shell_stack_cos(t, along, n), 1.0f, 1e-6);
+    CHECK(pelt__lod_shell_stack_cos(flat, v, n) == 0.0f);
+}
+
 /* The shells' over-count of a hair seen along its length: a ray that
  * runs along a hair crosses it in k shells, each drawing its share so
  * that together they draw it once. Seen from the side (the ray across the
@@ -1199,6 +1238,7 @@ int main(void)
     RUN(lod_fur_texture_taps_split_a_long_footprint);
     RUN(lod_fur_edge_keeps_a_hair_its_width);
     RUN(lod_shell_overcount_counts_a_hair_once);
+    RUN(lod_shell_stack_cos_follows_the_stack);
     RUN(lod_shell_edge_least_thickens_the_edge_on_shells);
     RUN(lod_coverage_powers_compose);
     RUN(lod_sub_shells_close_the_rows);

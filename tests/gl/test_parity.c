@@ -950,6 +950,45 @@ static void shell_lean_drift_glsl_matches_c(void)
     CHECK(worst < 1e-4);
 }
 
+/* The ray's drift against a hair through the shells' stack (shell_stack_cos
+ * in shell_lod.glsl) against pelt__lod_shell_stack_cos: unit hairs over
+ * the sphere of directions, rays from above down to the shells' plane and
+ * below it, normals tilted off z. */
+static void shell_stack_cos_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy);\n"
+        "  float a = 3.14159265 * c.x / 63.0, b = 6.2831853 * c.y / 47.0, e = 3.14159265 * mod(c.x * 5.0 + c.y, 16.0) / 15.0;\n"
+        "  vec3 n = normalize(vec3(0.3 * sin(b), 0.2, 1.0));\n"
+        "  vec3 t = vec3(sin(a) * cos(b), sin(a) * sin(b), cos(a));\n"
+        "  vec3 v = vec3(sin(e) * cos(2.0 * b), sin(e) * sin(2.0 * b), -cos(e));\n"
+        "  o = vec4(shell_stack_cos(t, v, n), abs(dot(t, v)), 0.0, 0.0);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shell_lod, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int differ = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float a = 3.14159265f * (float)x / 63.0f, b = 6.2831853f * (float)y / 47.0f;
+            float e = 3.14159265f * fmodf((float)x * 5.0f + (float)y, 16.0f) / 15.0f;
+            float n[3] = {0.3f * sinf(b), 0.2f, 1.0f};
+            float nl = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+            for (int k = 0; k < 3; k++) n[k] /= nl;
+            float t[3] = {sinf(a) * cosf(b), sinf(a) * sinf(b), cosf(a)};
+            float v[3] = {sinf(e) * cosf(2.0f * b), sinf(e) * sinf(2.0f * b), -cosf(e)};
+            float r = pelt__lod_shell_stack_cos(t, v, n);
+            const float *g = out + 4 * (y * W + x);
+            worst = fmax(worst, fabs(g[0] - r));
+            differ += fabsf(r - g[1]) > 0.05f; /* the stack's count is not the angle's */
+        }
+    printf("  shell_stack_cos: worst |GLSL - C| = %.3g, %d samples more than 0.05 off |T.V|\n", worst, differ);
+    CHECK(differ > 100);
+    CHECK(worst < 1e-4);
+}
+
 /* A shell fragment's coverage in one power (coverage_log, coverage_share),
  * GLSL vs C, over coverages 0..1 (both ends) and exponents 0.05..3. */
 static void coverage_share_glsl_matches_c(void)
@@ -1383,6 +1422,7 @@ int main(void)
     RUN(shell_lod_glsl_matches_c);
     RUN(shell_view_blend_glsl_matches_c);
     RUN(shell_lean_drift_glsl_matches_c);
+    RUN(shell_stack_cos_glsl_matches_c);
     RUN(fur_texture_lod_glsl_matches_c);
     RUN(fur_texture_taps_glsl_matches_c);
     RUN(shell_edge_least_glsl_matches_c);
