@@ -285,12 +285,12 @@ float pelt__lod_shell_overcount(float width_over_spacing, float cos_view, float 
  * t seen along the unit ray V over a surface of unit normal n: the shells
  * are planes along n, so from one shell to the next the hair moves t/(t.n)
  * and the ray V/(V.n), and the ray moves sideways against the hair by
- * |t/(t.n) - V/(V.n)| per unit of height. Its cosine, (t.n)(V.n) over
- * |(t.n)(V.n)| and that, is |T.V| for a hair standing along n, and less
- * for a leaning one seen across its lean: the ray leaves a combed or
- * hanging hair sooner than the angle between the two says (docs/reference.md,
- * A leaning hair in the shells' stack). 0 where the hair or the ray lies
- * in the shells' plane. Mirrors shell_stack_cos() in shell_lod.glsl. */
+ * |t/(t.n) - V/(V.n)| per unit of height: the cos of the angle whose
+ * tan that is. For a hair standing along n it is |T.V|; for a combed or
+ * hanging hair the angle between the two says more or less than the
+ * shells do (docs/reference.md, A leaning hair in the shells' stack).
+ * 0 where the hair or the ray lies in the shells' plane. Mirrors
+ * shell_stack_cos() in shell_lod.glsl. */
 float pelt__lod_shell_stack_cos(const float t[3], const float V[3], const float n[3]);
 
 /* A hair seen from the side between two shells (docs/reference.md, Hairs
