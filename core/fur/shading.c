@@ -82,6 +82,13 @@ void pelt__inter_shadow_offset(pelt_vec3 l, pelt_vec3 u, pelt_vec3 v, float step
     out[1] = v3_dot(l, v) * step;
 }
 
+float pelt__inter_shadow_view_fade(float n_dot_v)
+{
+    float t = (fabsf(n_dot_v) - PELT__INTER_SHADOW_SIDE_ON) / (PELT__INTER_SHADOW_FACE_ON - PELT__INTER_SHADOW_SIDE_ON);
+    t = fminf(fmaxf(t, 0.0f), 1.0f);
+    return t * t * (3.0f - 2.0f * t);
+}
+
 float pelt__srgb_decode(float c)
 {
     return c <= 0.04045f ? c / 12.92f : powf((c + 0.055f) / 1.055f, 2.4f);

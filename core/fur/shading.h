@@ -58,6 +58,18 @@ void pelt__lengyel_table(float pd, float ps, float out[PELT__LIGHT_TABLE * PELT_
  * tangency. */
 void pelt__inter_shadow_offset(pelt_vec3 l, pelt_vec3 u, pelt_vec3 v, float step, float out[2]);
 
+/* How much of Kenwright's shadow a shell draws where the eye sees the
+ * surface at n_dot_v: all of it face-on (|N.V| from
+ * PELT__INTER_SHADOW_FACE_ON), none from the side (up to
+ * PELT__INTER_SHADOW_SIDE_ON), smoothstep between. Seen from the side, a
+ * ray crosses many shells, and each shell's shadow lies under its own
+ * hairs, not under the hairs in front of it on the ray: the shadows add
+ * up to rows across the outline (docs/reference.md, Kenwright's shadows
+ * seen from the side). Mirrors inter_shadow_view_fade() in shading.glsl. */
+#define PELT__INTER_SHADOW_SIDE_ON 0.3f
+#define PELT__INTER_SHADOW_FACE_ON 0.7f
+float pelt__inter_shadow_view_fade(float n_dot_v);
+
 /* Grooming (Lengyel et al. §3): the hair colour c (sRGB, decoded; weight c[3]) over
  * the look's root colour, and the tip colour brightened by the look's own
  * tip / root ratio (per channel, root at least 0.01, result at most 1). */

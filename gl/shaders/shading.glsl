@@ -205,3 +205,13 @@ vec2 inter_shadow_offset(vec3 L, vec3 u, vec3 v, float step)
 {
     return vec2(dot(L, u), dot(L, v)) * step;
 }
+
+// How much of Kenwright's shadow a shell draws where the eye sees the
+// surface at n_dot_v: all face-on, none from the side
+// (pelt__inter_shadow_view_fade).
+const float INTER_SHADOW_SIDE_ON = 0.3; // PELT__INTER_SHADOW_SIDE_ON
+const float INTER_SHADOW_FACE_ON = 0.7; // PELT__INTER_SHADOW_FACE_ON
+float inter_shadow_view_fade(float n_dot_v)
+{
+    return smoothstep(INTER_SHADOW_SIDE_ON, INTER_SHADOW_FACE_ON, abs(n_dot_v));
+}

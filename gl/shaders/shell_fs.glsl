@@ -8,6 +8,9 @@ in vec3 v_root; // lit
 in vec3 v_tip;
 in float v_spec;
 in vec2 v_shadow_step;
+#if defined(PELT_INTER_SHADOW) && !defined(PELT_LIGHT_PASS)
+in float v_shadow_fade;
+#endif
 flat in float v_clump_profile; // clump_profile(h): constant per layer
 flat in vec3 v_slices;
 in float v_sub_e; // the sub shell's exponent in its layer's coverage (shell_vs.glsl)
@@ -271,7 +274,7 @@ void main()
         float caster = fur_edge(texture(u_fur, vec3(fur_uv + v_shadow_step, v_slices.x)), fur_gain).a * v_alpha;
         if (caster < 0.05) discard;
         caster = shell_overcount_alpha(caster, v_overcount); // the caster is a hair as below
-        o_color = vec4(0.0, 0.0, 0.0, layer_share(caster * u_inter_shadow));
+        o_color = vec4(0.0, 0.0, 0.0, layer_share(caster * u_inter_shadow * v_shadow_fade));
         return;
 #else
         discard;

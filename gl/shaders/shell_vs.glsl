@@ -42,6 +42,9 @@ out vec3 v_root;        // the groomed root and tip colours, lit: times
 out vec3 v_tip;         // fur_light_terms' mul
 out float v_spec;       // fur_light_terms' specular weight
 out vec2 v_shadow_step; // Kenwright's step towards the light, fur tiles
+#if defined(PELT_INTER_SHADOW) && !defined(PELT_LIGHT_PASS)
+out float v_shadow_fade; // how much of Kenwright's shadow this shell draws (inter_shadow_view_fade)
+#endif
 flat out float v_clump_profile; // the tuft's profile f(h) (Eq. 5 above its base), the same for the whole layer
 flat out vec3 v_slices; // slice, next level's slice, the blend towards it
 out float v_sub_e;      // the sub shell's exponent in its layer's coverage (sub_shell_exponent)
@@ -176,16 +179,9 @@ void main()
     float least = shell_edge_least(n_dot_v, u_edge_depth);
 #endif
     // The ray's drift against the hair from one shell to the next (docs/
-    // reference.md, A leaning hair in the shells' stack). Kenwright's
-    // shadows keep the angle between the two: their shadow of each shell's
-    // hair, drawn a step towards the light, turns to rows at the outline
-    // under the crisper hair.
+    // reference.md, A leaning hair in the shells' stack).
     vec3 to_eye = normalize(u_eye - world.xyz);
-#ifdef PELT_INTER_SHADOW
-    float cos_view = dot(world_t, to_eye);
-#else
     float cos_view = shell_stack_cos(world_t, to_eye, normalize(mat3(u_model) * n));
-#endif
     v_overcount = u_no_overcount != 0 ? 1.0
                 : shell_overcount(shell_hair_span(u_hair_width, u_taper, h, u_layers, L), cos_view, drift, least,
                                   shell_overcount_cap(u_layers));
@@ -228,6 +224,9 @@ void main()
     v_tuft_g = vec4(dot(world_t, tuft_u), dot(world_t, tuft_v), dot(tuft_u, tuft_u), dot(tuft_v, tuft_v));
     v_tuft_m = dot(tuft_u, tuft_v);
     v_clump_slope = clump_tuft_slope(h, u_clump_blend, u_layers);
+#endif
+#ifdef PELT_INTER_SHADOW
+    v_shadow_fade = inter_shadow_view_fade(n_dot_v);
 #endif
     v_shadow_step = inter_shadow_offset(normalize(u_light_dir), normalize(mat3(u_model) * u),
                                         normalize(mat3(u_model) * v), u_inter_shadow_step);

@@ -80,6 +80,24 @@ static void wet_highlight_grows_sharper_and_stronger(void)
     CHECK_NEAR(gain, 1.0, 1e-6);
 }
 
+/* Kenwright's shadow drawn whole face-on, not at all from the side, more
+ * the more the eye faces the surface, from either side of it. */
+static void inter_shadow_fades_from_the_side(void)
+{
+    CHECK(pelt__inter_shadow_view_fade(1.0f) == 1.0f);
+    CHECK(pelt__inter_shadow_view_fade(-PELT__INTER_SHADOW_FACE_ON) == 1.0f);
+    CHECK(pelt__inter_shadow_view_fade(0.0f) == 0.0f);
+    CHECK(pelt__inter_shadow_view_fade(PELT__INTER_SHADOW_SIDE_ON) == 0.0f);
+    float prev = -1.0f;
+    for (int i = 0; i <= 20; i++) {
+        float f = pelt__inter_shadow_view_fade(0.05f * (float)i);
+        CHECK(f >= prev && f == pelt__inter_shadow_view_fade(-0.05f * (float)i));
+        prev = f;
+    }
+    float mid = 0.5f * (PELT__INTER_SHADOW_SIDE_ON + PELT__INTER_SHADOW_FACE_ON);
+    CHECK_NEAR(pelt__inter_shadow_view_fade(mid), 0.5f, 1e-6);
+}
+
 static void srgb_round_trips_every_byte(void)
 {
     double worst = 0.0;
@@ -209,6 +227,7 @@ int main(void)
     RUN(kajiya_kay_specular_peaks_on_the_mirror_cone);
     RUN(shadow_factor_darkens_the_roots);
     RUN(wet_highlight_grows_sharper_and_stronger);
+    RUN(inter_shadow_fades_from_the_side);
     RUN(srgb_round_trips_every_byte);
     RUN(tone_curves_are_monotone_and_start_at_black);
     RUN(display_fit_follows_the_curve_and_the_encoding);

@@ -816,6 +816,31 @@ static void inter_shadow_glsl_matches_c(void)
     CHECK(worst < 2e-4);
 }
 
+/* How much of Kenwright's shadow a shell draws (inter_shadow_view_fade in
+ * shading.glsl) against pelt__inter_shadow_view_fade, |N.V| from -1 to 1. */
+static void inter_shadow_view_fade_glsl_matches_c(void)
+{
+    static const char main_glsl[] =
+        "out vec4 o;\n"
+        "void main() {\n"
+        "  vec2 c = floor(gl_FragCoord.xy);\n"
+        "  o = vec4(inter_shadow_view_fade(-1.0 + 2.0 * (c.x + 64.0 * c.y) / 3071.0), 0.0, 0.0, 0.0);\n"
+        "}\n";
+    const char *fs[] = {pelt__shader_shading, main_glsl, NULL};
+    CHECK(gl_test_eval(gl, fs, W, H, out));
+    double worst = 0.0;
+    int between = 0;
+    for (int y = 0; y < H; y++)
+        for (int x = 0; x < W; x++) {
+            float r = pelt__inter_shadow_view_fade(-1.0f + 2.0f * ((float)x + 64.0f * (float)y) / 3071.0f);
+            worst = fmax(worst, fabs(out[4 * (y * W + x)] - r));
+            between += r > 0.0f && r < 1.0f;
+        }
+    printf("  inter_shadow_view_fade: worst |GLSL - C| = %.3g, %d of 3072 between none and all\n", worst, between);
+    CHECK(between > 500);
+    CHECK(worst < 1e-5);
+}
+
 /* Lengyel §2.4 in the shell draw: instance -> layer, slices, blend and
  * opacity (shell_lod.glsl) against pelt__lod_shell_instance, over draws of
  * several layer counts, levels, blends and a first layer. The uniforms of
@@ -1420,6 +1445,7 @@ int main(void)
     RUN(ringlet_dots_glsl_matches_c);
     RUN(groom_glsl_matches_c);
     RUN(inter_shadow_glsl_matches_c);
+    RUN(inter_shadow_view_fade_glsl_matches_c);
     RUN(shell_lod_glsl_matches_c);
     RUN(shell_view_blend_glsl_matches_c);
     RUN(shell_lean_drift_glsl_matches_c);
